@@ -1,0 +1,116 @@
+#include "rift/load/boundary.hpp"
+
+#include "rift/geometry/region.hpp"
+#include "rift/load/time_function.hpp"
+
+namespace rift::load {
+
+namespace {
+template <int D>
+std::vector<std::size_t> select(const scene::Scene& s, const pd::Model<D>& m, const std::string& region) {
+  auto r = geometry::Region::build(s, region);
+  std::vector<std::size_t> out;
+  for (std::size_t i = 0; i < m.size(); ++i) {
+    Point3 p{0, 0, 0};
+    for (int k = 0; k < D; ++k) p[k] = m.reference_position[i][k];
+    if (r.contains(p)) out.push_back(i);
+  }
+  return out;
+}
+}  // namespace
+
+template <int D>
+Boundaries<D>::Boundaries(const scene::Scene& s, pd::Model<D>& m) {
+  using K = scene::BoundaryKind;
+  for (std::size_t bi = 0; bi < s.boundaries.size(); ++bi) {
+    const auto& b = s.boundaries[bi];
+    Applied a{b, select<D>(s, m, b.region)};
+    if (a.particles.empty())
+      throw SceneError(b.where, "boundaries[" + std::to_string(bi) + "].region", "region \"" + b.region + "\" selects no particle");
+    if (b.kind == K::fixed || b.kind == K::velocity || b.kind == K::displacement) {
+      any_kinematic_ = true;
+      for (auto i : a.particles)
+        for (int k = 0; k < D; ++k)
+          if (b.kind == K::fixed || b.value[k]) m.constrained[i] |= std::uint8_t(1u << k);
+    }
+    applied_.push_back(std::move(a));
+  }
+  for (const auto& name : s.output.reactions) {
+    reaction_names_.push_back(name);
+    reaction_particles_.push_back(select<D>(s, m, name));
+    if (reaction_particles_.back().empty())
+      throw SceneError({s.file, 0, 0}, "output.reactions", "region \"" + name + "\" selects no particle");
+  }
+}
+
+template <int D>
+void Boundaries<D>::apply_body_forces(pd::Model<D>& m, double t) const {
+  using K = scene::BoundaryKind;
+  for (auto& b : m.body_force) b = Vec<D>{};
+  for (const auto& a : applied_) {
+    if (a.def.kind != K::traction && a.def.kind != K::body_force) continue;
+    const double amp = evaluate(a.def.time, t);
+    for (auto i : a.particles) {
+      double scale = amp;
+      if (a.def.kind == K::traction) {
+        const double depth = a.def.layer_depth > 0 ? a.def.layer_depth : m.constants_of(i).spacing;
+        scale /= depth;
+      }
+      for (int k = 0; k < D; ++k)
+        if (a.def.value[k]) m.body_force[i][k] += scale * *a.def.value[k];
+    }
+  }
+}
+
+template <int D>
+void Boundaries<D>::prescribe_velocity(pd::Model<D>& m, double t, double dt) const {
+  using K = scene::BoundaryKind;
+  for (const auto& a : applied_) {
+    if (a.def.kind == K::fixed) {
+      for (auto i : a.particles) m.velocity[i] = Vec<D>{};
+    } else if (a.def.kind == K::velocity) {
+      const double amp = evaluate(a.def.time, t + 0.5 * dt);
+      for (auto i : a.particles)
+        for (int k = 0; k < D; ++k)
+          if (a.def.value[k]) m.velocity[i][k] = amp * *a.def.value[k];
+    } else if (a.def.kind == K::displacement) {
+      if (dt <= 0.0) continue;  // end of step: keep the drift velocity
+      const double du = (evaluate(a.def.time, t + dt) - evaluate(a.def.time, t)) / dt;
+      for (auto i : a.particles)
+        for (int k = 0; k < D; ++k)
+          if (a.def.value[k]) m.velocity[i][k] = du * *a.def.value[k];
+    }
+  }
+}
+
+template <int D>
+void Boundaries<D>::prescribe_position(pd::Model<D>& m, double t) const {
+  using K = scene::BoundaryKind;
+  for (const auto& a : applied_) {
+    if (a.def.kind == K::fixed) {
+      for (auto i : a.particles) m.position[i] = m.reference_position[i];
+    } else if (a.def.kind == K::displacement) {
+      const double amp = evaluate(a.def.time, t);
+      for (auto i : a.particles)
+        for (int k = 0; k < D; ++k)
+          if (a.def.value[k]) m.position[i][k] = m.reference_position[i][k] + amp * *a.def.value[k];
+    }
+  }
+}
+
+template <int D>
+std::vector<Vec<D>> Boundaries<D>::reactions(const pd::Model<D>& m) const {
+  std::vector<Vec<D>> out;
+  for (const auto& parts : reaction_particles_) {
+    Vec<D> r{};
+    for (auto i : parts)
+      for (int k = 0; k < D; ++k) r[k] -= m.force[i][k] * m.volume[i];
+    out.push_back(r);
+  }
+  return out;
+}
+
+template class Boundaries<2>;
+template class Boundaries<3>;
+
+}  // namespace rift::load

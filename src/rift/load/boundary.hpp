@@ -1,0 +1,41 @@
+// Boundary conditions on regions: fixed, prescribed velocity or displacement per component,
+// traction (converted to a body-force density over the loaded particle layer: b = T / depth),
+// body force; each scaled by its time function. Also the reaction force on tagged regions.
+#pragma once
+#include <string>
+#include <vector>
+
+#include "rift/pd/model.hpp"
+#include "rift/scene/scene.hpp"
+
+namespace rift::load {
+
+template <int D>
+class Boundaries {
+ public:
+  /// Select the particles of every boundary and reaction region (throws SceneError when a
+  /// region selects no particle) and mark constrained components on the model.
+  Boundaries(const scene::Scene& s, pd::Model<D>& m);
+  /// External force density at time t.
+  void apply_body_forces(pd::Model<D>& m, double t) const;
+  /// Velocity of constrained components over the step (t, t + dt): set before the drift.
+  void prescribe_velocity(pd::Model<D>& m, double t, double dt) const;
+  /// Exact positions of displacement-controlled components at time t.
+  void prescribe_position(pd::Model<D>& m, double t) const;
+  /// Reaction force of each tagged region: minus the internal force its particles carry.
+  std::vector<Vec<D>> reactions(const pd::Model<D>& m) const;
+  const std::vector<std::string>& reaction_names() const { return reaction_names_; }
+  bool has_kinematic() const { return any_kinematic_; }
+
+ private:
+  struct Applied {
+    scene::Boundary def;
+    std::vector<std::size_t> particles;
+  };
+  std::vector<Applied> applied_;
+  std::vector<std::string> reaction_names_;
+  std::vector<std::vector<std::size_t>> reaction_particles_;
+  bool any_kinematic_ = false;
+};
+
+}  // namespace rift::load

@@ -1,0 +1,23 @@
+// Bond families in compressed-sparse-row form: row i lists the bonds of particle i (both i-j and
+// j-i are stored, as LAMMPS PERI does, so each particle owns its force sum: no atomics).
+#pragma once
+#include <cstdint>
+#include <vector>
+
+namespace rift::pd {
+
+struct Bonds {
+  std::vector<std::int64_t> offset;   // size n+1; row i is [offset[i], offset[i+1])
+  std::vector<std::int32_t> neighbor; // j
+  std::vector<double> length;         // |xi|, reference bond length (double: no spurious stretch)
+  std::vector<float> volume;          // V_j * partial-volume fraction of j inside the horizon of i
+  std::vector<float> correction;      // surface-correction factor (symmetric; 1 when off)
+  std::vector<std::uint8_t> intact;   // 1 = intact, 0 = broken (never heals)
+
+  std::int64_t size() const { return static_cast<std::int64_t>(neighbor.size()); }
+  static constexpr std::size_t bytes_per_bond() {
+    return sizeof(std::int32_t) + sizeof(double) + 2 * sizeof(float) + sizeof(std::uint8_t);
+  }
+};
+
+}  // namespace rift::pd

@@ -1,0 +1,249 @@
+#include "rift/pd/discretize.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
+
+#include "rift/geometry/precrack.hpp"
+#include "rift/geometry/region.hpp"
+#include "rift/pd/influence.hpp"
+#include "rift/pd/surface_correction.hpp"
+
+namespace rift::pd {
+
+double partial_volume_fraction(const int* o, int dimension, double h, scene::Body::PartialVolume scheme) {
+  double r2 = 0;
+  for (int k = 0; k < dimension; ++k) r2 += double(o[k]) * o[k];
+  const double r = std::sqrt(r2);
+  if (scheme == scene::Body::PartialVolume::lammps) {
+    // LAMMPS PERI: bonds with |xi| <= delta; linear taper from 1 at delta - dx/2 to 1/2 at delta.
+    if (r > h) return 0.0;
+    return std::abs(r - h) <= 0.5 ? (h + 0.5 - r) : 1.0;
+  }
+  const double half_diag = 0.5 * std::sqrt(double(dimension));
+  if (r + half_diag <= h) return 1.0;
+  if (r - half_diag >= h) return 0.0;
+  // geometric fraction of the cell inside the ball, by a 16^D midpoint rule
+  constexpr int n = 16;
+  int inside = 0, total = 0;
+  for (int a = 0; a < n; ++a)
+    for (int b = 0; b < n; ++b)
+      for (int c = 0; c < (dimension == 3 ? n : 1); ++c) {
+        double p[3] = {o[0] + (a + 0.5) / n - 0.5, o[1] + (b + 0.5) / n - 0.5, dimension == 3 ? o[2] + (c + 0.5) / n - 0.5 : 0.0};
+        inside += (p[0] * p[0] + p[1] * p[1] + p[2] * p[2] <= h * h);
+        ++total;
+      }
+  return double(inside) / total;
+}
+
+namespace {
+
+struct Offset {
+  std::array<int, 3> o;
+  double fraction;
+};
+
+std::vector<Offset> family_offsets(int dimension, double h, scene::Body::PartialVolume scheme) {
+  std::vector<Offset> out;
+  const int r = static_cast<int>(std::ceil(h + 1.0));
+  const int rz = dimension == 3 ? r : 0;
+  for (int z = -rz; z <= rz; ++z)
+    for (int y = -r; y <= r; ++y)
+      for (int x = -r; x <= r; ++x) {
+        if (x == 0 && y == 0 && z == 0) continue;
+        int o[3] = {x, y, z};
+        double f = partial_volume_fraction(o, dimension, h, scheme);
+        if (f > 0.0) out.push_back({{x, y, z}, f});
+      }
+  return out;  // ordered as the lattice is numbered (x fastest), so rows come out sorted by j
+}
+
+template <int D>
+void fill_body(const scene::Scene& s, const scene::Body& b, std::size_t index, Model<D>& m,
+               std::vector<std::array<long, 3>>& lattice_index) {
+  auto region = geometry::Region::build(s, b.region);
+  Point3 lo, hi;
+  region.bounds(lo, hi);
+  for (int k = 0; k < D; ++k)
+    if (!std::isfinite(lo[k]) || !std::isfinite(hi[k]))
+      throw SceneError(b.where, "bodies." + b.name + ".region", "region \"" + b.region + "\" is unbounded; intersect it with a box");
+  std::array<long, 3> first{0, 0, 0}, last{0, 0, 0};
+  for (int k = 0; k < D; ++k) {
+    first[k] = static_cast<long>(std::ceil((lo[k] - b.lattice_origin[k]) / b.spacing - 0.5));
+    last[k] = static_cast<long>(std::floor((hi[k] - b.lattice_origin[k]) / b.spacing - 0.5));
+  }
+  double cells = 1;
+  for (int k = 0; k < D; ++k) cells *= double(last[k] - first[k] + 1);
+  if (cells > 2e9) throw SceneError(b.where, "bodies." + b.name + ".spacing", "spacing is too fine for the region: more than 2e9 lattice sites");
+  const double cell_volume = std::pow(b.spacing, D) * (D == 2 ? s.thickness : 1.0);
+  for (long z = first[2]; z <= last[2]; ++z)
+    for (long y = first[1]; y <= last[1]; ++y)
+      for (long x = first[0]; x <= last[0]; ++x) {
+        long ijk[3] = {x, y, z};
+        Point3 p{0, 0, 0};
+        for (int k = 0; k < D; ++k) p[k] = b.lattice_origin[k] + (ijk[k] + 0.5) * b.spacing;
+        if (!region.contains(p)) continue;
+        Vec<D> v;
+        for (int k = 0; k < D; ++k) v[k] = p[k];
+        m.reference_position.push_back(v);
+        m.volume.push_back(cell_volume);
+        m.body.push_back(static_cast<std::uint32_t>(index));
+        lattice_index.push_back({x, y, z});
+      }
+}
+
+template <int D>
+void build_bonds(const scene::Scene& s, Model<D>& m, const std::vector<std::array<long, 3>>& lattice_index) {
+  const std::size_t n = m.size();
+  std::vector<geometry::PreCrack> cracks;
+  for (const auto& c : s.cracks) cracks.emplace_back(D, c.points);
+  std::vector<std::vector<std::int32_t>> nb(n);
+  std::vector<std::vector<float>> frac(n);
+  for (std::size_t bi = 0; bi < m.bodies.size(); ++bi) {
+    const auto& info = m.bodies[bi];
+    const auto& body = s.bodies[bi];
+    const double h = info.constants.horizon / info.constants.spacing;
+    auto offsets = family_offsets(D, h, body.partial_volume);
+    // dense lattice -> particle map over the body's index box
+    std::array<long, 3> lo{0, 0, 0}, hi{0, 0, 0};
+    lo = hi = lattice_index[info.first];
+    for (std::size_t i = info.first; i < info.last; ++i)
+      for (int k = 0; k < 3; ++k) lo[k] = std::min(lo[k], lattice_index[i][k]), hi[k] = std::max(hi[k], lattice_index[i][k]);
+    const long nx = hi[0] - lo[0] + 1, ny = hi[1] - lo[1] + 1, nz = hi[2] - lo[2] + 1;
+    std::vector<std::int32_t> map(static_cast<std::size_t>(nx * ny * nz), -1);
+    auto cell = [&](long x, long y, long z) { return static_cast<std::size_t>(((z - lo[2]) * ny + (y - lo[1])) * nx + (x - lo[0])); };
+    for (std::size_t i = info.first; i < info.last; ++i)
+      map[cell(lattice_index[i][0], lattice_index[i][1], lattice_index[i][2])] = static_cast<std::int32_t>(i);
+    // cracks whose bounding box (grown by the horizon) can cut this body's bonds
+    std::vector<std::pair<const geometry::PreCrack*, std::array<Point3, 2>>> near;
+    for (const auto& c : cracks) {
+      Point3 clo, chi;
+      c.bounds(clo, chi);
+      for (int k = 0; k < 3; ++k) clo[k] -= info.constants.horizon * 1.5, chi[k] += info.constants.horizon * 1.5;
+      near.push_back({&c, {clo, chi}});
+    }
+#pragma omp parallel for schedule(dynamic, 256)
+    for (std::size_t i = info.first; i < info.last; ++i) {
+      const auto& li = lattice_index[i];
+      Point3 pi{0, 0, 0};
+      for (int k = 0; k < D; ++k) pi[k] = m.reference_position[i][k];
+      std::vector<const geometry::PreCrack*> cutting;
+      for (const auto& [c, box] : near) {
+        bool in = true;
+        for (int k = 0; k < D; ++k) in = in && pi[k] >= box[0][k] && pi[k] <= box[1][k];
+        if (in) cutting.push_back(c);
+      }
+      for (const auto& off : offsets) {
+        long x = li[0] + off.o[0], y = li[1] + off.o[1], z = li[2] + off.o[2];
+        if (x < lo[0] || x > hi[0] || y < lo[1] || y > hi[1] || z < lo[2] || z > hi[2]) continue;
+        std::int32_t j = map[cell(x, y, z)];
+        if (j < 0) continue;
+        bool cut = false;
+        if (!cutting.empty()) {
+          Point3 pj{0, 0, 0};
+          for (int k = 0; k < D; ++k) pj[k] = m.reference_position[j][k];
+          for (const auto* c : cutting) cut = cut || c->cuts(pi, pj);
+        }
+        if (cut) continue;
+        nb[i].push_back(j);
+        frac[i].push_back(static_cast<float>(off.fraction));
+      }
+    }
+  }
+  Bonds& b = m.bonds;
+  b.offset.assign(n + 1, 0);
+  for (std::size_t i = 0; i < n; ++i) b.offset[i + 1] = b.offset[i] + static_cast<std::int64_t>(nb[i].size());
+  const auto nbonds = static_cast<std::size_t>(b.offset[n]);
+  b.neighbor.resize(nbonds);
+  b.length.resize(nbonds);
+  b.volume.resize(nbonds);
+  b.correction.assign(nbonds, 1.0f);
+  b.intact.assign(nbonds, 1);
+#pragma omp parallel for schedule(static)
+  for (std::size_t i = 0; i < n; ++i) {
+    auto k0 = static_cast<std::size_t>(b.offset[i]);
+    for (std::size_t q = 0; q < nb[i].size(); ++q) {
+      std::int32_t j = nb[i][q];
+      b.neighbor[k0 + q] = j;
+      b.length[k0 + q] = norm<D>(m.reference_position[j] - m.reference_position[i]);
+      b.volume[k0 + q] = static_cast<float>(m.volume[j] * frac[i][q]);
+    }
+    std::vector<std::int32_t>().swap(nb[i]);
+    std::vector<float>().swap(frac[i]);
+  }
+}
+
+}  // namespace
+
+template <int D>
+Model<D> discretize(const scene::Scene& s) {
+  Model<D> m;
+  m.thickness = D == 2 ? s.thickness : 1.0;
+  std::vector<std::array<long, 3>> lattice_index;
+  for (std::size_t bi = 0; bi < s.bodies.size(); ++bi) {
+    const auto& b = s.bodies[bi];
+    BodyInfo info;
+    info.name = b.name;
+    info.first = m.size();
+    fill_body<D>(s, b, bi, m, lattice_index);
+    info.last = m.reference_position.size();
+    if (info.last == info.first)
+      throw SceneError(b.where, "bodies." + b.name, "region \"" + b.region + "\" holds no lattice site at spacing " +
+                                                        std::to_string(b.spacing) + " m; make the region larger or the spacing finer");
+    info.constants = make_constants(s, s.materials[b.material], b.horizon, b.spacing);
+    m.bodies.push_back(info);
+  }
+  if (m.size() > static_cast<std::size_t>(std::numeric_limits<std::int32_t>::max()))
+    throw SceneError({s.file, 0, 0}, "bodies", "more than 2^31 particles");
+  m.position = m.reference_position;
+  const std::size_t n = m.size();
+  m.velocity.assign(n, Vec<D>{});
+  m.force.assign(n, Vec<D>{});
+  m.body_force.assign(n, Vec<D>{});
+  m.dilatation.assign(n, 0.0);
+  m.dilatation_coupling.assign(n, 0.0);
+  m.damage.assign(n, 0.0);
+  m.constrained.assign(n, 0);
+  m.stretch_limit.resize(n);
+  for (std::size_t i = 0; i < n; ++i) m.stretch_limit[i] = m.constants_of(i).critical_stretch;
+  m.next_stretch_limit = m.stretch_limit;
+
+  build_bonds<D>(s, m, lattice_index);
+
+  // weighted volume m_i = sum omega |xi|^2 V_j (Silling et al. 2007, eq. 21); fixed at set-up as in LAMMPS
+  m.weighted_volume.assign(n, 0.0);
+  for (const auto& body : m.bodies) {
+    const auto& c = body.constants;
+#pragma omp parallel for schedule(static)
+    for (std::size_t i = body.first; i < body.last; ++i) {
+      double w = 0.0;
+      for (auto k = m.bonds.offset[i]; k < m.bonds.offset[i + 1]; ++k) {
+        double xi = m.bonds.length[k];
+        w += influence(c.influence, xi, c.horizon) * xi * xi * m.bonds.volume[k];
+      }
+      m.weighted_volume[i] = w;
+    }
+  }
+  apply_surface_correction<D>(m);
+
+  for (const auto& iv : s.initial_velocities) {
+    auto region = geometry::Region::build(s, iv.region);
+    std::size_t count = 0;
+    for (std::size_t i = 0; i < n; ++i) {
+      Point3 p{0, 0, 0};
+      for (int k = 0; k < D; ++k) p[k] = m.reference_position[i][k];
+      if (!region.contains(p)) continue;
+      for (int k = 0; k < D; ++k) m.velocity[i][k] = iv.velocity[k];
+      ++count;
+    }
+    if (count == 0)
+      throw SceneError(iv.where, "initial_velocity.region", "region \"" + iv.region + "\" selects no particle");
+  }
+  return m;
+}
+
+template Model<2> discretize<2>(const scene::Scene&);
+template Model<3> discretize<3>(const scene::Scene&);
+
+}  // namespace rift::pd

@@ -1,0 +1,88 @@
+#include "rift/pd/dynamic_relaxation.hpp"
+
+#include <cmath>
+
+#include "rift/pd/forces.hpp"
+#include "rift/pd/influence.hpp"
+
+namespace rift::pd {
+
+template <int D>
+DynamicRelaxation<D>::DynamicRelaxation(const Model<D>& m) {
+  // lambda_ii >= (1/4) dt^2 sum_j |dF/du| ~ (1/4) sum_j c omega / |xi| V_j (eq. 10, dt = 1); a factor 5
+  // covers LPS coupling through the dilatation and the surface correction.
+  fictitious_density_.assign(m.size(), 0.0);
+  for (const auto& body : m.bodies) {
+    const auto& c = body.constants;
+    for (std::size_t i = body.first; i < body.last; ++i) {
+      double sum = 0.0;
+      for (auto k = m.bonds.offset[i]; k < m.bonds.offset[i + 1]; ++k) {
+        const double xi = m.bonds.length[k];
+        sum += std::max(1.0f, m.bonds.correction[k]) * c.equivalent_micromodulus * influence(c.influence, xi, c.horizon) / xi *
+               m.bonds.volume[k];
+      }
+      fictitious_density_[i] = 0.25 * 5.0 * sum;
+    }
+  }
+}
+
+template <int D>
+RelaxationResult DynamicRelaxation<D>::relax(Model<D>& m, const load::Boundaries<D>& loads, Contact<D>* contact,
+                                              double t, int max_iterations, double tolerance) {
+  const std::size_t n = m.size();
+  m.time = t;
+  loads.prescribe_position(m, t);
+  loads.apply_body_forces(m, t);
+  for (auto& v : m.velocity) v = Vec<D>{};
+  std::vector<Vec<D>> previous(n);  // F^{n-1} / lambda
+  RelaxationResult result;
+  double load_norm = 0.0;
+  for (std::size_t i = 0; i < n; ++i) load_norm += dot<D>(m.body_force[i], m.body_force[i]) * m.volume[i] * m.volume[i];
+  for (int it = 0; it < max_iterations; ++it) {
+    advance_stretch_limits<D>(m);
+    compute_forces<D>(m, contact);
+    double num = 0.0, den = 0.0, residual = 0.0, reaction = 0.0;
+#pragma omp parallel for reduction(+ : num, den, residual, reaction) schedule(static)
+    for (std::size_t i = 0; i < n; ++i) {
+      for (int k = 0; k < D; ++k) {
+        const double f = (m.force[i][k] + m.body_force[i][k]) / fictitious_density_[i];
+        if (m.constrained[i] >> k & 1) {
+          reaction += m.force[i][k] * m.force[i][k] * m.volume[i] * m.volume[i];
+          continue;
+        }
+        residual += (m.force[i][k] + m.body_force[i][k]) * (m.force[i][k] + m.body_force[i][k]) * m.volume[i] * m.volume[i];
+        const double v = m.velocity[i][k];
+        const double u = m.position[i][k] - m.reference_position[i][k];
+        if (it > 0 && v != 0.0) num += u * (-(f - previous[i][k]) / v) * u;  // U^T K U with K_ii = -(F^n - F^{n-1}) / (lambda V^{n-1/2})
+        den += u * u;
+      }
+    }
+    const double reference = std::sqrt(load_norm) + std::sqrt(reaction);
+    result.iterations = it + 1;
+    result.residual = reference > 0.0 ? std::sqrt(residual) / reference : std::sqrt(residual);
+    if (it > 0 && reference > 0.0 && result.residual < tolerance) {
+      result.converged = true;
+      break;
+    }
+    const double cn = (den > 0.0 && num > 0.0) ? 2.0 * std::sqrt(num / den) : 0.0;
+#pragma omp parallel for schedule(static)
+    for (std::size_t i = 0; i < n; ++i) {
+      for (int k = 0; k < D; ++k) {
+        if (m.constrained[i] >> k & 1) continue;
+        const double f = (m.force[i][k] + m.body_force[i][k]) / fictitious_density_[i];
+        double& v = m.velocity[i][k];
+        v = it == 0 ? 0.5 * f : ((2.0 - cn) * v + 2.0 * f) / (2.0 + cn);  // eq. 13-14, dt = 1
+        m.position[i][k] += v;
+        previous[i][k] = f;
+      }
+    }
+  }
+  compute_forces<D>(m, contact);
+  for (auto& v : m.velocity) v = Vec<D>{};
+  return result;
+}
+
+template class DynamicRelaxation<2>;
+template class DynamicRelaxation<3>;
+
+}  // namespace rift::pd

@@ -1,0 +1,29 @@
+// Adaptive dynamic relaxation (Kilic and Madenci 2010, Theor. Appl. Fract. Mech. 53, eq. 8-15):
+// fictitious density from the stiffness row sum, damping from Rayleigh's quotient of the local
+// diagonal stiffness. Solves the static equilibrium for the loads at a given time.
+#pragma once
+#include "rift/load/boundary.hpp"
+#include "rift/pd/contact.hpp"
+#include "rift/pd/model.hpp"
+
+namespace rift::pd {
+
+struct RelaxationResult {
+  int iterations = 0;
+  double residual = 0.0;  // ||internal + external force|| / ||load||
+  bool converged = false;
+};
+
+template <int D>
+class DynamicRelaxation {
+ public:
+  explicit DynamicRelaxation(const Model<D>& m);
+  /// Relax to equilibrium for the loads at time t (positions of displacement BCs set first).
+  RelaxationResult relax(Model<D>& m, const load::Boundaries<D>& loads, Contact<D>* contact, double t,
+                         int max_iterations, double tolerance);
+
+ private:
+  std::vector<double> fictitious_density_;  // lambda_ii (eq. 10), time step 1
+};
+
+}  // namespace rift::pd

@@ -1,0 +1,107 @@
+#include "rift/pd/forces.hpp"
+
+#include <cmath>
+#include <limits>
+
+#include "rift/pd/lps.hpp"
+#include "rift/pd/pmb.hpp"
+
+namespace rift::pd {
+
+template <int D>
+void compute_forces(Model<D>& m, Contact<D>* contact) {
+  using I = scene::Influence;
+  for (const auto& body : m.bodies) {
+    const auto& c = body.constants;
+    if (c.model == scene::ModelKind::pmb) {
+      if (c.influence == I::constant) pmb_forces<D, I::constant>(m, body);
+      else pmb_forces<D, I::inverse_distance>(m, body);
+    } else {
+      if (c.influence == I::constant) lps_dilatation<D, I::constant>(m, body);
+      else lps_dilatation<D, I::inverse_distance>(m, body);
+    }
+  }
+  // second pass for LPS needs every dilatation of the step (bodies may neighbour through contact only)
+  for (const auto& body : m.bodies) {
+    const auto& c = body.constants;
+    if (c.model != scene::ModelKind::lps) continue;
+    if (c.influence == I::constant) lps_forces<D, I::constant>(m, body);
+    else lps_forces<D, I::inverse_distance>(m, body);
+  }
+  if (contact) contact->add_forces(m);
+}
+
+template <int D>
+void update_damage(Model<D>& m) {
+  const Bonds& b = m.bonds;
+  const std::size_t n = m.size();
+#pragma omp parallel for schedule(static)
+  for (std::size_t i = 0; i < n; ++i) {
+    double all = 0.0, intact = 0.0;
+    for (auto k = b.offset[i]; k < b.offset[i + 1]; ++k) {
+      all += b.volume[k];
+      if (b.intact[k]) intact += b.volume[k];
+    }
+    m.damage[i] = all > 0.0 ? 1.0 - intact / all : 0.0;
+  }
+}
+
+template <int D>
+double strain_energy_density(const Model<D>& m, std::size_t i) {
+  const auto& body = m.bodies[m.body[i]];
+  return body.constants.model == scene::ModelKind::pmb ? pmb_energy_density<D>(m, body, i)
+                                                        : lps_energy_density<D>(m, body, i);
+}
+
+template <int D>
+EnergySummary summarize(const Model<D>& m) {
+  EnergySummary s;
+  const std::size_t n = m.size();
+  double kinetic = 0.0, strain = 0.0;
+  std::int64_t broken = 0;
+#pragma omp parallel for reduction(+ : kinetic, strain, broken) schedule(static)
+  for (std::size_t i = 0; i < n; ++i) {
+    const double rho = m.constants_of(i).density;
+    kinetic += 0.5 * rho * dot<D>(m.velocity[i], m.velocity[i]) * m.volume[i];
+    strain += strain_energy_density<D>(m, i) * m.volume[i];
+    for (auto k = m.bonds.offset[i]; k < m.bonds.offset[i + 1]; ++k) broken += !m.bonds.intact[k];
+  }
+  s.kinetic = kinetic;
+  s.strain = strain;
+  s.broken_bonds = broken / 2;
+  s.broken_fraction = m.bonds.size() > 0 ? double(broken) / double(m.bonds.size()) : 0.0;
+  return s;
+}
+
+template <int D>
+double stable_time_step(const Model<D>& m) {
+  double dt = std::numeric_limits<double>::max();
+  for (const auto& body : m.bodies) {
+    const auto& c = body.constants;
+    double local = std::numeric_limits<double>::max();
+#pragma omp parallel for reduction(min : local) schedule(static)
+    for (std::size_t i = body.first; i < body.last; ++i) {
+      double sum = 0.0;
+      for (auto k = m.bonds.offset[i]; k < m.bonds.offset[i + 1]; ++k) {
+        const double xi = m.bonds.length[k];
+        sum += m.bonds.volume[k] * std::max(1.0f, m.bonds.correction[k]) * c.equivalent_micromodulus *
+               influence(c.influence, xi, c.horizon) / xi;
+      }
+      if (sum > 0.0) local = std::min(local, std::sqrt(2.0 * c.density / sum));
+    }
+    dt = std::min(dt, local);
+  }
+  return dt;
+}
+
+#define RIFT_INSTANTIATE(D)                                               \
+  template void compute_forces<D>(Model<D>&, Contact<D>*);                \
+  template void update_damage<D>(Model<D>&);                              \
+  template double strain_energy_density<D>(const Model<D>&, std::size_t); \
+  template EnergySummary summarize<D>(const Model<D>&);                   \
+  template double stable_time_step<D>(const Model<D>&);
+RIFT_INSTANTIATE(2)
+RIFT_INSTANTIATE(3)
+#undef RIFT_INSTANTIATE
+
+}  // namespace rift::pd

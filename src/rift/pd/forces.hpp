@@ -1,0 +1,44 @@
+// One evaluation of the peridynamic force density: bond forces of every body (model dispatched
+// once per body, influence function as a template parameter), then contact.
+#pragma once
+#include <algorithm>
+
+#include "rift/pd/contact.hpp"
+#include "rift/pd/model.hpp"
+
+namespace rift::pd {
+
+template <int D>
+void compute_forces(Model<D>& m, Contact<D>* contact);
+
+/// After a step: the s0 computed from this step's minimum stretch becomes current (alpha > 0).
+template <int D>
+void advance_stretch_limits(Model<D>& m) {
+  for (const auto& body : m.bodies)
+    if (body.constants.alpha > 0.0)
+      std::copy(m.next_stretch_limit.begin() + body.first, m.next_stretch_limit.begin() + body.last,
+                m.stretch_limit.begin() + body.first);
+}
+
+/// Particle damage: broken share of the bond volume (Silling and Askari 2005, eq. 25).
+template <int D>
+void update_damage(Model<D>& m);
+
+/// Strain energy density of particle i (uses the current dilatation for LPS).
+template <int D>
+double strain_energy_density(const Model<D>& m, std::size_t i);
+
+struct EnergySummary {
+  double kinetic = 0.0, strain = 0.0;
+  std::int64_t broken_bonds = 0;  // bonds broken (each bond counted once)
+  double broken_fraction = 0.0;
+};
+template <int D>
+EnergySummary summarize(const Model<D>& m);
+
+/// Stable time step (Silling and Askari 2005, eq. 29): dt < sqrt(2 rho / sum_j V_j C_ij),
+/// C_ij = c / |xi| of the PMB body with the same P-wave modulus; minimum over particles.
+template <int D>
+double stable_time_step(const Model<D>& m);
+
+}  // namespace rift::pd

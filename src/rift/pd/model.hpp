@@ -1,0 +1,55 @@
+// The state of a peridynamic run: particles as structure-of-arrays, bonds as CSR, one set of
+// constants per body. Bodies occupy contiguous particle ranges, so kernels dispatch on the model
+// once per body and run tight loops inside.
+#pragma once
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "rift/core/vec.hpp"
+#include "rift/pd/bonds.hpp"
+#include "rift/pd/material_constants.hpp"
+
+namespace rift::pd {
+
+struct BodyInfo {
+  std::string name;
+  std::size_t first = 0, last = 0;  // particle range [first, last)
+  MaterialConstants constants;
+};
+
+template <int D>
+struct Model {
+  // particle fields (SoA)
+  std::vector<Vec<D>> reference_position;  // x0
+  std::vector<Vec<D>> position;            // x
+  std::vector<Vec<D>> velocity;
+  std::vector<Vec<D>> force;               // internal force density (N/m^3)
+  std::vector<Vec<D>> body_force;          // external force density from loads (N/m^3)
+  std::vector<double> volume;
+  std::vector<double> weighted_volume;     // m (Silling et al. 2007, eq. 21)
+  std::vector<double> deviatoric_weighted_volume;  // sum Gd omega |xi|^2 V (surface-corrected LPS)
+  std::vector<double> dilatation;          // theta
+  std::vector<double> dilatation_coupling; // P_i = sum Gd omega e^d |xi| V (zero without correction)
+  std::vector<double> stretch_limit;       // s0 of each particle (LAMMPS: s00 - alpha s_min)
+  std::vector<double> next_stretch_limit;
+  std::vector<double> damage;
+  std::vector<std::uint32_t> body;
+  std::vector<std::uint8_t> constrained;  // bit k: velocity component k is prescribed
+
+  Bonds bonds;
+  std::vector<float> dilatation_correction;  // per bond, LPS surface correction of theta (Gtheta)
+  std::vector<BodyInfo> bodies;
+  int dimension = D;
+  double thickness = 1.0;
+  double time = 0.0;
+
+  std::size_t size() const { return position.size(); }
+  const MaterialConstants& constants_of(std::size_t i) const { return bodies[body[i]].constants; }
+  Vec<D> displacement(std::size_t i) const { return position[i] - reference_position[i]; }
+  static constexpr std::size_t bytes_per_particle() {
+    return sizeof(Vec<D>) * 6 + sizeof(double) * 9 + sizeof(std::uint32_t) + sizeof(std::uint8_t);
+  }
+};
+
+}  // namespace rift::pd

@@ -1,0 +1,44 @@
+// Explicit dynamics: velocity-Verlet (kick-drift-kick), as LAMMPS fix nve.
+//   v(t+dt/2) = v(t) + dt/2 a(t);  x(t+dt) = x(t) + dt v(t+dt/2);  forces;  v(t+dt) = v(t+dt/2) + dt/2 a(t+dt)
+#pragma once
+#include "rift/load/boundary.hpp"
+#include "rift/pd/contact.hpp"
+#include "rift/pd/forces.hpp"
+#include "rift/pd/model.hpp"
+
+namespace rift::pd {
+
+template <int D>
+void kick(Model<D>& m, double half_dt) {
+  const std::size_t n = m.size();
+#pragma omp parallel for schedule(static)
+  for (std::size_t i = 0; i < n; ++i) {
+    const double inv_rho = 1.0 / m.constants_of(i).density;
+    for (int k = 0; k < D; ++k) m.velocity[i][k] += half_dt * (m.force[i][k] + m.body_force[i][k]) * inv_rho;
+  }
+}
+
+template <int D>
+void drift(Model<D>& m, double dt) {
+  const std::size_t n = m.size();
+#pragma omp parallel for schedule(static)
+  for (std::size_t i = 0; i < n; ++i)
+    for (int k = 0; k < D; ++k) m.position[i][k] += dt * m.velocity[i][k];
+}
+
+/// One velocity-Verlet step from m.time to m.time + dt. Forces of m.time must be current.
+template <int D>
+void velocity_verlet_step(Model<D>& m, const load::Boundaries<D>& loads, Contact<D>* contact, double dt) {
+  kick<D>(m, 0.5 * dt);
+  loads.prescribe_velocity(m, m.time, dt);
+  drift<D>(m, dt);
+  loads.prescribe_position(m, m.time + dt);
+  m.time += dt;
+  advance_stretch_limits<D>(m);
+  compute_forces<D>(m, contact);
+  loads.apply_body_forces(m, m.time);
+  kick<D>(m, 0.5 * dt);
+  loads.prescribe_velocity(m, m.time, 0.0);
+}
+
+}  // namespace rift::pd

@@ -1,0 +1,250 @@
+#include "rift/run/runner.hpp"
+
+#include <omp.h>
+
+#include <cmath>
+#include <filesystem>
+#include <ostream>
+
+#include "rift/core/progress.hpp"
+#include "rift/io/damage_image.hpp"
+#include "rift/io/field_writer.hpp"
+#include "rift/io/history.hpp"
+#include "rift/load/boundary.hpp"
+#include "rift/pd/contact.hpp"
+#include "rift/pd/discretize.hpp"
+#include "rift/pd/dynamic_relaxation.hpp"
+#include "rift/pd/velocity_verlet.hpp"
+
+namespace rift::run {
+
+namespace {
+
+template <int D>
+struct Prepared {
+  pd::Model<D> model;
+  load::Boundaries<D> loads;
+  pd::Contact<D> contact;
+  double stable_dt = 0.0, dt = 0.0;
+  long steps = 0;
+
+  explicit Prepared(const scene::Scene& s)
+      : model(pd::discretize<D>(s)), loads(s, model), contact(s.contact, model) {
+    stable_dt = pd::stable_time_step<D>(model);
+    if (s.solver.kind == scene::SolverKind::explicit_dynamics) {
+      if (s.solver.time_step) {
+        if (*s.solver.time_step > stable_dt)
+          throw SceneError(s.solver.time_step_where, "solver.time_step",
+                           "time step " + std::to_string(*s.solver.time_step) + " s exceeds the stable limit " +
+                               std::to_string(stable_dt) + " s (Silling and Askari 2005, eq. 29); use a smaller value or safety_factor");
+        dt = *s.solver.time_step;
+      } else {
+        dt = s.solver.safety_factor * stable_dt;
+      }
+      steps = std::max(1L, static_cast<long>(std::ceil(s.solver.end_time / dt - 1e-9)));
+      dt = s.solver.end_time / double(steps);
+    } else {
+      steps = s.solver.load_steps;
+    }
+  }
+  pd::Contact<D>* contact_ptr() { return contact.enabled() ? &contact : nullptr; }
+};
+
+template <int D>
+Plan make_plan(const Prepared<D>& p) {
+  Plan plan;
+  plan.particles = p.model.size();
+  plan.bonds = p.model.bonds.size() / 2;
+  plan.bytes_per_particle = double(pd::Model<D>::bytes_per_particle()) + sizeof(std::int64_t);
+  plan.bytes_per_bond = double(pd::Bonds::bytes_per_bond()) * 2.0 + (p.model.dilatation_correction.empty() ? 0.0 : 8.0);
+  plan.stable_time_step = p.stable_dt;
+  plan.time_step = p.dt;
+  plan.steps = p.steps;
+  return plan;
+}
+
+template <int D>
+Plan check_dim(const scene::Scene& s, std::ostream& out) {
+  Prepared<D> p(s);
+  Plan plan = make_plan<D>(p);
+  char line[256];
+  out << "scene        " << s.name << " (" << s.file << ")\n";
+  out << "dimension    " << D << (D == 2 ? (s.plane == scene::PlaneCondition::stress ? " (plane stress" : " (plane strain") : "")
+      << (D == 2 ? ", thickness " + std::to_string(s.thickness) + " m)" : "") << "\n";
+  for (const auto& b : p.model.bodies) {
+    const auto& c = b.constants;
+    std::snprintf(line, sizeof line, "body         %s: %zu particles, %s, spacing %g m, horizon %g m (%.3f spacings), s0 = %s\n",
+                  b.name.c_str(), b.last - b.first, c.model == scene::ModelKind::pmb ? "PMB" : "LPS", c.spacing, c.horizon,
+                  c.horizon / c.spacing, c.breakable ? std::to_string(c.critical_stretch).c_str() : "unbreakable");
+    out << line;
+  }
+  std::snprintf(line, sizeof line, "particles    %zu\nbonds        %lld (%.1f per particle)\n", plan.particles,
+                static_cast<long long>(plan.bonds), plan.particles ? 2.0 * double(plan.bonds) / double(plan.particles) : 0.0);
+  out << line;
+  std::snprintf(line, sizeof line, "memory       %.0f bytes/particle, %.0f bytes/bond, %.1f MB in all\n", plan.bytes_per_particle,
+                plan.bytes_per_bond, (plan.bytes_per_particle * double(plan.particles) + plan.bytes_per_bond * double(plan.bonds)) / 1e6);
+  out << line;
+  std::snprintf(line, sizeof line, "time step    stable %.4g s", plan.stable_time_step);
+  out << line;
+  if (s.solver.kind == scene::SolverKind::explicit_dynamics) {
+    std::snprintf(line, sizeof line, ", used %.4g s\nsteps        %ld (explicit, end time %.4g s)\n", plan.time_step, plan.steps,
+                  s.solver.end_time);
+  } else {
+    std::snprintf(line, sizeof line, "\nsteps        %d load steps of dynamic relaxation (at most %d iterations each, tolerance %g)\n",
+                  s.solver.load_steps, s.solver.max_iterations, s.solver.tolerance);
+  }
+  out << line;
+  std::string fields;
+  for (const auto& f : s.output.fields) fields += " " + f;
+  out << "output       " << s.output.count << " snapshots (position" << fields << ") -> fields.h5 + fields.xdmf\n";
+  out << "             " << s.output.history_count << " history rows -> history.csv";
+  for (const auto& r : s.output.reactions) out << ", reaction on " << r;
+  out << "\n";
+  if (D == 2 && s.output.damage_image) out << "             final damage image -> damage.png\n";
+  return plan;
+}
+
+template <int D>
+std::vector<double> vector_field(const pd::Model<D>& m, const std::vector<Vec<D>>& v, bool relative_to_reference) {
+  std::vector<double> out(3 * m.size(), 0.0);
+  for (std::size_t i = 0; i < m.size(); ++i)
+    for (int k = 0; k < D; ++k) out[3 * i + k] = v[i][k] - (relative_to_reference ? m.reference_position[i][k] : 0.0);
+  return out;
+}
+
+template <int D>
+void write_snapshot(io::FieldWriter& w, pd::Model<D>& m, const scene::Scene& s) {
+  pd::update_damage<D>(m);
+  w.begin_snapshot(m.time);
+  w.write("position", vector_field<D>(m, m.position, false), 3);
+  for (const auto& f : s.output.fields) {
+    if (f == "displacement") w.write(f, vector_field<D>(m, m.position, true), 3);
+    else if (f == "velocity") w.write(f, vector_field<D>(m, m.velocity, false), 3);
+    else if (f == "damage") w.write(f, m.damage, 1);
+    else if (f == "dilatation") w.write(f, m.dilatation, 1);
+    else if (f == "weighted_volume") w.write(f, m.weighted_volume, 1);
+    else if (f == "volume") w.write(f, m.volume, 1);
+    else if (f == "body") {
+      std::vector<double> b(m.size());
+      for (std::size_t i = 0; i < m.size(); ++i) b[i] = m.body[i];
+      w.write(f, b, 1);
+    } else if (f == "strain_energy_density") {
+      std::vector<double> e(m.size());
+      for (std::size_t i = 0; i < m.size(); ++i) e[i] = pd::strain_energy_density<D>(m, i);
+      w.write(f, e, 1);
+    }
+  }
+  w.end_snapshot();
+}
+
+template <int D>
+void check_finite(const pd::Model<D>& m, long step, const pd::EnergySummary& e) {
+  if (std::isfinite(e.kinetic) && std::isfinite(e.strain)) return;
+  for (std::size_t i = 0; i < m.size(); ++i)
+    for (int k = 0; k < D; ++k)
+      if (!std::isfinite(m.position[i][k]) || !std::isfinite(m.velocity[i][k])) {
+        std::string where;
+        for (int q = 0; q < D; ++q) where += (q ? ", " : "") + std::to_string(m.reference_position[i][q]);
+        throw PhysicsError("step " + std::to_string(step) + ": particle " + std::to_string(i) + " of body \"" +
+                           m.bodies[m.body[i]].name + "\" (reference position " + where +
+                           ") has a non-finite position or velocity; the time step is likely above the stable limit or a load is unbounded");
+      }
+  throw PhysicsError("step " + std::to_string(step) + ": energy is not finite");
+}
+
+template <int D>
+Result run_dim(const scene::Scene& s, const Options& o) {
+  Prepared<D> p(s);  // every scene error is raised here, before anything is written
+  auto& m = p.model;
+  Result res;
+  res.output_dir = o.output_dir.empty() ? "results/" + s.name : o.output_dir;
+  std::filesystem::create_directories(res.output_dir);
+  io::FieldWriter fields(res.output_dir, "fields", m.size());
+  res.fields_h5 = fields.h5_path();
+  res.fields_xdmf = fields.xdmf_path();
+  std::vector<std::string> columns{"time", "step", "kinetic_energy", "strain_energy", "total_energy", "broken_bonds", "max_damage"};
+  const char* comp[3] = {"x", "y", "z"};
+  for (const auto& r : p.loads.reaction_names())
+    for (int k = 0; k < D; ++k) columns.push_back("reaction_" + r + "_" + comp[k]);
+  if (s.solver.kind == scene::SolverKind::dynamic_relaxation) columns.insert(columns.end(), {"iterations", "residual"});
+  io::History history(res.output_dir + "/history.csv", columns);
+  res.history_csv = history.path();
+
+  auto history_row = [&](long step, std::vector<double> extra) {
+    auto e = pd::summarize<D>(m);
+    check_finite<D>(m, step, e);
+    pd::update_damage<D>(m);
+    double dmax = 0.0;
+    for (double d : m.damage) dmax = std::max(dmax, d);
+    std::vector<double> row{m.time, double(step), e.kinetic, e.strain, e.kinetic + e.strain, double(e.broken_bonds), dmax};
+    for (const auto& r : p.loads.reactions(m))
+      for (int k = 0; k < D; ++k) row.push_back(r[k]);
+    row.insert(row.end(), extra.begin(), extra.end());
+    history.row(row);
+    return e;
+  };
+
+  pd::compute_forces<D>(m, p.contact_ptr());
+  p.loads.apply_body_forces(m, 0.0);
+  Progress progress(p.steps, s.solver.kind == scene::SolverKind::explicit_dynamics ? s.solver.end_time : s.solver.end_time,
+                    o.quiet);
+  if (s.solver.kind == scene::SolverKind::explicit_dynamics) {
+    write_snapshot<D>(fields, m, s);
+    history_row(0, {});
+    long next_snapshot = 1, next_history = 1;
+    for (long step = 1; step <= p.steps; ++step) {
+      pd::velocity_verlet_step<D>(m, p.loads, p.contact_ptr(), p.dt);
+      const bool snap = step * s.output.count >= next_snapshot * p.steps;
+      const bool hist = step * s.output.history_count >= next_history * p.steps;
+      if (hist) {
+        auto e = history_row(step, {});
+        progress.update(step, m.time, e.broken_fraction);
+        while (next_history * p.steps <= step * s.output.history_count) ++next_history;
+      }
+      if (snap) {
+        write_snapshot<D>(fields, m, s);
+        while (next_snapshot * p.steps <= step * s.output.count) ++next_snapshot;
+      }
+    }
+  } else {
+    pd::DynamicRelaxation<D> dr(m);
+    write_snapshot<D>(fields, m, s);
+    for (long step = 1; step <= p.steps; ++step) {
+      const double t = s.solver.end_time * double(step) / double(p.steps);
+      auto r = dr.relax(m, p.loads, p.contact_ptr(), t, s.solver.max_iterations, s.solver.tolerance);
+      auto e = history_row(step, {double(r.iterations), r.residual});
+      write_snapshot<D>(fields, m, s);
+      progress.update(step, m.time, e.broken_fraction, true);
+      if (!r.converged && !o.quiet)
+        std::fprintf(stderr, "rift: warning: load step %ld did not converge in %d iterations (residual %.3g > %.3g)\n", step,
+                     r.iterations, r.residual, s.solver.tolerance);
+    }
+  }
+  res.final_energy = pd::summarize<D>(m);
+  pd::update_damage<D>(m);
+  for (double d : m.damage) res.max_damage = std::max(res.max_damage, d);
+  res.steps = p.steps;
+  res.time = m.time;
+  progress.finish(p.steps, m.time, res.final_energy.broken_fraction);
+  if (D == 2 && s.output.damage_image) {
+    std::vector<double> x(m.size()), y(m.size());
+    for (std::size_t i = 0; i < m.size(); ++i) x[i] = m.position[i][0], y[i] = m.position[i][1];
+    std::string png = res.output_dir + "/damage.png", reason;
+    if (io::write_damage_image(res.output_dir, png, x, y, m.damage, s.name + ": damage at t = " + std::to_string(m.time) + " s", reason))
+      res.damage_png = png;
+    else
+      res.damage_png_note = reason;
+  }
+  return res;
+}
+
+}  // namespace
+
+Plan check(const scene::Scene& s, std::ostream& out) { return s.dimension == 2 ? check_dim<2>(s, out) : check_dim<3>(s, out); }
+
+Result run(const scene::Scene& s, const Options& o) {
+  if (o.threads > 0) omp_set_num_threads(o.threads);
+  return s.dimension == 2 ? run_dim<2>(s, o) : run_dim<3>(s, o);
+}
+
+}  // namespace rift::run

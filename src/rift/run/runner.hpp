@@ -1,0 +1,39 @@
+// From a validated Scene to results: discretize, report the plan (`rift check`) or run the solver
+// with outputs (`rift run`). All scene checks happen before anything is written.
+#pragma once
+#include <iosfwd>
+#include <string>
+
+#include "rift/pd/forces.hpp"
+#include "rift/scene/scene.hpp"
+
+namespace rift::run {
+
+struct Options {
+  std::string output_dir;  // default: results/<scene name>
+  int threads = 0;         // 0: OpenMP default
+  bool quiet = false;
+};
+
+struct Plan {
+  std::size_t particles = 0;
+  std::int64_t bonds = 0;
+  double bytes_per_particle = 0.0, bytes_per_bond = 0.0;
+  double stable_time_step = 0.0, time_step = 0.0;
+  long steps = 0;
+};
+
+struct Result {
+  std::string output_dir, fields_h5, fields_xdmf, history_csv, damage_png, damage_png_note;
+  long steps = 0;
+  double time = 0.0;
+  pd::EnergySummary final_energy;
+  double max_damage = 0.0;
+};
+
+/// Discretize and print what a run would do (particles, bonds, memory, time step, outputs).
+Plan check(const scene::Scene& s, std::ostream& out);
+/// Run the scene and write its outputs.
+Result run(const scene::Scene& s, const Options& options);
+
+}  // namespace rift::run

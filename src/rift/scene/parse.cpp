@@ -1,0 +1,481 @@
+#include "rift/scene/parse.hpp"
+
+#include <cmath>
+#include <fstream>
+#include <functional>
+#include <map>
+#include <sstream>
+
+#include "rift/scene/toml_reader.hpp"
+
+namespace rift::scene {
+namespace {
+
+using R = TomlReader;
+
+Point3 point(R& r, const std::string& k, int dim, bool required) {
+  auto v = r.numbers(k, dim);
+  if (!v) {
+    if (required) throw SceneError(r.where(), r.key(k), "missing required key (a point with " + std::to_string(dim) + " coordinates)");
+    return {0, 0, 0};
+  }
+  Point3 p{0, 0, 0};
+  for (int i = 0; i < dim; ++i) p[i] = (*v)[i];
+  return p;
+}
+
+std::vector<Point3> point_list(R& r, const std::string& k, int dim, int min_count) {
+  const toml::node* n = r.node(k);
+  if (!n) throw SceneError(r.where(), r.key(k), "missing required key (a list of points)");
+  const toml::array* a = n->as_array();
+  if (!a) r.fail(k, "expected an array of points like [[x, y], ...], got " + R::type_name(*n));
+  if (static_cast<int>(a->size()) < min_count)
+    r.fail(k, "expected at least " + std::to_string(min_count) + " points, got " + std::to_string(a->size()));
+  std::vector<Point3> out;
+  for (const auto& e : *a) {
+    auto c = r.numbers_of(e, k, dim);
+    Point3 p{0, 0, 0};
+    for (int i = 0; i < dim; ++i) p[i] = c[i];
+    out.push_back(p);
+  }
+  return out;
+}
+
+TimeFunction time_function(R& parent, const std::string& k) {
+  TimeFunction f;
+  const toml::table* t = parent.table(k);
+  if (!t) return f;
+  R r(*t, parent.key(k), parent.file());
+  auto kind = r.choice("function", {"constant", "ramp", "step", "table"});
+  if (!kind) throw SceneError(r.where(), r.key("function"), "missing required key (constant, ramp, step or table)");
+  if (*kind == "constant") {
+    f.kind = TimeFunctionKind::constant;
+    r.finish({"function"});
+  } else if (*kind == "ramp") {
+    f.kind = TimeFunctionKind::ramp;
+    f.start = r.non_negative("start", r.number("start", 0.0));
+    f.end = r.required_number("end", "time at which the ramp reaches 1, s");
+    if (!(f.end > f.start)) r.fail("end", "must be greater than start (" + R::fmt_double(f.start) + ")");
+    r.finish({"function", "start", "end"});
+  } else if (*kind == "step") {
+    f.kind = TimeFunctionKind::step;
+    f.start = r.non_negative("start", r.required_number("start", "time of the step, s"));
+    r.finish({"function", "start"});
+  } else {
+    f.kind = TimeFunctionKind::table;
+    const toml::node* n = r.node("points");
+    if (!n || !n->is_array()) throw SceneError(r.where(), r.key("points"), "missing required key (array of [time, factor] pairs)");
+    for (const auto& e : *n->as_array()) {
+      auto c = r.numbers_of(e, "points", 2);
+      if (!f.table.empty() && !(c[0] > f.table.back()[0]))
+        throw SceneError(r.at(e), r.key("points"), "times must increase strictly");
+      f.table.push_back({c[0], c[1]});
+    }
+    if (f.table.empty()) r.fail("points", "needs at least one [time, factor] pair");
+    r.finish({"function", "points"});
+  }
+  return f;
+}
+
+void parse_scene_table(R& root, Scene& s) {
+  const toml::table* t = root.table("scene");
+  if (!t) return;
+  R r(*t, "scene", s.file);
+  if (auto n = r.string("name")) s.name = *n;
+  if (auto d = r.integer("dimension")) {
+    if (*d != 2 && *d != 3) r.fail("dimension", "must be 2 or 3, got " + std::to_string(*d));
+    s.dimension = static_cast<int>(*d);
+  }
+  if (auto p = r.choice("plane", {"stress", "strain"})) {
+    if (s.dimension != 2) r.fail("plane", "only for dimension = 2");
+    s.plane = *p == "stress" ? PlaneCondition::stress : PlaneCondition::strain;
+  }
+  if (auto th = r.number("thickness")) {
+    if (s.dimension != 2) r.fail("thickness", "only for dimension = 2");
+    s.thickness = r.positive("thickness", *th);
+  }
+  if (s.dimension == 2 && s.plane == PlaneCondition::none)
+    throw SceneError(r.where(), "scene.plane", "missing required key for dimension = 2 (\"stress\" or \"strain\")");
+  r.finish({"name", "dimension", "plane", "thickness"});
+}
+
+void parse_materials(R& root, Scene& s) {
+  const toml::table* t = root.table("materials");
+  if (!t || t->empty()) throw SceneError(root.where(), "materials", "at least one material is required, e.g. [materials.steel]");
+  for (const auto& [name, node] : *t) {
+    std::string key = "materials." + std::string(name.str());
+    if (!node.is_table()) throw SceneError(root.at(node), key, "expected a table");
+    R r(*node.as_table(), key, s.file);
+    Material m;
+    m.name = std::string(name.str());
+    m.where = r.where();
+    auto model = r.choice("model", {"pmb", "lps"});
+    if (!model) throw SceneError(r.where(), r.key("model"), "missing required key (pmb or lps)");
+    m.model = *model == "pmb" ? ModelKind::pmb : ModelKind::lps;
+    m.density = r.positive("density", r.required_number("density", "mass density, kg/m^3"));
+    auto E = r.number("youngs_modulus"), nu = r.number("poisson_ratio");
+    auto K = r.number("bulk_modulus"), G = r.number("shear_modulus");
+    if (E || nu) {
+      if (K || G) r.fail(K ? "bulk_modulus" : "shear_modulus", "give either youngs_modulus + poisson_ratio or bulk_modulus + shear_modulus, not both");
+      if (!E) throw SceneError(r.where(), r.key("youngs_modulus"), "missing required key (poisson_ratio is given)");
+      if (!nu) throw SceneError(r.where(), r.key("poisson_ratio"), "missing required key (youngs_modulus is given)");
+      r.positive("youngs_modulus", *E);
+      if (!(*nu > -1.0 && *nu < 0.5)) r.fail("poisson_ratio", "must lie in (-1, 0.5), got " + R::fmt_double(*nu));
+      m.bulk_modulus = *E / (3.0 * (1.0 - 2.0 * *nu));
+      m.shear_modulus = *E / (2.0 * (1.0 + *nu));
+    } else if (K || G) {
+      if (!K) throw SceneError(r.where(), r.key("bulk_modulus"), "missing required key (shear_modulus is given)");
+      if (!G) throw SceneError(r.where(), r.key("shear_modulus"), "missing required key (bulk_modulus is given)");
+      m.bulk_modulus = r.positive("bulk_modulus", *K);
+      m.shear_modulus = r.positive("shear_modulus", *G);
+    } else {
+      throw SceneError(r.where(), r.key("youngs_modulus"), "missing elastic constants: give youngs_modulus + poisson_ratio or bulk_modulus + shear_modulus");
+    }
+    if (auto inf = r.choice("influence", {"constant", "inverse_distance"}))
+      m.influence = *inf == "constant" ? Influence::constant : Influence::inverse_distance;
+    if (auto g0 = r.number("fracture_energy")) m.fracture_energy = r.positive("fracture_energy", *g0);
+    if (auto s0 = r.number("critical_stretch")) {
+      if (m.fracture_energy) r.fail("critical_stretch", "give fracture_energy or critical_stretch, not both");
+      m.critical_stretch = r.positive("critical_stretch", *s0);
+    }
+    m.alpha = r.non_negative("alpha", r.number("alpha", 0.0));
+    if (auto sc = r.boolean("surface_correction")) m.surface_correction = *sc;
+    r.finish({"model", "density", "youngs_modulus", "poisson_ratio", "bulk_modulus", "shear_modulus", "influence",
+              "fracture_energy", "critical_stretch", "alpha", "surface_correction"});
+    s.materials.push_back(m);
+  }
+}
+
+void parse_regions(R& root, Scene& s) {
+  const toml::table* t = root.table("regions");
+  if (!t || t->empty()) throw SceneError(root.where(), "regions", "at least one region is required, e.g. [regions.plate]");
+  const int D = s.dimension;
+  for (const auto& [name, node] : *t) {
+    std::string key = "regions." + std::string(name.str());
+    if (!node.is_table()) throw SceneError(root.at(node), key, "expected a table");
+    R r(*node.as_table(), key, s.file);
+    RegionDef g;
+    g.name = std::string(name.str());
+    g.where = r.where();
+    auto shape = r.choice("shape", {"box", "cylinder", "sphere", "polygon", "half_space", "union", "difference", "intersection"});
+    if (!shape) throw SceneError(r.where(), r.key("shape"), "missing required key (box, cylinder, sphere, polygon, half_space, union, difference or intersection)");
+    const std::string& sh = *shape;
+    if (sh == "box") {
+      g.shape = Shape::box;
+      g.min = point(r, "min", D, true);
+      g.max = point(r, "max", D, true);
+      for (int k = 0; k < D; ++k)
+        if (!(g.max[k] > g.min[k])) r.fail("max", "each coordinate must exceed min");
+      if (D == 2) g.min[2] = -1e300, g.max[2] = 1e300;
+      r.finish({"shape", "min", "max"});
+    } else if (sh == "sphere") {
+      g.shape = Shape::sphere;
+      g.center = point(r, "center", D, true);
+      g.radius = r.positive("radius", r.required_number("radius", "m"));
+      r.finish({"shape", "center", "radius"});
+    } else if (sh == "cylinder") {
+      g.shape = Shape::cylinder;
+      g.center = point(r, "center", D, true);
+      g.radius = r.positive("radius", r.required_number("radius", "m"));
+      if (D == 3) {
+        g.axis = point(r, "axis", 3, true);
+        if (norm<3>(g.axis) == 0.0) r.fail("axis", "must be a non-zero vector from the base centre to the top centre");
+        r.finish({"shape", "center", "radius", "axis"});
+      } else {
+        r.finish({"shape", "center", "radius"});
+      }
+    } else if (sh == "polygon") {
+      g.shape = Shape::polygon;
+      for (const auto& p : point_list(r, "vertices", 2, 3)) g.vertices.push_back({p[0], p[1]});
+      if (D == 3) {
+        g.z_min = r.required_number("z_min", "bottom of the prism, m");
+        g.z_max = r.required_number("z_max", "top of the prism, m");
+        if (!(g.z_max > g.z_min)) r.fail("z_max", "must exceed z_min");
+        r.finish({"shape", "vertices", "z_min", "z_max"});
+      } else {
+        r.finish({"shape", "vertices"});
+      }
+    } else if (sh == "half_space") {
+      g.shape = Shape::half_space;
+      g.center = point(r, "point", D, true);
+      g.normal = point(r, "normal", D, true);
+      if (norm<3>(g.normal) == 0.0) r.fail("normal", "must be a non-zero vector (outward normal)");
+      r.finish({"shape", "point", "normal"});
+    } else {
+      g.shape = sh == "union" ? Shape::union_of : sh == "difference" ? Shape::difference_of : Shape::intersection_of;
+      auto of = r.strings("of");
+      if (!of) throw SceneError(r.where(), r.key("of"), "missing required key (list of region names)");
+      if (of->size() < (g.shape == Shape::difference_of ? 2u : 1u)) r.fail("of", "needs at least two regions (the first minus the others)");
+      g.of = *of;
+      r.finish({"shape", "of"});
+    }
+    s.regions.push_back(g);
+  }
+  // children must exist and not form cycles
+  for (const auto& g : s.regions)
+    for (const auto& c : g.of)
+      if (!s.find_region(c)) throw SceneError(g.where, "regions." + g.name + ".of", "unknown region \"" + c + "\"");
+  for (const auto& g : s.regions) {
+    // depth-first walk; a region reached again through its own children is a cycle
+    std::function<void(const RegionDef&, int)> walk = [&](const RegionDef& cur, int depth) {
+      if (depth > static_cast<int>(s.regions.size()))
+        throw SceneError(g.where, "regions." + g.name + ".of", "regions refer to each other in a cycle");
+      for (const auto& c : cur.of) walk(*s.find_region(c), depth + 1);
+    };
+    walk(g, 0);
+  }
+}
+
+std::size_t material_index(const Scene& s, const std::string& name, R& r, const std::string& k) {
+  for (std::size_t i = 0; i < s.materials.size(); ++i)
+    if (s.materials[i].name == name) return i;
+  std::vector<std::string> names;
+  for (const auto& m : s.materials) names.push_back(m.name);
+  r.fail(k, "unknown material \"" + name + "\"; defined: " + R::join(names));
+}
+
+void require_region(const Scene& s, R& r, const std::string& k, const std::string& name) {
+  if (s.find_region(name)) return;
+  std::vector<std::string> names;
+  for (const auto& g : s.regions) names.push_back(g.name);
+  r.fail(k, "unknown region \"" + name + "\"; defined: " + R::join(names));
+}
+
+std::string required_string(R& r, const std::string& k, const std::string& meaning) {
+  auto v = r.string(k);
+  if (!v) throw SceneError(r.where(), r.key(k), "missing required key (" + meaning + ")");
+  return *v;
+}
+
+void parse_bodies(R& root, Scene& s) {
+  const toml::table* t = root.table("bodies");
+  if (!t || t->empty()) throw SceneError(root.where(), "bodies", "at least one body is required, e.g. [bodies.plate]");
+  for (const auto& [name, node] : *t) {
+    std::string key = "bodies." + std::string(name.str());
+    if (!node.is_table()) throw SceneError(root.at(node), key, "expected a table");
+    R r(*node.as_table(), key, s.file);
+    Body b;
+    b.name = std::string(name.str());
+    b.where = r.where();
+    b.material = material_index(s, required_string(r, "material", "name of a material"), r, "material");
+    b.region = required_string(r, "region", "name of a region");
+    require_region(s, r, "region", b.region);
+    b.spacing = r.positive("spacing", r.required_number("spacing", "lattice spacing, m"));
+    auto h = r.number("horizon");
+    auto hl = r.number("horizon_length");
+    if (h && hl) r.fail("horizon_length", "give horizon (in spacings) or horizon_length (in m), not both");
+    if (!h && !hl) throw SceneError(r.where(), r.key("horizon"), "missing required key (horizon in lattice spacings, e.g. 3.015, or horizon_length in m)");
+    b.horizon = h ? r.positive("horizon", *h) * b.spacing : r.positive("horizon_length", *hl);
+    if (b.horizon < b.spacing)
+      r.fail(h ? "horizon" : "horizon_length", "horizon must be at least one lattice spacing (" + R::fmt_double(b.spacing) + " m); 3 spacings is usual");
+    if (r.has("lattice_origin")) b.lattice_origin = point(r, "lattice_origin", s.dimension, true);
+    if (auto pv = r.choice("partial_volume", {"exact", "lammps"}))
+      b.partial_volume = *pv == "exact" ? Body::PartialVolume::exact : Body::PartialVolume::lammps;
+    r.finish({"material", "region", "spacing", "horizon", "horizon_length", "lattice_origin", "partial_volume"});
+    s.bodies.push_back(b);
+  }
+}
+
+void parse_cracks(R& root, Scene& s) {
+  const toml::node* n = root.node("cracks");
+  if (!n) return;
+  const toml::array* a = n->as_array();
+  if (!a || !a->is_array_of_tables()) root.fail("cracks", "expected an array of tables, written [[cracks]]");
+  for (std::size_t i = 0; i < a->size(); ++i) {
+    R r(*a->get(i)->as_table(), "cracks[" + std::to_string(i) + "]", s.file);
+    Crack c;
+    c.where = r.where();
+    c.points = point_list(r, "points", s.dimension, s.dimension == 2 ? 2 : 3);
+    if (s.dimension == 2 && c.points.size() != 2) r.fail("points", "a 2D crack is a segment: exactly two points");
+    r.finish({"points"});
+    s.cracks.push_back(c);
+  }
+}
+
+void parse_boundaries(R& root, Scene& s) {
+  const toml::node* n = root.node("boundaries");
+  if (!n) return;
+  const toml::array* a = n->as_array();
+  if (!a || !a->is_array_of_tables()) root.fail("boundaries", "expected an array of tables, written [[boundaries]]");
+  const char* comp[3] = {"x", "y", "z"};
+  for (std::size_t i = 0; i < a->size(); ++i) {
+    R r(*a->get(i)->as_table(), "boundaries[" + std::to_string(i) + "]", s.file);
+    Boundary b;
+    b.where = r.where();
+    b.region = required_string(r, "region", "name of a region");
+    require_region(s, r, "region", b.region);
+    auto type = r.choice("type", {"fixed", "velocity", "displacement", "traction", "body_force"});
+    if (!type) throw SceneError(r.where(), r.key("type"), "missing required key (fixed, velocity, displacement, traction or body_force)");
+    const std::map<std::string, BoundaryKind> kinds{{"fixed", BoundaryKind::fixed}, {"velocity", BoundaryKind::velocity},
+        {"displacement", BoundaryKind::displacement}, {"traction", BoundaryKind::traction}, {"body_force", BoundaryKind::body_force}};
+    b.kind = kinds.at(*type);
+    std::vector<std::string> allowed{"region", "type"};
+    if (b.kind != BoundaryKind::fixed) {
+      bool any = false;
+      for (int k = 0; k < 3; ++k) {
+        if (k >= s.dimension) continue;
+        b.value[k] = r.number(comp[k]);
+        any = any || b.value[k].has_value();
+        allowed.push_back(comp[k]);
+      }
+      if (!any) throw SceneError(r.where(), r.key("x"), "give at least one component (x, y" + std::string(s.dimension == 3 ? ", z" : "") + ")");
+      b.time = time_function(r, "time");
+      allowed.push_back("time");
+    }
+    if (b.kind == BoundaryKind::traction) {
+      if (auto d = r.number("layer_depth")) b.layer_depth = r.positive("layer_depth", *d);
+      allowed.push_back("layer_depth");
+    }
+    r.finish(allowed);
+    s.boundaries.push_back(b);
+  }
+}
+
+void parse_initial_velocity(R& root, Scene& s) {
+  const toml::node* n = root.node("initial_velocity");
+  if (!n) return;
+  const toml::array* a = n->as_array();
+  if (!a || !a->is_array_of_tables()) root.fail("initial_velocity", "expected an array of tables, written [[initial_velocity]]");
+  for (std::size_t i = 0; i < a->size(); ++i) {
+    R r(*a->get(i)->as_table(), "initial_velocity[" + std::to_string(i) + "]", s.file);
+    InitialVelocity v;
+    v.where = r.where();
+    v.region = required_string(r, "region", "name of a region");
+    require_region(s, r, "region", v.region);
+    v.velocity = point(r, "velocity", s.dimension, true);
+    r.finish({"region", "velocity"});
+    s.initial_velocities.push_back(v);
+  }
+}
+
+void parse_solver(R& root, Scene& s) {
+  const toml::table* t = root.table("solver");
+  if (!t) throw SceneError(root.where(), "solver", "missing required table [solver] (type and end_time)");
+  R r(*t, "solver", s.file);
+  Solver& v = s.solver;
+  auto type = r.choice("type", {"explicit", "dynamic_relaxation"});
+  v.kind = (type && *type == "dynamic_relaxation") ? SolverKind::dynamic_relaxation : SolverKind::explicit_dynamics;
+  std::vector<std::string> allowed{"type", "end_time"};
+  if (v.kind == SolverKind::explicit_dynamics) {
+    v.end_time = r.positive("end_time", r.required_number("end_time", "simulated time, s"));
+    if (auto dt = r.number("time_step")) {
+      v.time_step = r.positive("time_step", *dt);
+      v.time_step_where = r.where("time_step");
+    }
+    if (auto sf = r.number("safety_factor")) {
+      if (v.time_step) r.fail("safety_factor", "give time_step or safety_factor, not both");
+      v.safety_factor = r.positive("safety_factor", *sf);
+      if (v.safety_factor > 1.0) r.fail("safety_factor", "must be in (0, 1]; the stable time step is the limit");
+    }
+    allowed.insert(allowed.end(), {"time_step", "safety_factor"});
+  } else {
+    v.end_time = r.positive("end_time", r.number("end_time", 1.0));
+    if (auto n = r.integer("load_steps")) {
+      if (*n < 1) r.fail("load_steps", "must be >= 1");
+      v.load_steps = static_cast<int>(*n);
+    }
+    if (auto n = r.integer("max_iterations")) {
+      if (*n < 1) r.fail("max_iterations", "must be >= 1");
+      v.max_iterations = static_cast<int>(*n);
+    }
+    if (auto tol = r.number("tolerance")) v.tolerance = r.positive("tolerance", *tol);
+    allowed.insert(allowed.end(), {"load_steps", "max_iterations", "tolerance"});
+  }
+  r.finish(allowed);
+}
+
+void parse_contact(R& root, Scene& s) {
+  const toml::table* t = root.table("contact");
+  if (!t) return;
+  R r(*t, "contact", s.file);
+  if (auto e = r.boolean("enabled")) s.contact.enabled = *e;
+  if (auto d = r.number("distance")) s.contact.distance = r.positive("distance", *d);
+  if (auto k = r.number("stiffness")) s.contact.stiffness = r.positive("stiffness", *k);
+  r.finish({"enabled", "distance", "stiffness"});
+}
+
+const std::vector<std::string>& field_names() {
+  static const std::vector<std::string> names{"displacement", "velocity", "damage", "dilatation", "strain_energy_density",
+                                               "weighted_volume", "volume", "body"};
+  return names;
+}
+
+void parse_output(R& root, Scene& s) {
+  Output& o = s.output;
+  o.fields = {"displacement", "velocity", "damage", "dilatation"};
+  const toml::table* t = root.table("output");
+  if (!t) return;
+  R r(*t, "output", s.file);
+  if (auto n = r.integer("snapshots")) {
+    if (*n < 1) r.fail("snapshots", "must be >= 1");
+    o.count = static_cast<int>(*n);
+  }
+  if (auto n = r.integer("history_rows")) {
+    if (*n < 1) r.fail("history_rows", "must be >= 1");
+    o.history_count = static_cast<int>(*n);
+  }
+  if (auto f = r.strings("fields")) {
+    for (const auto& name : *f) {
+      bool ok = false;
+      for (const auto& a : field_names()) ok = ok || a == name;
+      if (!ok) r.fail("fields", "unknown field \"" + name + "\"; allowed: " + R::join(field_names()));
+    }
+    o.fields = *f;
+  }
+  if (auto rx = r.strings("reactions")) {
+    for (const auto& name : *rx) require_region(s, r, "reactions", name);
+    o.reactions = *rx;
+  }
+  if (auto d = r.boolean("damage_image")) o.damage_image = *d;
+  r.finish({"snapshots", "history_rows", "fields", "reactions", "damage_image"});
+}
+
+Scene parse_table(const toml::table& tbl, const std::string& file) {
+  Scene s;
+  s.file = file;
+  R root(tbl, "", file);
+  parse_scene_table(root, s);
+  if (s.name.empty()) {
+    auto slash = file.find_last_of('/');
+    std::string base = slash == std::string::npos ? file : file.substr(slash + 1);
+    s.name = base.substr(0, base.find_last_of('.'));
+  }
+  parse_materials(root, s);
+  parse_regions(root, s);
+  parse_bodies(root, s);
+  parse_cracks(root, s);
+  parse_boundaries(root, s);
+  parse_initial_velocity(root, s);
+  parse_solver(root, s);
+  parse_contact(root, s);
+  parse_output(root, s);
+  root.finish({"scene", "materials", "regions", "bodies", "cracks", "boundaries", "initial_velocity", "solver",
+               "contact", "output"});
+  return s;
+}
+
+Scene parse_text(const std::string& text, const std::string& name) {
+  toml::table tbl;
+  try {
+    tbl = toml::parse(text, name);
+  } catch (const toml::parse_error& e) {
+    const auto& src = e.source();
+    throw SceneError({name, static_cast<int>(src.begin.line), static_cast<int>(src.begin.column)}, "",
+                     "TOML syntax: " + std::string(e.description()));
+  }
+  return parse_table(tbl, name);
+}
+
+}  // namespace
+
+Scene parse_string(const std::string& text, const std::string& name) { return parse_text(text, name); }
+
+Scene parse_file(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) throw SceneError({path, 0, 0}, "", "cannot open the scene file");
+  std::stringstream ss;
+  ss << in.rdbuf();
+  return parse_text(ss.str(), path);
+}
+
+}  // namespace rift::scene

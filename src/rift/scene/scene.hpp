@@ -1,0 +1,146 @@
+// Scene: the validated, SI-unit description of a run. Physics code sees only these plain structs,
+// never TOML (parse.cpp turns a file into a Scene and reports every mistake with file:line:column).
+#pragma once
+#include <array>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "rift/core/error.hpp"
+#include "rift/core/vec.hpp"
+
+namespace rift::scene {
+
+enum class PlaneCondition { none, stress, strain };
+enum class ModelKind { pmb, lps };
+/// Influence function omega(|xi|): constant 1, or delta/|xi| ("inverse_distance", LAMMPS peri/lps).
+enum class Influence { constant, inverse_distance };
+
+struct Material {
+  std::string name;
+  SourceLocation where;
+  ModelKind model = ModelKind::pmb;
+  double density = 0.0;        // kg/m^3
+  double bulk_modulus = 0.0;   // K, Pa (3D value; 2D models derive their in-plane modulus)
+  double shear_modulus = 0.0;  // G, Pa
+  Influence influence = Influence::constant;
+  std::optional<double> fracture_energy;   // G0, J/m^2
+  std::optional<double> critical_stretch;  // s00, given directly
+  double alpha = 0.0;                      // s0 = s00 - alpha * s_min (LAMMPS peri)
+  bool surface_correction = true;
+  double youngs_modulus() const { return 9.0 * bulk_modulus * shear_modulus / (3.0 * bulk_modulus + shear_modulus); }
+  double poisson_ratio() const {
+    return (3.0 * bulk_modulus - 2.0 * shear_modulus) / (2.0 * (3.0 * bulk_modulus + shear_modulus));
+  }
+};
+
+enum class Shape { box, cylinder, sphere, polygon, half_space, union_of, difference_of, intersection_of };
+
+struct RegionDef {
+  std::string name;
+  SourceLocation where;
+  Shape shape = Shape::box;
+  Point3 min{}, max{};               // box
+  Point3 center{};                   // sphere, cylinder (2D: disk centre)
+  Point3 axis{0, 0, 1};              // cylinder: from base centre to top centre (3D)
+  double radius = 0.0;               // sphere, cylinder
+  std::vector<std::array<double, 2>> vertices;  // polygon (x, y), prism along z
+  double z_min = -1e300, z_max = 1e300;         // polygon prism extent (3D)
+  Point3 normal{};                   // half-space: points with (x - center) . normal <= 0
+  std::vector<std::string> of;       // union/difference/intersection children
+};
+
+struct Body {
+  std::string name;
+  SourceLocation where;
+  std::size_t material = 0;
+  std::string region;
+  double spacing = 0.0;  // lattice spacing dx, m
+  double horizon = 0.0;  // delta, m
+  Point3 lattice_origin{};
+  /// Share of a neighbour's volume inside the horizon: "exact" (geometric fraction of its cell) or
+  /// "lammps" (LAMMPS PERI: bonds up to delta, linear taper over the last half spacing).
+  enum class PartialVolume { exact, lammps } partial_volume = PartialVolume::exact;
+};
+
+/// Pre-crack: a segment (2D, two points) or a planar polygon (3D, >= 3 points). Bonds that
+/// cross it are never created.
+struct Crack {
+  SourceLocation where;
+  std::vector<Point3> points;
+};
+
+enum class TimeFunctionKind { constant, ramp, step, table };
+struct TimeFunction {
+  TimeFunctionKind kind = TimeFunctionKind::constant;
+  double start = 0.0, end = 0.0;  // ramp: 0 at start -> 1 at end; step: 0 before start, 1 after
+  std::vector<std::array<double, 2>> table;  // (t, factor), piecewise linear, held at the ends
+};
+
+enum class BoundaryKind { fixed, velocity, displacement, traction, body_force };
+struct Boundary {
+  SourceLocation where;
+  std::string region;
+  BoundaryKind kind = BoundaryKind::fixed;
+  std::array<std::optional<double>, 3> value;  // per component; unset = free (traction: 0)
+  TimeFunction time;
+  double layer_depth = 0.0;  // traction: depth of the loaded particle layer (default: spacing)
+};
+
+struct InitialVelocity {
+  SourceLocation where;
+  std::string region;
+  Point3 velocity{};
+};
+
+enum class SolverKind { explicit_dynamics, dynamic_relaxation };
+struct Solver {
+  SolverKind kind = SolverKind::explicit_dynamics;
+  std::optional<double> time_step;
+  SourceLocation time_step_where;
+  double safety_factor = 0.8;
+  double end_time = 0.0;
+  // dynamic relaxation (Kilic and Madenci 2010)
+  int load_steps = 1;
+  int max_iterations = 20000;
+  double tolerance = 1e-6;
+};
+
+struct Contact {
+  bool enabled = true;
+  double distance = 0.9;   // contact distance in lattice spacings
+  double stiffness = 15.0; // multiple of the micromodulus (LAMMPS/EMU: 15)
+};
+
+struct Output {
+  int count = 10;                   // number of field snapshots (plus the initial state)
+  std::vector<std::string> fields;  // position, displacement, velocity, damage, dilatation, ...
+  int history_count = 200;          // history rows
+  std::vector<std::string> reactions;  // region names whose reaction force is recorded
+  bool damage_image = true;         // 2D: PNG of the final damage field
+};
+
+struct Scene {
+  std::string file;
+  std::string name;
+  int dimension = 3;
+  PlaneCondition plane = PlaneCondition::none;
+  double thickness = 1.0;  // 2D only, m
+  std::vector<Material> materials;
+  std::vector<RegionDef> regions;
+  std::vector<Body> bodies;
+  std::vector<Crack> cracks;
+  std::vector<Boundary> boundaries;
+  std::vector<InitialVelocity> initial_velocities;
+  Solver solver;
+  Contact contact;
+  Output output;
+
+  const RegionDef* find_region(const std::string& n) const {
+    for (const auto& r : regions)
+      if (r.name == n) return &r;
+    return nullptr;
+  }
+};
+
+}  // namespace rift::scene

@@ -1,0 +1,146 @@
+// Every user mistake is a SceneError naming file:line:column and the key (exit status 2 in the CLI).
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <sstream>
+
+#include "rift/run/runner.hpp"
+#include "rift/scene/parse.hpp"
+
+namespace {
+
+const char* base = R"(
+[scene]
+dimension = 2
+plane = "stress"
+thickness = 0.001
+
+[materials.glass]
+model = "pmb"
+density = 2440.0
+youngs_modulus = 72e9
+poisson_ratio = 0.33
+fracture_energy = 3.8
+
+[regions.plate]
+shape = "box"
+min = [0.0, 0.0]
+max = [0.01, 0.01]
+
+[regions.left]
+shape = "box"
+min = [0.0, 0.0]
+max = [0.001, 0.01]
+
+[bodies.plate]
+material = "glass"
+region = "plate"
+spacing = 0.001
+horizon = 3.015
+
+[[boundaries]]
+region = "left"
+type = "velocity"
+x = 1.0
+
+[solver]
+type = "explicit"
+end_time = 1e-6
+)";
+
+struct Case {
+  const char* name;
+  const char* find;     // text in the base scene to replace ("" = append)
+  const char* replace;
+  const char* key;      // key named in the message
+  const char* at;       // the error points at the line holding this text ("" = not checked)
+};
+
+std::string mutate(const Case& c) {
+  std::string s = base;
+  if (std::string(c.find).empty()) return s + c.replace;
+  auto p = s.find(c.find);
+  EXPECT_NE(p, std::string::npos) << c.name;
+  return s.replace(p, std::string(c.find).size(), c.replace);
+}
+
+const Case cases[] = {
+    {"unknown top-level key", "", "\n[solvr]\nx = 1\n", "solvr", "[solvr]"},
+    {"unknown material key", "density = 2440.0", "density = 2440.0\ndensty = 1", "materials.glass.densty", "densty"},
+    {"wrong type", "density = 2440.0", "density = \"heavy\"", "materials.glass.density", "\"heavy\""},
+    {"negative density", "density = 2440.0", "density = -1.0", "materials.glass.density", "density = -1.0"},
+    {"unknown model", "model = \"pmb\"", "model = \"bond\"", "materials.glass.model", "\"bond\""},
+    {"poisson ratio out of range", "poisson_ratio = 0.33", "poisson_ratio = 0.5", "materials.glass.poisson_ratio", "poisson_ratio = 0.5"},
+    {"missing modulus", "youngs_modulus = 72e9\n", "", "materials.glass.youngs_modulus", ""},
+    {"both G0 and s0", "fracture_energy = 3.8", "fracture_energy = 3.8\ncritical_stretch = 0.001", "materials.glass.critical_stretch", "critical_stretch"},
+    {"missing material", "material = \"glass\"", "material = \"steel\"", "bodies.plate.material", "\"steel\""},
+    {"negative spacing", "spacing = 0.001", "spacing = -0.001", "bodies.plate.spacing", "spacing = -"},
+    {"horizon below spacing", "horizon = 3.015", "horizon = 0.5", "bodies.plate.horizon", "horizon = 0.5"},
+    {"horizon twice", "horizon = 3.015", "horizon = 3.015\nhorizon_length = 0.003", "bodies.plate.horizon_length", "horizon_length"},
+    {"unknown region in body", "region = \"plate\"\nspacing", "region = \"disk\"\nspacing", "bodies.plate.region", "\"disk\""},
+    {"box max below min", "max = [0.01, 0.01]", "max = [-0.01, 0.01]", "regions.plate.max", "max = [-0.01"},
+    {"point with wrong length", "max = [0.01, 0.01]", "max = [0.01, 0.01, 0.01]", "regions.plate.max", "max = [0.01, 0.01, 0.01]"},
+    {"unknown shape", "shape = \"box\"\nmin = [0.0, 0.0]\nmax = [0.01, 0.01]", "shape = \"blob\"", "regions.plate.shape", "\"blob\""},
+    {"difference of unknown region", "", "\n[regions.holed]\nshape = \"difference\"\nof = [\"plate\", \"hole\"]\n", "regions.holed.of", ""},
+    {"region that selects no particle", "max = [0.001, 0.01]", "max = [0.0001, 0.0001]", "boundaries[0].region", "[[boundaries]]"},
+    {"unknown boundary type", "type = \"velocity\"", "type = \"push\"", "boundaries[0].type", "\"push\""},
+    {"boundary without components", "x = 1.0\n", "", "boundaries[0].x", ""},
+    {"bad time function", "x = 1.0", "x = 1.0\ntime = { function = \"ramp\", start = 1e-6, end = 0.0 }", "boundaries[0].time.end", ""},
+    {"table not increasing", "x = 1.0", "x = 1.0\ntime = { function = \"table\", points = [[0.0, 0.0], [0.0, 1.0]] }", "boundaries[0].time.points", ""},
+    {"negative end time", "end_time = 1e-6", "end_time = -1e-6", "solver.end_time", "end_time = -"},
+    {"time step above stable limit", "end_time = 1e-6", "end_time = 1e-6\ntime_step = 1.0", "solver.time_step", "time_step = 1.0"},
+    {"unknown solver type", "type = \"explicit\"", "type = \"implicit\"", "solver.type", "\"implicit\""},
+    {"plane missing in 2D", "plane = \"stress\"\n", "", "scene.plane", ""},
+    {"dimension 4", "dimension = 2", "dimension = 4", "scene.dimension", "dimension = 4"},
+    {"unknown output field", "", "\n[output]\nfields = [\"stress\"]\n", "output.fields", ""},
+    {"TOML syntax error", "density = 2440.0", "density = = 2440.0", "", "= = 2440"},
+    {"crack with one point", "", "\n[[cracks]]\npoints = [[0.0, 0.0]]\n", "cracks[0].points", ""},
+    {"initial velocity region empty", "", "\n[regions.far]\nshape = \"sphere\"\ncenter = [1.0, 1.0]\nradius = 0.001\n[[initial_velocity]]\nregion = \"far\"\nvelocity = [1.0, 0.0]\n", "initial_velocity.region", ""},
+    {"safety factor above 1", "end_time = 1e-6", "end_time = 1e-6\nsafety_factor = 1.5", "solver.safety_factor", "safety_factor"},
+};
+
+class SceneErrors : public ::testing::TestWithParam<Case> {};
+
+TEST_P(SceneErrors, NamesFileLineColumnAndKey) {
+  const Case& c = GetParam();
+  const std::string text = mutate(c);
+  try {
+    auto s = rift::scene::parse_string(text, "bad.toml");
+    std::ostringstream out;
+    rift::run::check(s, out);  // mistakes found while discretizing
+    FAIL() << c.name << ": no error raised";
+  } catch (const rift::SceneError& e) {
+    const std::string msg = e.what();
+    EXPECT_EQ(msg.rfind("bad.toml:", 0), 0u) << msg;
+    EXPECT_GT(e.where().line, 0) << msg;
+    EXPECT_GT(e.where().column, 0) << msg;
+    if (std::string(c.at).size()) {
+      auto p = text.find(c.at);
+      ASSERT_NE(p, std::string::npos) << c.name;
+      const int line = 1 + static_cast<int>(std::count(text.begin(), text.begin() + static_cast<long>(p), '\n'));
+      EXPECT_EQ(e.where().line, line) << msg;
+    }
+    if (std::string(c.key).size()) {
+      EXPECT_EQ(e.key(), c.key) << msg;
+    }
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(AtLeast25Mistakes, SceneErrors, ::testing::ValuesIn(cases),
+                         [](const auto& info) {
+                           std::string n = info.param.name;
+                           for (auto& ch : n)
+                             if (!isalnum(static_cast<unsigned char>(ch))) ch = '_';
+                           return n;
+                         });
+
+TEST(SceneErrors, CoverAtLeast25Mistakes) { EXPECT_GE(sizeof(cases) / sizeof(cases[0]), 25u); }
+
+TEST(SceneErrors, BaseSceneIsValid) {
+  auto s = rift::scene::parse_string(base, "good.toml");
+  std::ostringstream out;
+  auto plan = rift::run::check(s, out);
+  EXPECT_EQ(plan.particles, 100u);
+}
+
+}  // namespace
