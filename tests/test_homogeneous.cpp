@@ -6,6 +6,7 @@
 
 #include <array>
 #include <cmath>
+#include <cstdio>
 
 #include "rift/pd/discretize.hpp"
 #include "rift/pd/forces.hpp"
@@ -82,6 +83,9 @@ TEST_P(Homogeneous, EnergyDensityMatchesElasticity) {
   for (const auto* eps : {&uniaxial, &shear, &volumetric}) {
     Errors e = p.dim == 2 ? energy_errors<2>(scene, *eps) : energy_errors<3>(scene, *eps);
     const char* mode = eps == &uniaxial ? "uniaxial" : eps == &shear ? "shear" : "volumetric";
+    std::printf("%-22s %-10s max error bulk %.2e (%d particles), near surface %.2e (%d particles)\n",
+                ::testing::UnitTest::GetInstance()->current_test_info()->name(), mode, e.bulk, e.bulk_count, e.surface,
+                e.surface_count);
     ASSERT_GT(e.bulk_count, 0);
     EXPECT_LT(e.bulk, 0.01) << mode << " bulk";
     EXPECT_LT(e.surface, 0.05) << mode << " surface";
@@ -98,5 +102,36 @@ INSTANTIATE_TEST_SUITE_P(
              (info.param.plane[0] ? std::string(info.param.plane) + "_" : "") + "nu" +
              std::to_string(static_cast<int>(info.param.nu * 100 + 0.5));
     });
+
+}  // namespace
+
+namespace {
+
+// Without the correction the particles near the free surfaces are too soft (the test above would
+// fail): the correction is what brings them to the classical energy.
+TEST(SurfaceCorrection, UncorrectedSurfaceIsOffByMoreThanFivePercent) {
+  const std::string scene = rift::test::box_scene(3, "lps", 0.25, "", "", 3.015, "", "surface_correction = false\n");
+  Errors e = energy_errors<3>(scene, uniaxial);
+  EXPECT_GT(e.surface, 0.05);
+}
+
+// The corrected influence functions stay positive (no bond with negative stiffness), also at
+// corners, for both dimensions and horizons of 3 and 4 spacings.
+TEST(SurfaceCorrection, FactorsStayPositive) {
+  for (int dim : {2, 3})
+    for (double h : {3.015, 4.015})
+      for (const char* model : {"pmb", "lps"}) {
+        const std::string scene = rift::test::box_scene(dim, model, 0.25, "", "", h, "strain");
+        auto s = rift::scene::parse_string(scene, "f.toml");
+        float lo = 1e9f, hi = -1e9f;
+        auto scan = [&](const auto& m) {
+          for (float f : m.bonds.correction) lo = std::min(lo, f), hi = std::max(hi, f);
+        };
+        if (dim == 2) scan(rift::pd::discretize<2>(s));
+        else scan(rift::pd::discretize<3>(s));
+        std::printf("dim %d horizon %.3f %s: influence factors in [%.3f, %.3f]\n", dim, h, model, lo, hi);
+        EXPECT_GT(lo, 0.0f);
+      }
+}
 
 }  // namespace

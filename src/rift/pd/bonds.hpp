@@ -11,12 +11,15 @@ struct Bonds {
   std::vector<std::int32_t> neighbor; // j
   std::vector<double> length;         // |xi|, reference bond length (double: no spurious stretch)
   std::vector<float> volume;          // V_j * partial-volume fraction of j inside the horizon of i
-  std::vector<float> correction;      // surface-correction factor (symmetric; 1 when off)
+  std::vector<float> correction;      // surface correction: i's influence-function factor (1 when off)
+  std::vector<float> mirror_correction;  // the same factor of j for this bond
+  // LPS only (empty otherwise): theta_i = sum dilatation_weight e, see surface_correction.hpp
+  std::vector<float> dilatation_weight, mirror_dilatation_weight;
   std::vector<std::uint8_t> intact;   // 1 = intact, 0 = broken (never heals)
 
   std::int64_t size() const { return static_cast<std::int64_t>(neighbor.size()); }
   static constexpr std::size_t bytes_per_bond() {
-    return sizeof(std::int32_t) + sizeof(double) + 2 * sizeof(float) + sizeof(std::uint8_t);
+    return sizeof(std::int32_t) + sizeof(double) + 3 * sizeof(float) + sizeof(std::uint8_t);
   }
 };
 

@@ -159,6 +159,7 @@ void build_bonds(const scene::Scene& s, Model<D>& m, const std::vector<std::arra
   b.length.resize(nbonds);
   b.volume.resize(nbonds);
   b.correction.assign(nbonds, 1.0f);
+  b.mirror_correction.assign(nbonds, 1.0f);
   b.intact.assign(nbonds, 1);
 #pragma omp parallel for schedule(static)
   for (std::size_t i = 0; i < n; ++i) {
@@ -211,7 +212,9 @@ Model<D> discretize(const scene::Scene& s) {
 
   build_bonds<D>(s, m, lattice_index);
 
-  // weighted volume m_i = sum omega |xi|^2 V_j (Silling et al. 2007, eq. 21); fixed at set-up as in LAMMPS
+  apply_surface_correction<D>(m);
+  // weighted volume m_i = sum omega_i |xi|^2 V_j (Silling et al. 2007, eq. 21), with the particle's own
+  // (surface-corrected) influence function; fixed at set-up as in LAMMPS
   m.weighted_volume.assign(n, 0.0);
   for (const auto& body : m.bodies) {
     const auto& c = body.constants;
@@ -219,13 +222,13 @@ Model<D> discretize(const scene::Scene& s) {
     for (std::size_t i = body.first; i < body.last; ++i) {
       double w = 0.0;
       for (auto k = m.bonds.offset[i]; k < m.bonds.offset[i + 1]; ++k) {
-        double xi = m.bonds.length[k];
-        w += influence(c.influence, xi, c.horizon) * xi * xi * m.bonds.volume[k];
+        const double xi = m.bonds.length[k];
+        w += m.bonds.correction[k] * influence(c.influence, xi, c.horizon) * xi * xi * m.bonds.volume[k];
       }
       m.weighted_volume[i] = w;
     }
   }
-  apply_surface_correction<D>(m);
+  compute_dilatation_weights<D>(m);
 
   for (const auto& iv : s.initial_velocities) {
     auto region = geometry::Region::build(s, iv.region);

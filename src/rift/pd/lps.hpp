@@ -1,13 +1,14 @@
 // Linear peridynamic solid (LPS), ordinary state-based (Silling et al. 2007, eq. 88-92; 2D: Le,
-// Chan and Schwartz 2014). Two passes over the bonds: the dilatation
-//   theta_i = (d / m_i) sum G_theta omega |xi| e V_j,
-// then the force state. With the surface-correction factors G_theta, G_d the strain energy is
-//   W_i = kappa/2 theta_i^2 + alpha_i/2 sum G_d omega (e - theta_i |xi|/d)^2 V_j,  alpha_i = A_dev / m_i,
-// and the scalar force state is its derivative
-//   t_i = (d/m_i) G_theta omega |xi| (kappa theta_i - alpha_i P_i / d) + alpha_i G_d omega (e - theta_i |xi| / d),
-//   P_i = sum G_d omega (e - theta_i |xi|/d) |xi| V_j.
-// Without correction (G = 1, P = 0) this is exactly LAMMPS peri/lps:
-//   t = (3K - 5G) theta omega |xi| / m + 15 G omega e / m   (3D).
+// Chan and Schwartz 2014). Strain energy density of particle i, with sigma_i its influence function
+// and b_ij its dilatation weights (see surface_correction.hpp; without correction sigma = omega and
+// b_ij = d omega |xi| / m_i, which is exactly LAMMPS peri/lps):
+//   theta_i = sum_j b_ij e_ij V_j,   e = |y| - |xi|,
+//   W_i = kappa/2 theta_i^2 + (A_dev / 2 m_i) sum_j sigma_ij (e_ij - theta_i |xi|/d)^2 V_j,
+// A_dev = 15 G (3D) or 8 G (2D), m_i = sum sigma_ij |xi|^2 V_j. Its derivative is the force state
+//   t_i<j> = b_ij (kappa theta_i - a_i P_i / d) + a_i sigma_ij (e_ij - theta_i |xi| / d),  a_i = A_dev / m_i,
+//   P_i = sum_j sigma_ij (e_ij - theta_i |xi|/d) |xi| V_j  (zero without correction),
+// and the force density is f_i = sum_j (t_i<j> + t_j<i>) V_j along the deformed bond. Two passes:
+// dilatation (and P), then forces. Uncorrected in 3D: t = (3K - 5G) theta omega |xi| / m + 15 G omega e / m.
 #pragma once
 #include <algorithm>
 #include <limits>
@@ -23,7 +24,6 @@ void lps_dilatation(Model<D>& m, const BodyInfo& body) {
   Bonds& b = m.bonds;
   const double horizon = c.horizon, s00 = c.critical_stretch, alpha = c.alpha;
   const bool breakable = c.breakable;
-  const bool corrected = !m.dilatation_correction.empty();
 #pragma omp parallel for schedule(static)
   for (std::size_t i = body.first; i < body.last; ++i) {
     const Vec<D> xi_pos = m.position[i];
@@ -37,17 +37,15 @@ void lps_dilatation(Model<D>& m, const BodyInfo& body) {
       const double xi = b.length[k];
       const double e = r - xi;
       if (breakable && e > xi * std::min(s0_i, m.stretch_limit[j])) {
-        b.intact[k] = 0;
+        b.intact[k] = 0;  // the mirror bond in row j is broken by the same test
         continue;
       }
       s_min = std::min(s_min, e / xi);
-      const double w = influence(Omega, xi, horizon) * xi * e * b.volume[k];
-      theta += corrected ? w * m.dilatation_correction[k] : w;
-      q += w * b.correction[k];
+      theta += b.dilatation_weight[k] * e * b.volume[k];
+      q += b.correction[k] * influence(Omega, xi, horizon) * xi * e * b.volume[k];
     }
-    theta *= D / m.weighted_volume[i];
     m.dilatation[i] = theta;
-    m.dilatation_coupling[i] = corrected ? q - theta * m.deviatoric_weighted_volume[i] / D : 0.0;
+    m.dilatation_coupling[i] = q - theta * m.weighted_volume[i] / D;
     if (alpha > 0.0 && s_min < std::numeric_limits<double>::max()) m.next_stretch_limit[i] = s00 - alpha * s_min;
   }
 }
@@ -57,12 +55,12 @@ void lps_forces(Model<D>& m, const BodyInfo& body) {
   const auto& c = body.constants;
   const Bonds& b = m.bonds;
   const double horizon = c.horizon, kappa = c.kappa, a_dev = c.lps_deviatoric_coefficient();
-  const bool corrected = !m.dilatation_correction.empty();
 #pragma omp parallel for schedule(static)
   for (std::size_t i = body.first; i < body.last; ++i) {
     const Vec<D> xi_pos = m.position[i];
-    const double inv_m_i = 1.0 / m.weighted_volume[i];
-    const double theta_i = m.dilatation[i], p_i = m.dilatation_coupling[i];
+    const double a_i = a_dev / m.weighted_volume[i];
+    const double theta_i = m.dilatation[i];
+    const double pressure_i = kappa * theta_i - a_i * m.dilatation_coupling[i] / D;
     Vec<D> f{};
     for (auto k = b.offset[i]; k < b.offset[i + 1]; ++k) {
       if (!b.intact[k]) continue;
@@ -72,15 +70,11 @@ void lps_forces(Model<D>& m, const BodyInfo& body) {
       const double xi = b.length[k];
       const double e = r - xi;
       const double omega = influence(Omega, xi, horizon);
-      const double g_theta = corrected ? m.dilatation_correction[k] : 1.0f;
-      const double g_dev = b.correction[k];
-      const double inv_m_j = 1.0 / m.weighted_volume[j];
-      const double theta_j = m.dilatation[j], p_j = m.dilatation_coupling[j];
-      // t_i<xi> + t_j<-xi>
-      const double t_i = D * inv_m_i * g_theta * omega * xi * (kappa * theta_i - a_dev * inv_m_i * p_i / D) +
-                         a_dev * inv_m_i * g_dev * omega * (e - theta_i * xi / D);
-      const double t_j = D * inv_m_j * g_theta * omega * xi * (kappa * theta_j - a_dev * inv_m_j * p_j / D) +
-                         a_dev * inv_m_j * g_dev * omega * (e - theta_j * xi / D);
+      const double a_j = a_dev / m.weighted_volume[j];
+      const double theta_j = m.dilatation[j];
+      const double pressure_j = kappa * theta_j - a_j * m.dilatation_coupling[j] / D;
+      const double t_i = b.dilatation_weight[k] * pressure_i + a_i * b.correction[k] * omega * (e - theta_i * xi / D);
+      const double t_j = b.mirror_dilatation_weight[k] * pressure_j + a_j * b.mirror_correction[k] * omega * (e - theta_j * xi / D);
       const double scalar = (t_i + t_j) * b.volume[k] / r;
       for (int q = 0; q < D; ++q) f[q] += scalar * eta[q];
     }
@@ -88,7 +82,7 @@ void lps_forces(Model<D>& m, const BodyInfo& body) {
   }
 }
 
-/// W_i = kappa/2 theta_i^2 + alpha_i/2 sum G_d omega (e^d)^2 V_j (uses the current dilatation).
+/// W_i (uses the current dilatation).
 template <int D>
 double lps_energy_density(const Model<D>& m, const BodyInfo& body, std::size_t i) {
   const auto& c = body.constants;

@@ -28,9 +28,8 @@ struct Model {
   std::vector<Vec<D>> body_force;          // external force density from loads (N/m^3)
   std::vector<double> volume;
   std::vector<double> weighted_volume;     // m (Silling et al. 2007, eq. 21)
-  std::vector<double> deviatoric_weighted_volume;  // sum Gd omega |xi|^2 V (surface-corrected LPS)
   std::vector<double> dilatation;          // theta
-  std::vector<double> dilatation_coupling; // P_i = sum Gd omega e^d |xi| V (zero without correction)
+  std::vector<double> dilatation_coupling; // P_i = sum omega_i (e - theta |xi|/d) |xi| V_j (LPS, zero without correction)
   std::vector<double> stretch_limit;       // s0 of each particle (LAMMPS: s00 - alpha s_min)
   std::vector<double> next_stretch_limit;
   std::vector<double> damage;
@@ -38,7 +37,6 @@ struct Model {
   std::vector<std::uint8_t> constrained;  // bit k: velocity component k is prescribed
 
   Bonds bonds;
-  std::vector<float> dilatation_correction;  // per bond, LPS surface correction of theta (Gtheta)
   std::vector<BodyInfo> bodies;
   int dimension = D;
   double thickness = 1.0;
@@ -48,7 +46,7 @@ struct Model {
   const MaterialConstants& constants_of(std::size_t i) const { return bodies[body[i]].constants; }
   Vec<D> displacement(std::size_t i) const { return position[i] - reference_position[i]; }
   static constexpr std::size_t bytes_per_particle() {
-    return sizeof(Vec<D>) * 6 + sizeof(double) * 9 + sizeof(std::uint32_t) + sizeof(std::uint8_t);
+    return sizeof(Vec<D>) * 6 + sizeof(double) * 8 + sizeof(std::uint32_t) + sizeof(std::uint8_t);
   }
 };
 

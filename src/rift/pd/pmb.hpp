@@ -1,5 +1,6 @@
 // Prototype microelastic brittle (PMB) bond force (Silling and Askari 2005, eq. 15-16):
-// f = c omega(|xi|) s V_j along the deformed bond, s = (|y| - |xi|) / |xi|. A bond breaks for good
+// f = c omega(|xi|) s V_j along the deformed bond, s = (|y| - |xi|) / |xi|; with the surface
+// correction each end contributes half with its own influence factor: c (g_i + g_j)/2 omega s V_j. A bond breaks for good
 // when s exceeds min(s0_i, s0_j); s0_i = s00 - alpha s_min,i (eq. 23, as LAMMPS peri/pmb).
 #pragma once
 #include <algorithm>
@@ -34,7 +35,8 @@ void pmb_forces(Model<D>& m, const BodyInfo& body) {
         continue;
       }
       s_min = std::min(s_min, s);
-      const double scalar = micromodulus * influence(Omega, xi, horizon) * s * b.volume[k] * b.correction[k] / r;
+      const double scalar = micromodulus * influence(Omega, xi, horizon) * s * b.volume[k] *
+                            (0.5f * (b.correction[k] + b.mirror_correction[k])) / r;
       for (int q = 0; q < D; ++q) f[q] += scalar * eta[q];
     }
     m.force[i] = f;
@@ -42,7 +44,7 @@ void pmb_forces(Model<D>& m, const BodyInfo& body) {
   }
 }
 
-/// Strain energy density W_i = (1/4) sum c omega s^2 |xi| V_j (for output and histories).
+/// Strain energy density W_i = (1/4) sum c g_i omega s^2 |xi| V_j (for output and histories).
 template <int D>
 double pmb_energy_density(const Model<D>& m, const BodyInfo& body, std::size_t i) {
   const auto& c = body.constants;

@@ -1,7 +1,10 @@
 #include "rift/pd/surface_correction.hpp"
 
+#include <Eigen/Dense>
+#include <algorithm>
 #include <array>
 #include <cmath>
+#include <vector>
 
 #include "rift/pd/influence.hpp"
 
@@ -9,86 +12,146 @@ namespace rift::pd {
 
 namespace {
 
-/// Combine per-axis factors of both ends into one bond factor (ellipsoid rule).
+constexpr double pi = 3.14159265358979323846;
+
+/// Exponents (p, q, r) of the even degree-4 monomials in D variables: n_x^4, n_x^2 n_y^2, ...
 template <int D>
-float bond_factor(const std::array<double, D>& gi, const std::array<double, D>& gj, const Vec<D>& n) {
-  double s = 0.0;
-  for (int k = 0; k < D; ++k) {
-    double g = 0.5 * (gi[k] + gj[k]);
-    s += (n[k] / g) * (n[k] / g);
-  }
-  return static_cast<float>(1.0 / std::sqrt(s));
+std::vector<std::array<int, 3>> quartic_exponents() {
+  std::vector<std::array<int, 3>> e;
+  for (int p = 4; p >= 0; p -= 2)
+    for (int q = 4 - p; q >= 0; q -= 2) {
+      int r = 4 - p - q;
+      if (D == 2 && r != 0) continue;
+      e.push_back({p, q, r});
+    }
+  return e;
+}
+
+double ipow(double x, int p) {
+  double r = 1.0;
+  for (int i = 0; i < p; ++i) r *= x;
+  return r;
+}
+
+/// Mean of n_x^p n_y^q n_z^r over directions of a full D-ball: (p-1)!!(q-1)!!(r-1)!! / (D (D+2)) for even exponents.
+double isotropic_mean(int D, const std::array<int, 3>& e) {
+  auto dfact = [](int k) { return k <= 0 ? 1.0 : (k == 1 ? 1.0 : (k == 3 ? 3.0 : 15.0)); };
+  for (int x : e)
+    if (x % 2) return 0.0;
+  return dfact(e[0] - 1) * dfact(e[1] - 1) * dfact(e[2] - 1) / double(D * (D + 2));
+}
+
+/// mirror[k] = side value of the bond j-i for bond k = i-j (rows are sorted by neighbour).
+void mirror_values(const Bonds& b, const std::vector<float>& side, std::vector<float>& mirror) {
+  const auto n = static_cast<std::int64_t>(b.offset.size()) - 1;
+#pragma omp parallel for schedule(static)
+  for (std::int64_t i = 0; i < n; ++i)
+    for (auto k = b.offset[i]; k < b.offset[i + 1]; ++k) {
+      const auto j = b.neighbor[k];
+      const auto first = b.neighbor.begin() + b.offset[j], last = b.neighbor.begin() + b.offset[j + 1];
+      auto it = std::lower_bound(first, last, static_cast<std::int32_t>(i));
+      mirror[k] = side[static_cast<std::size_t>(it - b.neighbor.begin())];
+    }
 }
 
 }  // namespace
 
 template <int D>
 void apply_surface_correction(Model<D>& m) {
-  const std::size_t n = m.size();
-  const Bonds& b = m.bonds;
-  bool lps_any = false;
-  for (const auto& body : m.bodies) lps_any = lps_any || body.constants.model == scene::ModelKind::lps;
-  if (lps_any) m.dilatation_correction.assign(b.neighbor.size(), 1.0f);
-  m.deviatoric_weighted_volume = m.weighted_volume;
-
-  // g[i][k]: stiffness (PMB) or deviatoric (LPS) factor; gt[i][k]: LPS dilatation factor
-  std::vector<std::array<double, D>> g(n), gt(n);
+  Bonds& b = m.bonds;
+  const auto exps = quartic_exponents<D>();
+  const int na = static_cast<int>(exps.size());
   for (const auto& body : m.bodies) {
     const auto& c = body.constants;
-    const int d = D;
-#pragma omp parallel for schedule(static)
-    for (std::size_t i = body.first; i < body.last; ++i) {
-      for (int axis = 0; axis < D; ++axis) {
-        g[i][axis] = gt[i][axis] = 1.0;
-        if (!c.surface_correction) continue;
-        // uniaxial strain eps = 1 along axis: bond extension e = |xi| n_axis^2
-        double pmb_w = 0.0, theta_sum = 0.0, dev = 0.0;
-        for (auto k = b.offset[i]; k < b.offset[i + 1]; ++k) {
-          const double xi = b.length[k];
-          const auto j = static_cast<std::size_t>(b.neighbor[k]);
-          const double na = (m.reference_position[j][axis] - m.reference_position[i][axis]) / xi;
-          const double w = influence(c.influence, xi, c.horizon) * b.volume[k];
-          const double e = xi * na * na;
-          pmb_w += w * e * e / xi;
-          theta_sum += w * xi * e;
-          const double ed = e - xi / d;  // deviatoric extension for the exact dilatation theta = 1
-          dev += w * ed * ed;
-        }
-        if (c.model == scene::ModelKind::pmb) {
-          // W_PD = (1/4) c sum omega s^2 |xi| V ; classical W = M/2 with the P-wave modulus of the
-          // PMB body itself (nu = 1/4 in 3D and plane strain, 1/3 in plane stress): 9 kappa/5 or 3 kappa/2
-          double classical = 0.5 * (d == 3 ? 1.8 * c.kappa : 1.5 * c.kappa);
-          if (pmb_w > 0) g[i][axis] = classical / (0.25 * c.micromodulus * pmb_w);
-        } else {
-          double theta = d * theta_sum / m.weighted_volume[i];
-          if (theta > 0) gt[i][axis] = 1.0 / theta;
-          // deviatoric energy: classical G |dev eps|^2 = G (1 - 1/d); peridynamic alpha/2 sum omega (e^d)^2 V
-          double alpha = c.lps_deviatoric_coefficient() / m.weighted_volume[i];
-          double classical = c.shear_modulus * (1.0 - 1.0 / d);
-          if (dev > 0) g[i][axis] = classical / (0.5 * alpha * dev);
-        }
-      }
-    }
-  }
-#pragma omp parallel for schedule(static)
-  for (std::size_t i = 0; i < n; ++i) {
-    const auto& c = m.constants_of(i);
     if (!c.surface_correction) continue;
-    double mdev = 0.0;
-    for (auto k = b.offset[i]; k < b.offset[i + 1]; ++k) {
-      const auto j = static_cast<std::size_t>(b.neighbor[k]);
-      const Vec<D> dir = (1.0 / b.length[k]) * (m.reference_position[j] - m.reference_position[i]);
-      m.bonds.correction[k] = bond_factor<D>(g[i], g[j], dir);
-      if (c.model == scene::ModelKind::lps) {
-        m.dilatation_correction[k] = bond_factor<D>(gt[i], gt[j], dir);
-        mdev += m.bonds.correction[k] * influence(c.influence, b.length[k], c.horizon) * b.length[k] * b.length[k] * b.volume[k];
+    const int p = c.model == scene::ModelKind::pmb ? 1 : 2;  // weight |xi|^p of the energy moment
+    // continuum moment int_ball omega |xi|^p dV
+    const double full = D == 3 ? 4.0 * pi * influence_moment(c.influence, c.horizon, 2 + p)
+                               : 2.0 * pi * c.thickness * influence_moment(c.influence, c.horizon, 1 + p);
+#pragma omp parallel for schedule(dynamic, 64)
+    for (std::size_t i = body.first; i < body.last; ++i) {
+      Eigen::MatrixXd A = Eigen::MatrixXd::Zero(na, na);
+      Eigen::VectorXd rhs(na);
+      for (int a = 0; a < na; ++a) rhs[a] = full * isotropic_mean(D, exps[static_cast<std::size_t>(a)]);
+      Eigen::VectorXd psi(na);
+      auto monomials = [&](std::size_t j, double xi) {
+        const Vec<D> n = (1.0 / xi) * (m.reference_position[j] - m.reference_position[i]);
+        for (int a = 0; a < na; ++a) {
+          const auto& e = exps[static_cast<std::size_t>(a)];
+          psi[a] = ipow(n[0], e[0]) * ipow(n[1], e[1]) * (D == 3 ? ipow(n[D - 1], e[2]) : 1.0);
+        }
+      };
+      for (auto k = b.offset[i]; k < b.offset[i + 1]; ++k) {
+        const double xi = b.length[k];
+        const double base = influence(c.influence, xi, c.horizon) * ipow(xi, p) * b.volume[k];
+        monomials(static_cast<std::size_t>(b.neighbor[k]), xi);
+        A.noalias() += base * psi * psi.transpose();
+        rhs -= base * psi;  // moments of the uncorrected family
+      }
+      // smallest-norm change of the influence function that matches the moments
+      Eigen::VectorXd lambda = A.completeOrthogonalDecomposition().solve(rhs);
+      for (auto k = b.offset[i]; k < b.offset[i + 1]; ++k) {
+        monomials(static_cast<std::size_t>(b.neighbor[k]), b.length[k]);
+        b.correction[k] = static_cast<float>(1.0 + lambda.dot(psi));
       }
     }
-    if (c.model == scene::ModelKind::lps) m.deviatoric_weighted_volume[i] = mdev;
   }
+  mirror_values(b, b.correction, b.mirror_correction);
+}
+
+template <int D>
+void compute_dilatation_weights(Model<D>& m) {
+  Bonds& b = m.bonds;
+  bool any_lps = false;
+  for (const auto& body : m.bodies) any_lps = any_lps || body.constants.model == scene::ModelKind::lps;
+  if (!any_lps) return;
+  b.dilatation_weight.assign(b.neighbor.size(), 0.0f);
+  b.mirror_dilatation_weight.assign(b.neighbor.size(), 0.0f);
+  constexpr int nq = D == 3 ? 6 : 3;  // degree-2 monomials n_a n_b, a <= b
+  std::array<std::array<int, 2>, nq> pairs{};
+  {
+    int q = 0;
+    for (int a = 0; a < D; ++a)
+      for (int c = a; c < D; ++c) pairs[static_cast<std::size_t>(q++)] = {a, c};
+  }
+  for (const auto& body : m.bodies) {
+    const auto& c = body.constants;
+    if (c.model != scene::ModelKind::lps) continue;
+#pragma omp parallel for schedule(dynamic, 64)
+    for (std::size_t i = body.first; i < body.last; ++i) {
+      if (!c.surface_correction) {
+        for (auto k = b.offset[i]; k < b.offset[i + 1]; ++k)
+          b.dilatation_weight[k] = static_cast<float>(D * influence(c.influence, b.length[k], c.horizon) * b.length[k] /
+                                                      m.weighted_volume[i]);
+        continue;
+      }
+      // b_ij = omega |xi| (mu . phi(n)) with sum_j b_ij V_j |xi| n_a n_b = delta_ab
+      Eigen::Matrix<double, nq, nq> A = Eigen::Matrix<double, nq, nq>::Zero();
+      Eigen::Matrix<double, nq, 1> rhs, phi;
+      for (int q = 0; q < nq; ++q) rhs[q] = pairs[static_cast<std::size_t>(q)][0] == pairs[static_cast<std::size_t>(q)][1] ? 1.0 : 0.0;
+      auto monomials = [&](auto k) {
+        const auto j = static_cast<std::size_t>(b.neighbor[k]);
+        const Vec<D> n = (1.0 / b.length[k]) * (m.reference_position[j] - m.reference_position[i]);
+        for (int q = 0; q < nq; ++q) phi[q] = n[pairs[static_cast<std::size_t>(q)][0]] * n[pairs[static_cast<std::size_t>(q)][1]];
+      };
+      for (auto k = b.offset[i]; k < b.offset[i + 1]; ++k) {
+        monomials(k);
+        const double xi = b.length[k];
+        A.noalias() += influence(c.influence, xi, c.horizon) * xi * xi * b.volume[k] * phi * phi.transpose();
+      }
+      Eigen::Matrix<double, nq, 1> mu = A.completeOrthogonalDecomposition().solve(rhs);
+      for (auto k = b.offset[i]; k < b.offset[i + 1]; ++k) {
+        monomials(k);
+        b.dilatation_weight[k] = static_cast<float>(influence(c.influence, b.length[k], c.horizon) * b.length[k] * mu.dot(phi));
+      }
+    }
+  }
+  mirror_values(b, b.dilatation_weight, b.mirror_dilatation_weight);
 }
 
 template void apply_surface_correction<2>(Model<2>&);
 template void apply_surface_correction<3>(Model<3>&);
+template void compute_dilatation_weights<2>(Model<2>&);
+template void compute_dilatation_weights<3>(Model<3>&);
 
 }  // namespace rift::pd

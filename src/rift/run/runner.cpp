@@ -56,7 +56,7 @@ Plan make_plan(const Prepared<D>& p) {
   plan.particles = p.model.size();
   plan.bonds = p.model.bonds.size() / 2;
   plan.bytes_per_particle = double(pd::Model<D>::bytes_per_particle()) + sizeof(std::int64_t);
-  plan.bytes_per_bond = double(pd::Bonds::bytes_per_bond()) * 2.0 + (p.model.dilatation_correction.empty() ? 0.0 : 8.0);
+  plan.bytes_per_bond = double(pd::Bonds::bytes_per_bond()) * 2.0;
   plan.stable_time_step = p.stable_dt;
   plan.time_step = p.dt;
   plan.steps = p.steps;
