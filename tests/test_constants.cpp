@@ -5,7 +5,6 @@
 
 #include "rift/pd/critical_stretch.hpp"
 #include "rift/pd/material_constants.hpp"
-#include "scene_fixture.hpp"
 
 namespace {
 

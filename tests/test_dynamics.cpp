@@ -8,13 +8,13 @@
 #include "rift/load/boundary.hpp"
 #include "rift/pd/discretize.hpp"
 #include "rift/pd/velocity_verlet.hpp"
-#include "scene_fixture.hpp"
+#include "cases/homogeneous.hpp"
 
 namespace {
 
 template <int D>
 void momentum_conserved(const std::string& model) {
-  auto s = rift::scene::parse_string(rift::test::box_scene(D, model, 0.25, "", "", 3.015, "strain", "critical_stretch = 0.002\n"), "m.toml");
+  auto s = rift::scene::parse_string(rift::validation::box_scene(D, model, 0.25, "", "", 3.015, "strain", "critical_stretch = 0.002\n"), "m.toml");
   auto m = rift::pd::discretize<D>(s);
   rift::load::Boundaries<D> loads(s, m);
   rift::pd::Contact<D> contact(s.contact, m);

@@ -8,65 +8,17 @@
 #include <cmath>
 #include <cstdio>
 
-#include "rift/pd/discretize.hpp"
-#include "rift/pd/forces.hpp"
-#include "scene_fixture.hpp"
+#include "cases/homogeneous.hpp"
 
 namespace {
 
-using Strain = std::array<std::array<double, 3>, 3>;
-
-struct Errors {
-  double bulk = 0.0, surface = 0.0;
-  int bulk_count = 0, surface_count = 0;
-};
-
-template <int D>
-Errors energy_errors(const std::string& scene_text, const Strain& eps) {
-  auto s = rift::scene::parse_string(scene_text, "homogeneous.toml");
-  auto m = rift::pd::discretize<D>(s);
-  const auto& c = m.bodies[0].constants;
-  for (std::size_t i = 0; i < m.size(); ++i)
-    for (int a = 0; a < D; ++a) {
-      double u = 0;
-      for (int b = 0; b < D; ++b) u += eps[a][b] * m.reference_position[i][b];
-      m.position[i][a] = m.reference_position[i][a] + u;
-    }
-  rift::pd::compute_forces<D>(m, nullptr);
-  // classical energy density
-  double tr = 0;
-  for (int a = 0; a < D; ++a) tr += eps[a][a];
-  double dev2 = 0;
-  for (int a = 0; a < D; ++a)
-    for (int b = 0; b < D; ++b) {
-      double d = eps[a][b] - (a == b ? tr / D : 0.0);
-      dev2 += d * d;
-    }
-  const double classical = 0.5 * c.kappa * tr * tr + c.shear_modulus * dev2;
-  // box extent
-  std::array<double, 3> lo{1e9, 1e9, 1e9}, hi{-1e9, -1e9, -1e9};
-  for (const auto& x : m.reference_position)
-    for (int a = 0; a < D; ++a) lo[a] = std::min(lo[a], x[a]), hi[a] = std::max(hi[a], x[a]);
-  Errors e;
-  for (std::size_t i = 0; i < m.size(); ++i) {
-    double depth = 1e9;
-    for (int a = 0; a < D; ++a)
-      depth = std::min({depth, m.reference_position[i][a] - lo[a], hi[a] - m.reference_position[i][a]});
-    const double err = std::abs(rift::pd::strain_energy_density<D>(m, i) / classical - 1.0);
-    if (depth > c.horizon) {
-      e.bulk = std::max(e.bulk, err);
-      ++e.bulk_count;
-    } else {
-      e.surface = std::max(e.surface, err);
-      ++e.surface_count;
-    }
-  }
-  return e;
-}
-
-const Strain uniaxial{{{1e-4, 0, 0}, {0, 0, 0}, {0, 0, 0}}};
-const Strain shear{{{0, 1e-4, 0}, {1e-4, 0, 0}, {0, 0, 0}}};
-const Strain volumetric{{{1e-4, 0, 0}, {0, 1e-4, 0}, {0, 0, 1e-4}}};
+using rift::validation::box_scene;
+using rift::validation::energy_errors;
+using rift::validation::EnergyErrors;
+using Errors = EnergyErrors;
+const auto& uniaxial = rift::validation::uniaxial_strain;
+const auto& shear = rift::validation::shear_strain;
+const auto& volumetric = rift::validation::volumetric_strain;
 
 struct Case {
   int dim;
@@ -79,7 +31,7 @@ class Homogeneous : public ::testing::TestWithParam<Case> {};
 
 TEST_P(Homogeneous, EnergyDensityMatchesElasticity) {
   const auto& p = GetParam();
-  const std::string scene = rift::test::box_scene(p.dim, p.model, p.nu, "", "", 3.015, p.plane);
+  const std::string scene = box_scene(p.dim, p.model, p.nu, "", "", 3.015, p.plane);
   for (const auto* eps : {&uniaxial, &shear, &volumetric}) {
     Errors e = p.dim == 2 ? energy_errors<2>(scene, *eps) : energy_errors<3>(scene, *eps);
     const char* mode = eps == &uniaxial ? "uniaxial" : eps == &shear ? "shear" : "volumetric";
@@ -110,7 +62,7 @@ namespace {
 // Without the correction the particles near the free surfaces are too soft (the test above would
 // fail): the correction is what brings them to the classical energy.
 TEST(SurfaceCorrection, UncorrectedSurfaceIsOffByMoreThanFivePercent) {
-  const std::string scene = rift::test::box_scene(3, "lps", 0.25, "", "", 3.015, "", "surface_correction = false\n");
+  const std::string scene = box_scene(3, "lps", 0.25, "", "", 3.015, "", "surface_correction = false\n");
   Errors e = energy_errors<3>(scene, uniaxial);
   EXPECT_GT(e.surface, 0.05);
 }
@@ -121,7 +73,7 @@ TEST(SurfaceCorrection, FactorsStayPositive) {
   for (int dim : {2, 3})
     for (double h : {3.015, 4.015})
       for (const char* model : {"pmb", "lps"}) {
-        const std::string scene = rift::test::box_scene(dim, model, 0.25, "", "", h, "strain");
+        const std::string scene = box_scene(dim, model, 0.25, "", "", h, "strain");
         auto s = rift::scene::parse_string(scene, "f.toml");
         float lo = 1e9f, hi = -1e9f;
         auto scan = [&](const auto& m) {

@@ -4,6 +4,9 @@
 //   rift --version
 // Exit status: 0 success, 1 physics failure during a run, 2 bad input (nothing written).
 #include <CLI/CLI.hpp>
+#include <omp.h>
+
+#include <algorithm>
 #include <cstdio>
 #include <iostream>
 
@@ -43,6 +46,8 @@ int main(int argc, char** argv) {
     std::printf("rift: %ld steps, t = %.6g s, kinetic energy %.6g J, strain energy %.6g J, broken bonds %lld, max damage %.3f\n",
                 r.steps, r.time, r.final_energy.kinetic, r.final_energy.strain,
                 static_cast<long long>(r.final_energy.broken_bonds), r.max_damage);
+    std::printf("rift: loop time %.6g s (%.4g s per step, %d threads)\n", r.loop_seconds, r.loop_seconds / double(std::max(1L, r.steps)),
+                omp_get_max_threads());
     std::printf("results in %s/\n  fields   %s (open in ParaView)\n  history  %s\n", r.output_dir.c_str(), r.fields_xdmf.c_str(),
                 r.history_csv.c_str());
     if (!r.damage_png.empty()) std::printf("  damage   %s\n", r.damage_png.c_str());

@@ -2,6 +2,7 @@
 
 #include <omp.h>
 
+#include <chrono>
 #include <cmath>
 #include <filesystem>
 #include <ostream>
@@ -10,48 +11,15 @@
 #include "rift/io/damage_image.hpp"
 #include "rift/io/field_writer.hpp"
 #include "rift/io/history.hpp"
-#include "rift/load/boundary.hpp"
-#include "rift/pd/contact.hpp"
-#include "rift/pd/discretize.hpp"
 #include "rift/pd/dynamic_relaxation.hpp"
-#include "rift/pd/velocity_verlet.hpp"
+#include "rift/run/simulation.hpp"
 
 namespace rift::run {
 
 namespace {
 
 template <int D>
-struct Prepared {
-  pd::Model<D> model;
-  load::Boundaries<D> loads;
-  pd::Contact<D> contact;
-  double stable_dt = 0.0, dt = 0.0;
-  long steps = 0;
-
-  explicit Prepared(const scene::Scene& s)
-      : model(pd::discretize<D>(s)), loads(s, model), contact(s.contact, model) {
-    stable_dt = pd::stable_time_step<D>(model);
-    if (s.solver.kind == scene::SolverKind::explicit_dynamics) {
-      if (s.solver.time_step) {
-        if (*s.solver.time_step > stable_dt)
-          throw SceneError(s.solver.time_step_where, "solver.time_step",
-                           "time step " + std::to_string(*s.solver.time_step) + " s exceeds the stable limit " +
-                               std::to_string(stable_dt) + " s (Silling and Askari 2005, eq. 29); use a smaller value or safety_factor");
-        dt = *s.solver.time_step;
-      } else {
-        dt = s.solver.safety_factor * stable_dt;
-      }
-      steps = std::max(1L, static_cast<long>(std::ceil(s.solver.end_time / dt - 1e-9)));
-      dt = s.solver.end_time / double(steps);
-    } else {
-      steps = s.solver.load_steps;
-    }
-  }
-  pd::Contact<D>* contact_ptr() { return contact.enabled() ? &contact : nullptr; }
-};
-
-template <int D>
-Plan make_plan(const Prepared<D>& p) {
+Plan make_plan(const Simulation<D>& p) {
   Plan plan;
   plan.particles = p.model.size();
   plan.bonds = p.model.bonds.size() / 2;
@@ -65,7 +33,7 @@ Plan make_plan(const Prepared<D>& p) {
 
 template <int D>
 Plan check_dim(const scene::Scene& s, std::ostream& out) {
-  Prepared<D> p(s);
+  Simulation<D> p(s);
   Plan plan = make_plan<D>(p);
   char line[256];
   out << "scene        " << s.name << " (" << s.file << ")\n";
@@ -154,7 +122,7 @@ void check_finite(const pd::Model<D>& m, long step, const pd::EnergySummary& e) 
 
 template <int D>
 Result run_dim(const scene::Scene& s, const Options& o) {
-  Prepared<D> p(s);  // every scene error is raised here, before anything is written
+  Simulation<D> p(s);  // every scene error is raised here, before anything is written
   auto& m = p.model;
   Result res;
   res.output_dir = o.output_dir.empty() ? "results/" + s.name : o.output_dir;
@@ -184,16 +152,15 @@ Result run_dim(const scene::Scene& s, const Options& o) {
     return e;
   };
 
-  pd::compute_forces<D>(m, p.contact_ptr());
-  p.loads.apply_body_forces(m, 0.0);
-  Progress progress(p.steps, s.solver.kind == scene::SolverKind::explicit_dynamics ? s.solver.end_time : s.solver.end_time,
-                    o.quiet);
+  p.start();
+  const auto loop_start = std::chrono::steady_clock::now();
+  Progress progress(p.steps, s.solver.end_time, o.quiet);
   if (s.solver.kind == scene::SolverKind::explicit_dynamics) {
     write_snapshot<D>(fields, m, s);
     history_row(0, {});
     long next_snapshot = 1, next_history = 1;
     for (long step = 1; step <= p.steps; ++step) {
-      pd::velocity_verlet_step<D>(m, p.loads, p.contact_ptr(), p.dt);
+      p.step();
       const bool snap = step * s.output.count >= next_snapshot * p.steps;
       const bool hist = step * s.output.history_count >= next_history * p.steps;
       if (hist) {
@@ -220,6 +187,7 @@ Result run_dim(const scene::Scene& s, const Options& o) {
                      r.iterations, r.residual, s.solver.tolerance);
     }
   }
+  res.loop_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - loop_start).count();
   res.final_energy = pd::summarize<D>(m);
   pd::update_damage<D>(m);
   for (double d : m.damage) res.max_damage = std::max(res.max_damage, d);

@@ -27,6 +27,7 @@ struct Result {
   std::string output_dir, fields_h5, fields_xdmf, history_csv, damage_png, damage_png_note;
   long steps = 0;
   double time = 0.0;
+  double loop_seconds = 0.0;  // wall time of the step loop (with outputs)
   pd::EnergySummary final_energy;
   double max_damage = 0.0;
 };

@@ -1,0 +1,21 @@
+#include "case.hpp"
+
+#ifndef RIFT_SOURCE_DIR
+#error "RIFT_SOURCE_DIR must name the source tree"
+#endif
+
+namespace rift::validation {
+
+const std::vector<Entry>& all_cases() {
+  static const std::vector<Entry> cases{
+      {"pd_homogeneous", pd_homogeneous},         {"pd_wave_speed", pd_wave_speed},
+      {"pd_momentum", pd_momentum},               {"pd_fracture_energy", pd_fracture_energy},
+      {"pd_quasistatic_plate", pd_quasistatic_plate}, {"kalthoff_winkler", kalthoff_winkler},
+      {"glass_branching", glass_branching},
+  };
+  return cases;
+}
+
+std::string source_path(const std::string& relative) { return std::string(RIFT_SOURCE_DIR) + "/" + relative; }
+
+}  // namespace rift::validation
