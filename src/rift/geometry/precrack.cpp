@@ -29,12 +29,14 @@ bool PreCrack::cuts(const Point3& p, const Point3& q) const {
   if (dimension_ == 2) {
     const auto& a = points_[0];
     const auto& b = points_[1];
-    // proper or touching intersection of segments pq and ab
-    double d1 = cross2(b[0] - a[0], b[1] - a[1], p[0] - a[0], p[1] - a[1]);
-    double d2 = cross2(b[0] - a[0], b[1] - a[1], q[0] - a[0], q[1] - a[1]);
-    double d3 = cross2(q[0] - p[0], q[1] - p[1], a[0] - p[0], a[1] - p[1]);
-    double d4 = cross2(q[0] - p[0], q[1] - p[1], b[0] - p[0], b[1] - p[1]);
-    return ((d1 > 0) != (d2 > 0)) && ((d3 > 0) != (d4 > 0)) && d1 != 0 && d2 != 0;
+    // proper intersection: p and q strictly on opposite sides of the crack line and the crack ends
+    // strictly on opposite sides of the line pq. A bond passing exactly through a crack tip is not
+    // cut, whatever its orientation, so mirror-symmetric scenes stay symmetric.
+    const double d1 = cross2(b[0] - a[0], b[1] - a[1], p[0] - a[0], p[1] - a[1]);
+    const double d2 = cross2(b[0] - a[0], b[1] - a[1], q[0] - a[0], q[1] - a[1]);
+    const double d3 = cross2(q[0] - p[0], q[1] - p[1], a[0] - p[0], a[1] - p[1]);
+    const double d4 = cross2(q[0] - p[0], q[1] - p[1], b[0] - p[0], b[1] - p[1]);
+    return ((d1 > 0 && d2 < 0) || (d1 < 0 && d2 > 0)) && ((d3 > 0 && d4 < 0) || (d3 < 0 && d4 > 0));
   }
   const auto& o = points_[0];
   double sp = 0, sq = 0;

@@ -2,6 +2,7 @@
 
 #include <cmath>
 
+#include "rift/parallel/ordered_sum.hpp"
 #include "rift/pd/forces.hpp"
 #include "rift/pd/influence.hpp"
 
@@ -41,22 +42,24 @@ RelaxationResult DynamicRelaxation<D>::relax(Model<D>& m, const load::Boundaries
   for (int it = 0; it < max_iterations; ++it) {
     advance_stretch_limits<D>(m);
     compute_forces<D>(m, contact);
-    double num = 0.0, den = 0.0, residual = 0.0, reaction = 0.0;
-#pragma omp parallel for reduction(+ : num, den, residual, reaction) schedule(static)
-    for (std::size_t i = 0; i < n; ++i) {
+    // U^T K U with the local diagonal stiffness K_ii = -(F^n - F^{n-1}) / (lambda V^{n-1/2}) (eq. 12), U^T U,
+    // squared residual of the free components and squared reactions of the constrained ones
+    auto sums = parallel::ordered_sums<4>(n, [&](std::size_t i, std::array<double, 4>& acc) {
       for (int k = 0; k < D; ++k) {
-        const double f = (m.force[i][k] + m.body_force[i][k]) / fictitious_density_[i];
+        const double total = m.force[i][k] + m.body_force[i][k];
         if (m.constrained[i] >> k & 1) {
-          reaction += m.force[i][k] * m.force[i][k] * m.volume[i] * m.volume[i];
+          acc[3] += m.force[i][k] * m.force[i][k] * m.volume[i] * m.volume[i];
           continue;
         }
-        residual += (m.force[i][k] + m.body_force[i][k]) * (m.force[i][k] + m.body_force[i][k]) * m.volume[i] * m.volume[i];
+        acc[2] += total * total * m.volume[i] * m.volume[i];
+        const double f = total / fictitious_density_[i];
         const double v = m.velocity[i][k];
         const double u = m.position[i][k] - m.reference_position[i][k];
-        if (it > 0 && v != 0.0) num += u * (-(f - previous[i][k]) / v) * u;  // U^T K U with K_ii = -(F^n - F^{n-1}) / (lambda V^{n-1/2})
-        den += u * u;
+        if (it > 0 && v != 0.0) acc[0] += u * (-(f - previous[i][k]) / v) * u;
+        acc[1] += u * u;
       }
-    }
+    });
+    const double num = sums[0], den = sums[1], residual = sums[2], reaction = sums[3];
     const double reference = std::sqrt(load_norm) + std::sqrt(reaction);
     result.iterations = it + 1;
     result.residual = reference > 0.0 ? std::sqrt(residual) / reference : std::sqrt(residual);

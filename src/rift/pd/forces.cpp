@@ -3,6 +3,7 @@
 #include <cmath>
 #include <limits>
 
+#include "rift/parallel/ordered_sum.hpp"
 #include "rift/pd/lps.hpp"
 #include "rift/pd/pmb.hpp"
 
@@ -55,19 +56,16 @@ double strain_energy_density(const Model<D>& m, std::size_t i) {
 
 template <int D>
 EnergySummary summarize(const Model<D>& m) {
-  EnergySummary s;
-  const std::size_t n = m.size();
-  double kinetic = 0.0, strain = 0.0;
-  std::int64_t broken = 0;
-#pragma omp parallel for reduction(+ : kinetic, strain, broken) schedule(static)
-  for (std::size_t i = 0; i < n; ++i) {
+  auto sums = parallel::ordered_sums<3>(m.size(), [&](std::size_t i, std::array<double, 3>& acc) {
     const double rho = m.constants_of(i).density;
-    kinetic += 0.5 * rho * dot<D>(m.velocity[i], m.velocity[i]) * m.volume[i];
-    strain += strain_energy_density<D>(m, i) * m.volume[i];
-    for (auto k = m.bonds.offset[i]; k < m.bonds.offset[i + 1]; ++k) broken += !m.bonds.intact[k];
-  }
-  s.kinetic = kinetic;
-  s.strain = strain;
+    acc[0] += 0.5 * rho * dot<D>(m.velocity[i], m.velocity[i]) * m.volume[i];
+    acc[1] += strain_energy_density<D>(m, i) * m.volume[i];
+    for (auto k = m.bonds.offset[i]; k < m.bonds.offset[i + 1]; ++k) acc[2] += !m.bonds.intact[k];
+  });
+  EnergySummary s;
+  s.kinetic = sums[0];
+  s.strain = sums[1];
+  const auto broken = static_cast<std::int64_t>(sums[2]);
   s.broken_bonds = broken / 2;
   s.broken_fraction = m.bonds.size() > 0 ? double(broken) / double(m.bonds.size()) : 0.0;
   return s;
