@@ -24,7 +24,8 @@ Plan make_plan(const Simulation<D>& p) {
   plan.particles = p.model.size();
   plan.bonds = p.model.bonds.size() / 2;
   plan.bytes_per_particle = double(pd::Model<D>::bytes_per_particle()) + sizeof(std::int64_t);
-  plan.bytes_per_bond = double(pd::Bonds::bytes_per_bond()) * 2.0;
+  // both directions of a bond are stored; LPS adds its two dilatation weights per direction
+  plan.bytes_per_bond = 2.0 * (double(pd::Bonds::bytes_per_bond()) + (p.model.bonds.dilatation_weight.empty() ? 0.0 : 2 * sizeof(float)));
   plan.stable_time_step = p.stable_dt;
   plan.time_step = p.dt;
   plan.steps = p.steps;
