@@ -1,55 +1,10 @@
-// Validation 3: a free body (LPS, 3D and 2D, with bond breaking and contact) given random
+// Validation 3: a free body (PMB and LPS, 3D and 2D, bonds breaking, contact on) given random
 // velocities conserves linear and angular momentum to round-off under velocity-Verlet, because
 // every bond force acts along the bond with equal and opposite ends (Silling 2000).
-#include <cstdio>
-#include <random>
-
 #include "case.hpp"
-#include "homogeneous.hpp"
-#include "rift/load/boundary.hpp"
-#include "rift/pd/velocity_verlet.hpp"
+#include "momentum.hpp"
 
 namespace rift::validation {
-
-namespace {
-template <int D>
-double momentum_drift(const std::string& model, int steps) {
-  auto s = scene::parse_string(box_scene(D, model, 0.25, "", "", 3.015, "strain", "critical_stretch = 0.002\n"), "m.toml");
-  auto m = pd::discretize<D>(s);
-  load::Boundaries<D> loads(s, m);
-  pd::Contact<D> contact(s.contact, m);
-  std::mt19937 rng(7);
-  std::normal_distribution<double> g(0.0, 5.0);
-  for (auto& v : m.velocity)
-    for (auto& c : v) c = g(rng);
-  auto totals = [&](std::array<double, 6>& out, double& scale) {
-    out.fill(0.0);
-    scale = 0.0;
-    for (std::size_t i = 0; i < m.size(); ++i) {
-      const double mass = m.constants_of(i).density * m.volume[i];
-      std::array<double, 3> x{0, 0, 0}, v{0, 0, 0};
-      for (int k = 0; k < D; ++k) x[k] = m.position[i][k], v[k] = m.velocity[i][k];
-      for (int k = 0; k < 3; ++k) out[k] += mass * v[k];
-      out[3] += mass * (x[1] * v[2] - x[2] * v[1]);
-      out[4] += mass * (x[2] * v[0] - x[0] * v[2]);
-      out[5] += mass * (x[0] * v[1] - x[1] * v[0]);
-      scale += mass * std::sqrt(dot<D>(m.velocity[i], m.velocity[i]));
-    }
-  };
-  std::array<double, 6> before, after;
-  double scale;
-  totals(before, scale);
-  const double dt = 0.5 * pd::stable_time_step<D>(m);
-  pd::compute_forces<D>(m, &contact);
-  for (int step = 0; step < steps; ++step) pd::velocity_verlet_step<D>(m, loads, &contact, dt);
-  totals(after, scale);
-  const double length = 0.02;
-  double drift = 0.0;
-  for (int k = 0; k < 6; ++k) drift = std::max(drift, std::abs(after[k] - before[k]) / (scale * (k < 3 ? 1.0 : length)));
-  if (pd::summarize<D>(m).broken_bonds == 0) drift = 1.0;  // the case must exercise bond breaking
-  return drift;
-}
-}  // namespace
 
 Result pd_momentum(const Settings& settings) {
   const int steps = settings.quick ? 200 : 1000;

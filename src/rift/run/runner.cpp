@@ -66,7 +66,9 @@ Plan check_dim(const scene::Scene& s, std::ostream& out) {
   std::string fields;
   for (const auto& f : s.output.fields) fields += " " + f;
   out << "output       " << s.output.count << " snapshots (position" << fields << ") -> fields.h5 + fields.xdmf\n";
-  out << "             " << s.output.history_count << " history rows -> history.csv";
+  out << "             " << s.output.history_count << " history rows (time step";
+  for (const auto& q : s.output.history) out << " " << q;
+  out << ") -> history.csv";
   for (const auto& r : s.output.reactions) out << ", reaction on " << r;
   out << "\n";
   if (D == 2 && s.output.damage_image) out << "             final damage image -> damage.png\n";
@@ -131,7 +133,8 @@ Result run_dim(const scene::Scene& s, const Options& o) {
   io::FieldWriter fields(res.output_dir, "fields", m.size());
   res.fields_h5 = fields.h5_path();
   res.fields_xdmf = fields.xdmf_path();
-  std::vector<std::string> columns{"time", "step", "kinetic_energy", "strain_energy", "total_energy", "broken_bonds", "max_damage"};
+  std::vector<std::string> columns{"time", "step"};
+  columns.insert(columns.end(), s.output.history.begin(), s.output.history.end());
   const char* comp[3] = {"x", "y", "z"};
   for (const auto& r : p.loads.reaction_names())
     for (int k = 0; k < D; ++k) columns.push_back("reaction_" + r + "_" + comp[k]);
@@ -145,7 +148,14 @@ Result run_dim(const scene::Scene& s, const Options& o) {
     pd::update_damage<D>(m);
     double dmax = 0.0;
     for (double d : m.damage) dmax = std::max(dmax, d);
-    std::vector<double> row{m.time, double(step), e.kinetic, e.strain, e.kinetic + e.strain, double(e.broken_bonds), dmax};
+    std::vector<double> row{m.time, double(step)};
+    for (const auto& q : s.output.history) {
+      if (q == "kinetic_energy") row.push_back(e.kinetic);
+      else if (q == "strain_energy") row.push_back(e.strain);
+      else if (q == "total_energy") row.push_back(e.kinetic + e.strain);
+      else if (q == "broken_bonds") row.push_back(double(e.broken_bonds));
+      else if (q == "max_damage") row.push_back(dmax);
+    }
     for (const auto& r : p.loads.reactions(m))
       for (int k = 0; k < D; ++k) row.push_back(r[k]);
     row.insert(row.end(), extra.begin(), extra.end());

@@ -400,9 +400,15 @@ const std::vector<std::string>& field_names() {
   return names;
 }
 
+const std::vector<std::string>& history_names() {
+  static const std::vector<std::string> names{"kinetic_energy", "strain_energy", "total_energy", "broken_bonds", "max_damage"};
+  return names;
+}
+
 void parse_output(R& root, Scene& s) {
   Output& o = s.output;
   o.fields = {"displacement", "velocity", "damage", "dilatation"};
+  o.history = history_names();
   const toml::table* t = root.table("output");
   if (!t) return;
   R r(*t, "output", s.file);
@@ -422,12 +428,20 @@ void parse_output(R& root, Scene& s) {
     }
     o.fields = *f;
   }
+  if (auto h = r.strings("history")) {
+    for (const auto& name : *h) {
+      bool ok = false;
+      for (const auto& a : history_names()) ok = ok || a == name;
+      if (!ok) r.fail("history", "unknown history quantity \"" + name + "\"; allowed: " + R::join(history_names()));
+    }
+    o.history = *h;
+  }
   if (auto rx = r.strings("reactions")) {
     for (const auto& name : *rx) require_region(s, r, "reactions", name);
     o.reactions = *rx;
   }
   if (auto d = r.boolean("damage_image")) o.damage_image = *d;
-  r.finish({"snapshots", "history_rows", "fields", "reactions", "damage_image"});
+  r.finish({"snapshots", "history_rows", "fields", "history", "reactions", "damage_image"});
 }
 
 Scene parse_table(const toml::table& tbl, const std::string& file) {

@@ -116,6 +116,7 @@ struct Output {
   int count = 10;                   // number of field snapshots (plus the initial state)
   std::vector<std::string> fields;  // position, displacement, velocity, damage, dilatation, ...
   int history_count = 200;          // history rows
+  std::vector<std::string> history; // history columns after time and step (default: all)
   std::vector<std::string> reactions;  // region names whose reaction force is recorded
   bool damage_image = true;         // 2D: PNG of the final damage field
 };
