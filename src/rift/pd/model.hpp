@@ -46,7 +46,7 @@ struct Model {
   const MaterialConstants& constants_of(std::size_t i) const { return bodies[body[i]].constants; }
   Vec<D> displacement(std::size_t i) const { return position[i] - reference_position[i]; }
   static constexpr std::size_t bytes_per_particle() {
-    return sizeof(Vec<D>) * 6 + sizeof(double) * 8 + sizeof(std::uint32_t) + sizeof(std::uint8_t);
+    return sizeof(Vec<D>) * 5 + sizeof(double) * 7 + sizeof(std::uint32_t) + sizeof(std::uint8_t);  // the fields above
   }
 };
 
