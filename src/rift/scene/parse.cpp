@@ -99,15 +99,23 @@ void parse_scene_table(R& root, Scene& s) {
   r.finish({"name", "dimension", "plane", "thickness"});
 }
 
-void parse_materials(R& root, Scene& s) {
-  const toml::table* t = root.table("materials");
-  if (!t || t->empty()) throw SceneError(root.where(), "materials", "at least one material is required, e.g. [materials.steel]");
+/// Calls f(reader, name) for each sub-table [key.NAME]; at least one is required.
+template <class F>
+void for_each_named(R& root, const std::string& key, const std::string& example, const std::string& file, F&& f) {
+  const toml::table* t = root.table(key);
+  if (!t || t->empty()) throw SceneError(root.where(), key, "at least one is required, e.g. [" + key + "." + example + "]");
   for (const auto& [name, node] : *t) {
-    std::string key = "materials." + std::string(name.str());
-    if (!node.is_table()) throw SceneError(root.at(node), key, "expected a table");
-    R r(*node.as_table(), key, s.file);
+    const std::string path = key + "." + std::string(name.str());
+    if (!node.is_table()) throw SceneError(root.at(node), path, "expected a table");
+    R r(*node.as_table(), path, file);
+    f(r, std::string(name.str()));
+  }
+}
+
+void parse_materials(R& root, Scene& s) {
+  for_each_named(root, "materials", "steel", s.file, [&](R& r, const std::string& name) {
     Material m;
-    m.name = std::string(name.str());
+    m.name = name;
     m.where = r.where();
     auto model = r.choice("model", {"pmb", "lps"});
     if (!model) throw SceneError(r.where(), r.key("model"), "missing required key (pmb or lps)");
@@ -143,19 +151,14 @@ void parse_materials(R& root, Scene& s) {
     r.finish({"model", "density", "youngs_modulus", "poisson_ratio", "bulk_modulus", "shear_modulus", "influence",
               "fracture_energy", "critical_stretch", "alpha", "surface_correction"});
     s.materials.push_back(m);
-  }
+  });
 }
 
 void parse_regions(R& root, Scene& s) {
-  const toml::table* t = root.table("regions");
-  if (!t || t->empty()) throw SceneError(root.where(), "regions", "at least one region is required, e.g. [regions.plate]");
   const int D = s.dimension;
-  for (const auto& [name, node] : *t) {
-    std::string key = "regions." + std::string(name.str());
-    if (!node.is_table()) throw SceneError(root.at(node), key, "expected a table");
-    R r(*node.as_table(), key, s.file);
+  for_each_named(root, "regions", "plate", s.file, [&](R& r, const std::string& name) {
     RegionDef g;
-    g.name = std::string(name.str());
+    g.name = name;
     g.where = r.where();
     auto shape = r.choice("shape", {"box", "cylinder", "sphere", "polygon", "half_space", "union", "difference", "intersection"});
     if (!shape) throw SceneError(r.where(), r.key("shape"), "missing required key (box, cylinder, sphere, polygon, half_space, union, difference or intersection)");
@@ -210,7 +213,7 @@ void parse_regions(R& root, Scene& s) {
       r.finish({"shape", "of"});
     }
     s.regions.push_back(g);
-  }
+  });
   // children must exist and not form cycles
   for (const auto& g : s.regions)
     for (const auto& c : g.of)
@@ -248,14 +251,9 @@ std::string required_string(R& r, const std::string& k, const std::string& meani
 }
 
 void parse_bodies(R& root, Scene& s) {
-  const toml::table* t = root.table("bodies");
-  if (!t || t->empty()) throw SceneError(root.where(), "bodies", "at least one body is required, e.g. [bodies.plate]");
-  for (const auto& [name, node] : *t) {
-    std::string key = "bodies." + std::string(name.str());
-    if (!node.is_table()) throw SceneError(root.at(node), key, "expected a table");
-    R r(*node.as_table(), key, s.file);
+  for_each_named(root, "bodies", "plate", s.file, [&](R& r, const std::string& name) {
     Body b;
-    b.name = std::string(name.str());
+    b.name = name;
     b.where = r.where();
     b.material = material_index(s, required_string(r, "material", "name of a material"), r, "material");
     b.region = required_string(r, "region", "name of a region");
@@ -273,33 +271,36 @@ void parse_bodies(R& root, Scene& s) {
       b.partial_volume = *pv == "exact" ? Body::PartialVolume::exact : Body::PartialVolume::lammps;
     r.finish({"material", "region", "spacing", "horizon", "horizon_length", "lattice_origin", "partial_volume"});
     s.bodies.push_back(b);
+  });
+}
+
+/// Calls f(reader, index) for each table of the array of tables [[key]] (absent: none).
+template <class F>
+void for_each_entry(R& root, const std::string& key, const std::string& file, F&& f) {
+  const toml::node* n = root.node(key);
+  if (!n) return;
+  const toml::array* a = n->as_array();
+  if (!a || !a->is_array_of_tables()) root.fail(key, "expected an array of tables, written [[" + key + "]]");
+  for (std::size_t i = 0; i < a->size(); ++i) {
+    R r(*a->get(i)->as_table(), key + "[" + std::to_string(i) + "]", file);
+    f(r, i);
   }
 }
 
 void parse_cracks(R& root, Scene& s) {
-  const toml::node* n = root.node("cracks");
-  if (!n) return;
-  const toml::array* a = n->as_array();
-  if (!a || !a->is_array_of_tables()) root.fail("cracks", "expected an array of tables, written [[cracks]]");
-  for (std::size_t i = 0; i < a->size(); ++i) {
-    R r(*a->get(i)->as_table(), "cracks[" + std::to_string(i) + "]", s.file);
+  for_each_entry(root, "cracks", s.file, [&](R& r, std::size_t) {
     Crack c;
     c.where = r.where();
     c.points = point_list(r, "points", s.dimension, s.dimension == 2 ? 2 : 3);
     if (s.dimension == 2 && c.points.size() != 2) r.fail("points", "a 2D crack is a segment: exactly two points");
     r.finish({"points"});
     s.cracks.push_back(c);
-  }
+  });
 }
 
 void parse_boundaries(R& root, Scene& s) {
-  const toml::node* n = root.node("boundaries");
-  if (!n) return;
-  const toml::array* a = n->as_array();
-  if (!a || !a->is_array_of_tables()) root.fail("boundaries", "expected an array of tables, written [[boundaries]]");
   const char* comp[3] = {"x", "y", "z"};
-  for (std::size_t i = 0; i < a->size(); ++i) {
-    R r(*a->get(i)->as_table(), "boundaries[" + std::to_string(i) + "]", s.file);
+  for_each_entry(root, "boundaries", s.file, [&](R& r, std::size_t) {
     Boundary b;
     b.where = r.where();
     b.region = required_string(r, "region", "name of a region");
@@ -328,16 +329,11 @@ void parse_boundaries(R& root, Scene& s) {
     }
     r.finish(allowed);
     s.boundaries.push_back(b);
-  }
+  });
 }
 
 void parse_initial_velocity(R& root, Scene& s) {
-  const toml::node* n = root.node("initial_velocity");
-  if (!n) return;
-  const toml::array* a = n->as_array();
-  if (!a || !a->is_array_of_tables()) root.fail("initial_velocity", "expected an array of tables, written [[initial_velocity]]");
-  for (std::size_t i = 0; i < a->size(); ++i) {
-    R r(*a->get(i)->as_table(), "initial_velocity[" + std::to_string(i) + "]", s.file);
+  for_each_entry(root, "initial_velocity", s.file, [&](R& r, std::size_t) {
     InitialVelocity v;
     v.where = r.where();
     v.region = required_string(r, "region", "name of a region");
@@ -345,7 +341,7 @@ void parse_initial_velocity(R& root, Scene& s) {
     v.velocity = point(r, "velocity", s.dimension, true);
     r.finish({"region", "velocity"});
     s.initial_velocities.push_back(v);
-  }
+  });
 }
 
 void parse_solver(R& root, Scene& s) {
