@@ -35,6 +35,7 @@ Result pd_fracture_energy(const Settings&);
 Result pd_quasistatic_plate(const Settings&);
 Result kalthoff_winkler(const Settings&);
 Result glass_branching(const Settings&);
+Result mpm_energy(const Settings&);
 
 struct Entry {
   const char* name;

@@ -12,6 +12,7 @@
 #include "rift/io/field_writer.hpp"
 #include "rift/io/history.hpp"
 #include "rift/pd/dynamic_relaxation.hpp"
+#include "rift/run/mpm_runner.hpp"
 #include "rift/run/simulation.hpp"
 
 namespace rift::run {
@@ -219,10 +220,14 @@ Result run_dim(const scene::Scene& s, const Options& o) {
 
 }  // namespace
 
-Plan check(const scene::Scene& s, std::ostream& out) { return s.dimension == 2 ? check_dim<2>(s, out) : check_dim<3>(s, out); }
+Plan check(const scene::Scene& s, std::ostream& out) {
+  if (s.method == scene::Method::mpm) return check_mpm(s, out);
+  return s.dimension == 2 ? check_dim<2>(s, out) : check_dim<3>(s, out);
+}
 
 Result run(const scene::Scene& s, const Options& o) {
   if (o.threads > 0) omp_set_num_threads(o.threads);
+  if (s.method == scene::Method::mpm) return run_mpm(s, o);
   return s.dimension == 2 ? run_dim<2>(s, o) : run_dim<3>(s, o);
 }
 

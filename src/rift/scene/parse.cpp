@@ -82,6 +82,7 @@ void parse_scene_table(R& root, Scene& s) {
   if (!t) return;
   R r(*t, "scene", s.file);
   if (auto n = r.string("name")) s.name = *n;
+  if (auto m = r.choice("method", {"peridynamics", "mpm"})) s.method = *m == "mpm" ? Method::mpm : Method::peridynamics;
   if (auto d = r.integer("dimension")) {
     if (*d != 2 && *d != 3) r.fail("dimension", "must be 2 or 3, got " + std::to_string(*d));
     s.dimension = static_cast<int>(*d);
@@ -96,7 +97,7 @@ void parse_scene_table(R& root, Scene& s) {
   }
   if (s.dimension == 2 && s.plane == PlaneCondition::none)
     throw SceneError(r.where(), "scene.plane", "missing required key for dimension = 2 (\"stress\" or \"strain\")");
-  r.finish({"name", "dimension", "plane", "thickness"});
+  r.finish({"name", "method", "dimension", "plane", "thickness"});
 }
 
 /// Calls f(reader, name) for each sub-table [key.NAME]; at least one is required.
@@ -117,9 +118,14 @@ void parse_materials(R& root, Scene& s) {
     Material m;
     m.name = name;
     m.where = r.where();
-    auto model = r.choice("model", {"pmb", "lps"});
-    if (!model) throw SceneError(r.where(), r.key("model"), "missing required key (pmb or lps)");
-    m.model = *model == "pmb" ? ModelKind::pmb : ModelKind::lps;
+    const bool pd = s.method == Method::peridynamics;
+    const std::vector<std::string> models = pd ? std::vector<std::string>{"pmb", "lps"}
+                                               : std::vector<std::string>{"linear_elastic", "neo_hookean", "j2_plasticity"};
+    auto model = r.choice("model", models);
+    if (!model) throw SceneError(r.where(), r.key("model"), "missing required key (" + R::join(models) + ")");
+    const std::map<std::string, ModelKind> kinds{{"pmb", ModelKind::pmb}, {"lps", ModelKind::lps},
+        {"linear_elastic", ModelKind::linear_elastic}, {"neo_hookean", ModelKind::neo_hookean}, {"j2_plasticity", ModelKind::j2_plasticity}};
+    m.model = kinds.at(*model);
     m.density = r.positive("density", r.required_number("density", "mass density, kg/m^3"));
     auto E = r.number("youngs_modulus"), nu = r.number("poisson_ratio");
     auto K = r.number("bulk_modulus"), G = r.number("shear_modulus");
@@ -139,17 +145,28 @@ void parse_materials(R& root, Scene& s) {
     } else {
       throw SceneError(r.where(), r.key("youngs_modulus"), "missing elastic constants: give youngs_modulus + poisson_ratio or bulk_modulus + shear_modulus");
     }
-    if (auto inf = r.choice("influence", {"constant", "inverse_distance"}))
-      m.influence = *inf == "constant" ? Influence::constant : Influence::inverse_distance;
-    if (auto g0 = r.number("fracture_energy")) m.fracture_energy = r.positive("fracture_energy", *g0);
-    if (auto s0 = r.number("critical_stretch")) {
-      if (m.fracture_energy) r.fail("critical_stretch", "give fracture_energy or critical_stretch, not both");
-      m.critical_stretch = r.positive("critical_stretch", *s0);
+    std::vector<std::string> allowed{"model", "density", "youngs_modulus", "poisson_ratio", "bulk_modulus", "shear_modulus"};
+    if (pd) {
+      if (auto inf = r.choice("influence", {"constant", "inverse_distance"}))
+        m.influence = *inf == "constant" ? Influence::constant : Influence::inverse_distance;
+      if (auto g0 = r.number("fracture_energy")) m.fracture_energy = r.positive("fracture_energy", *g0);
+      if (auto s0 = r.number("critical_stretch")) {
+        if (m.fracture_energy) r.fail("critical_stretch", "give fracture_energy or critical_stretch, not both");
+        m.critical_stretch = r.positive("critical_stretch", *s0);
+      }
+      m.alpha = r.non_negative("alpha", r.number("alpha", 0.0));
+      if (auto sc = r.boolean("surface_correction")) m.surface_correction = *sc;
+      allowed.insert(allowed.end(), {"influence", "fracture_energy", "critical_stretch", "alpha", "surface_correction"});
+    } else {
+      if (m.model != ModelKind::linear_elastic && s.dimension == 2 && s.plane == PlaneCondition::stress)
+        r.fail("model", "\"" + *model + "\" needs plane strain or 3D (plane stress is for linear_elastic)");
+      if (m.model == ModelKind::j2_plasticity) {
+        m.yield_stress = r.positive("yield_stress", r.required_number("yield_stress", "initial yield stress, Pa"));
+        m.hardening_modulus = r.non_negative("hardening_modulus", r.number("hardening_modulus", 0.0));
+        allowed.insert(allowed.end(), {"yield_stress", "hardening_modulus"});
+      }
     }
-    m.alpha = r.non_negative("alpha", r.number("alpha", 0.0));
-    if (auto sc = r.boolean("surface_correction")) m.surface_correction = *sc;
-    r.finish({"model", "density", "youngs_modulus", "poisson_ratio", "bulk_modulus", "shear_modulus", "influence",
-              "fracture_energy", "critical_stretch", "alpha", "surface_correction"});
+    r.finish(allowed);
     s.materials.push_back(m);
   });
 }
@@ -258,6 +275,15 @@ void parse_bodies(R& root, Scene& s) {
     b.material = material_index(s, required_string(r, "material", "name of a material"), r, "material");
     b.region = required_string(r, "region", "name of a region");
     require_region(s, r, "region", b.region);
+    if (s.method == Method::mpm) {
+      if (auto n = r.integer("particles_per_cell")) {
+        if (*n < 1 || *n > 8) r.fail("particles_per_cell", "must be 1 to 8 (material points per cell along each axis)");
+        b.particles_per_cell = static_cast<int>(*n);
+      }
+      r.finish({"material", "region", "particles_per_cell"});
+      s.bodies.push_back(b);
+      return;
+    }
     b.spacing = r.positive("spacing", r.required_number("spacing", "lattice spacing, m"));
     auto h = r.number("horizon");
     auto hl = r.number("horizon_length");
@@ -377,12 +403,41 @@ void parse_solver(R& root, Scene& s) {
     if (auto tol = r.number("tolerance")) v.tolerance = r.positive("tolerance", *tol);
     allowed.insert(allowed.end(), {"load_steps", "max_iterations", "tolerance"});
   }
+  if (s.method == Method::mpm && v.kind == SolverKind::dynamic_relaxation)
+    r.fail("type", "the material point method runs explicit dynamics; use [mpm] damping to reach a static answer");
   r.finish(allowed);
+}
+
+void parse_mpm(R& root, Scene& s) {
+  const toml::table* t = root.table("mpm");
+  if (s.method != Method::mpm) {
+    if (t) root.fail("mpm", "only for [scene] method = \"mpm\"");
+    return;
+  }
+  if (!t) throw SceneError(root.where(), "mpm", "missing required table [mpm] (cell_size, shape, scheme)");
+  R r(*t, "mpm", s.file);
+  Mpm& m = s.mpm;
+  m.cell_size = r.positive("cell_size", r.required_number("cell_size", "background grid cell size, m"));
+  if (auto v = r.choice("shape", {"linear", "gimp", "bspline2", "bspline3"}))
+    m.shape = *v == "linear" ? Mpm::Shape::linear : *v == "gimp" ? Mpm::Shape::gimp : *v == "bspline2" ? Mpm::Shape::bspline2 : Mpm::Shape::bspline3;
+  if (auto v = r.choice("scheme", {"usl", "usf", "musl"})) m.scheme = *v == "usl" ? Mpm::Scheme::usl : *v == "usf" ? Mpm::Scheme::usf : Mpm::Scheme::musl;
+  if (auto v = r.choice("transfer", {"flip", "apic"})) m.transfer = *v == "flip" ? Mpm::Transfer::flip : Mpm::Transfer::apic;
+  if (auto v = r.number("flip_fraction")) {
+    if (m.transfer == Mpm::Transfer::apic) r.fail("flip_fraction", "only with transfer = \"flip\"");
+    if (!(*v >= 0.0 && *v <= 1.0)) r.fail("flip_fraction", "must lie in [0, 1] (0 = PIC, 1 = FLIP)");
+    m.flip_fraction = *v;
+  }
+  m.damping = r.non_negative("damping", r.number("damping", 0.0));
+  if (r.has("grid_min")) m.grid_min = point(r, "grid_min", s.dimension, true);
+  if (r.has("grid_max")) m.grid_max = point(r, "grid_max", s.dimension, true);
+  if (m.grid_min.has_value() != m.grid_max.has_value()) r.fail(m.grid_min ? "grid_min" : "grid_max", "give both grid_min and grid_max");
+  r.finish({"cell_size", "shape", "scheme", "transfer", "flip_fraction", "damping", "grid_min", "grid_max"});
 }
 
 void parse_contact(R& root, Scene& s) {
   const toml::table* t = root.table("contact");
   if (!t) return;
+  if (s.method == Method::mpm) root.fail("contact", "[contact] is the peridynamic short-range contact; not for method = \"mpm\"");
   R r(*t, "contact", s.file);
   if (auto e = r.boolean("enabled")) s.contact.enabled = *e;
   if (auto d = r.number("distance")) s.contact.distance = r.positive("distance", *d);
@@ -390,21 +445,25 @@ void parse_contact(R& root, Scene& s) {
   r.finish({"enabled", "distance", "stiffness"});
 }
 
-const std::vector<std::string>& field_names() {
-  static const std::vector<std::string> names{"displacement", "velocity", "damage", "dilatation", "strain_energy_density",
-                                               "weighted_volume", "volume", "body"};
-  return names;
+const std::vector<std::string>& field_names(Method method) {
+  static const std::vector<std::string> pd{"displacement", "velocity", "damage", "dilatation", "strain_energy_density",
+                                            "weighted_volume", "volume", "body"};
+  static const std::vector<std::string> mpm{"displacement", "velocity", "stress", "strain_energy_density",
+                                             "equivalent_plastic_strain", "volume", "body"};
+  return method == Method::mpm ? mpm : pd;
 }
 
-const std::vector<std::string>& history_names() {
-  static const std::vector<std::string> names{"kinetic_energy", "strain_energy", "total_energy", "broken_bonds", "max_damage"};
-  return names;
+const std::vector<std::string>& history_names(Method method) {
+  static const std::vector<std::string> pd{"kinetic_energy", "strain_energy", "total_energy", "broken_bonds", "max_damage"};
+  static const std::vector<std::string> mpm{"kinetic_energy", "strain_energy", "total_energy"};
+  return method == Method::mpm ? mpm : pd;
 }
 
 void parse_output(R& root, Scene& s) {
   Output& o = s.output;
-  o.fields = {"displacement", "velocity", "damage", "dilatation"};
-  o.history = history_names();
+  if (s.method == Method::mpm) o.fields = {"displacement", "velocity", "stress"};
+  else o.fields = {"displacement", "velocity", "damage", "dilatation"};
+  o.history = history_names(s.method);
   const toml::table* t = root.table("output");
   if (!t) return;
   R r(*t, "output", s.file);
@@ -419,16 +478,16 @@ void parse_output(R& root, Scene& s) {
   if (auto f = r.strings("fields")) {
     for (const auto& name : *f) {
       bool ok = false;
-      for (const auto& a : field_names()) ok = ok || a == name;
-      if (!ok) r.fail("fields", "unknown field \"" + name + "\"; allowed: " + R::join(field_names()));
+      for (const auto& a : field_names(s.method)) ok = ok || a == name;
+      if (!ok) r.fail("fields", "unknown field \"" + name + "\"; allowed: " + R::join(field_names(s.method)));
     }
     o.fields = *f;
   }
   if (auto h = r.strings("history")) {
     for (const auto& name : *h) {
       bool ok = false;
-      for (const auto& a : history_names()) ok = ok || a == name;
-      if (!ok) r.fail("history", "unknown history quantity \"" + name + "\"; allowed: " + R::join(history_names()));
+      for (const auto& a : history_names(s.method)) ok = ok || a == name;
+      if (!ok) r.fail("history", "unknown history quantity \"" + name + "\"; allowed: " + R::join(history_names(s.method)));
     }
     o.history = *h;
   }
@@ -458,9 +517,10 @@ Scene parse_table(const toml::table& tbl, const std::string& file) {
   parse_initial_velocity(root, s);
   parse_solver(root, s);
   parse_contact(root, s);
+  parse_mpm(root, s);
   parse_output(root, s);
   root.finish({"scene", "materials", "regions", "bodies", "cracks", "boundaries", "initial_velocity", "solver",
-               "contact", "output"});
+               "contact", "mpm", "output"});
   return s;
 }
 

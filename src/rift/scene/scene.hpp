@@ -12,7 +12,9 @@
 namespace rift::scene {
 
 enum class PlaneCondition { none, stress, strain };
-enum class ModelKind { pmb, lps };
+enum class Method { peridynamics, mpm };
+/// Peridynamic models (pmb, lps) and continuum models for the material point method.
+enum class ModelKind { pmb, lps, linear_elastic, neo_hookean, j2_plasticity };
 /// Influence function omega(|xi|): constant 1, or delta/|xi| ("inverse_distance", LAMMPS peri/lps).
 enum class Influence { constant, inverse_distance };
 
@@ -28,6 +30,8 @@ struct Material {
   std::optional<double> critical_stretch;  // s00, given directly
   double alpha = 0.0;                      // s0 = s00 - alpha * s_min (LAMMPS peri)
   bool surface_correction = true;
+  double yield_stress = 0.0;       // j2_plasticity, Pa
+  double hardening_modulus = 0.0;  // j2_plasticity, linear isotropic hardening, Pa
   double youngs_modulus() const { return 9.0 * bulk_modulus * shear_modulus / (3.0 * bulk_modulus + shear_modulus); }
   double poisson_ratio() const {
     return (3.0 * bulk_modulus - 2.0 * shear_modulus) / (2.0 * (3.0 * bulk_modulus + shear_modulus));
@@ -61,6 +65,7 @@ struct Body {
   /// Share of a neighbour's volume inside the horizon: "exact" (geometric fraction of its cell) or
   /// "lammps" (LAMMPS PERI: bonds up to delta, linear taper over the last half spacing).
   enum class PartialVolume { exact, lammps } partial_volume = PartialVolume::exact;
+  int particles_per_cell = 2;  // MPM: material points per cell along each axis
 };
 
 /// Pre-crack: a segment (2D, two points) or a planar polygon (3D, >= 3 points). Bonds that
@@ -112,6 +117,17 @@ struct Contact {
   double stiffness = 15.0; // multiple of the micromodulus (LAMMPS/EMU: 15)
 };
 
+/// Material point method settings ([mpm]).
+struct Mpm {
+  enum class Shape { linear, gimp, bspline2, bspline3 } shape = Shape::bspline2;
+  enum class Scheme { usl, usf, musl } scheme = Scheme::musl;
+  enum class Transfer { flip, apic } transfer = Transfer::flip;
+  double cell_size = 0.0;
+  double flip_fraction = 1.0;  // velocity update: flip_fraction * FLIP + (1 - flip_fraction) * PIC
+  double damping = 0.0;        // mass-proportional (external) damping coefficient, 1/s
+  std::optional<Point3> grid_min, grid_max;  // default: bodies' bounds grown by 3 cells
+};
+
 struct Output {
   int count = 10;                   // number of field snapshots (plus the initial state)
   std::vector<std::string> fields;  // position, displacement, velocity, damage, dilatation, ...
@@ -125,6 +141,7 @@ struct Scene {
   std::string file;
   std::string name;
   int dimension = 3;
+  Method method = Method::peridynamics;
   PlaneCondition plane = PlaneCondition::none;
   double thickness = 1.0;  // 2D only, m
   std::vector<Material> materials;
@@ -135,6 +152,7 @@ struct Scene {
   std::vector<InitialVelocity> initial_velocities;
   Solver solver;
   Contact contact;
+  Mpm mpm;
   Output output;
 
   const RegionDef* find_region(const std::string& n) const {

@@ -1,0 +1,322 @@
+#include "rift/mpm/solver.hpp"
+
+#include <omp.h>
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+#include "rift/core/error.hpp"
+#include "rift/geometry/region.hpp"
+#include "rift/load/time_function.hpp"
+#include "rift/mpm/energy.hpp"
+
+namespace rift::mpm {
+
+namespace {
+
+template <int D>
+struct Stencil {
+  static constexpr int capacity = D == 3 ? 64 : 16;
+  int count = 0;
+  std::array<std::size_t, capacity> node{};
+  std::array<double, capacity> weight{};
+  std::array<Vec<D>, capacity> gradient{};
+};
+
+/// Tensor-product shape functions of the particle at x: nodes, weights S_ip, gradients grad S_ip.
+template <int D>
+void make_stencil(const Model<D>& m, const Vec<D>& x, std::size_t particle, Stencil<D>& st) {
+  const auto& g = m.grid;
+  std::array<Stencil1, 3> s;
+  for (int a = 0; a < 3; ++a) {
+    if (a < D) {
+      s[a] = stencil_1d(m.shape, x[a] - g.origin[a], g.cell_size, m.particle_half_width);
+      if (s[a].first < 0 || s[a].first + s[a].count > g.nodes[a])
+        throw PhysicsError("material point " + std::to_string(particle) + " left the background grid at t = " +
+                           std::to_string(m.time) + " s; enlarge [mpm] grid_min / grid_max");
+    } else {
+      s[a].first = 0, s[a].count = 1, s[a].weight = {1, 0, 0, 0}, s[a].gradient = {0, 0, 0, 0};
+    }
+  }
+  st.count = 0;
+  for (int k = 0; k < s[2].count; ++k)
+    for (int j = 0; j < s[1].count; ++j)
+      for (int i = 0; i < s[0].count; ++i) {
+        const std::size_t q = static_cast<std::size_t>(st.count++);
+        st.node[q] = g.index(s[0].first + i, s[1].first + j, s[2].first + k);
+        const double wx = s[0].weight[i], wy = s[1].weight[j], wz = s[2].weight[k];
+        st.weight[q] = wx * wy * wz;
+        st.gradient[q][0] = s[0].gradient[i] * wy * wz;
+        if constexpr (D >= 2) st.gradient[q][1] = wx * s[1].gradient[j] * wz;
+        if constexpr (D == 3) st.gradient[q][2] = wx * wy * s[2].gradient[k];
+      }
+}
+
+template <int D>
+std::vector<std::size_t> nodes_in(const scene::Scene& s, const Grid<D>& g, const std::string& region) {
+  auto r = geometry::Region::build(s, region);
+  std::vector<std::size_t> out;
+  for (std::size_t n = 0; n < g.size(); ++n) {
+    const Vec<D> x = g.node_position(n);
+    Point3 p{0, 0, 0};
+    for (int a = 0; a < D; ++a) p[a] = x[a];
+    if (r.contains(p)) out.push_back(n);
+  }
+  return out;
+}
+
+template <int D>
+std::vector<std::size_t> particles_in(const scene::Scene& s, const Particles<D>& ps, const std::string& region) {
+  auto r = geometry::Region::build(s, region);
+  std::vector<std::size_t> out;
+  for (std::size_t i = 0; i < ps.size(); ++i) {
+    Point3 p{0, 0, 0};
+    for (int a = 0; a < D; ++a) p[a] = ps.reference_position[i][a];
+    if (r.contains(p)) out.push_back(i);
+  }
+  return out;
+}
+
+}  // namespace
+
+template <int D>
+Solver<D>::Solver(const scene::Scene& s, Model<D>& m) : settings_(s.mpm) {
+  using K = scene::BoundaryKind;
+  for (std::size_t bi = 0; bi < s.boundaries.size(); ++bi) {
+    const auto& b = s.boundaries[bi];
+    const std::string key = "boundaries[" + std::to_string(bi) + "]";
+    if (b.kind == K::displacement)
+      throw SceneError(b.where, key + ".type", "the material point method takes fixed or velocity conditions on grid nodes, "
+                                               "traction or body_force on particles (not displacement)");
+    if (b.kind == K::fixed || b.kind == K::velocity) {
+      GridCondition c;
+      c.nodes = nodes_in<D>(s, m.grid, b.region);
+      if (c.nodes.empty()) throw SceneError(b.where, key + ".region", "region \"" + b.region + "\" holds no grid node");
+      for (int a = 0; a < D; ++a) c.value[a] = b.kind == K::fixed ? std::optional<double>(0.0) : b.value[a];
+      c.time = b.time;
+      conditions_.push_back(std::move(c));
+    } else {
+      ParticleLoad l;
+      l.particles = particles_in<D>(s, m.particles, b.region);
+      if (l.particles.empty()) throw SceneError(b.where, key + ".region", "region \"" + b.region + "\" selects no material point");
+      const double depth = b.layer_depth > 0 ? b.layer_depth : s.mpm.cell_size;
+      for (int a = 0; a < D; ++a) l.density[a] = b.value[a].value_or(0.0) / (b.kind == K::traction ? depth : 1.0);
+      l.time = b.time;
+      loads_.push_back(std::move(l));
+    }
+  }
+  thread_grids_.resize(static_cast<std::size_t>(omp_get_max_threads()));
+}
+
+template <int D>
+double Solver<D>::stable_time_step(const Model<D>& m) const {
+  double c = 0.0, v = 0.0;
+  for (const auto& b : m.bodies) c = std::max(c, b.constants.wave_speed());
+  for (const auto& u : m.particles.velocity) v = std::max(v, norm<D>(u));
+  return m.grid.cell_size / (c + v);
+}
+
+template <int D>
+void Solver<D>::scatter(Model<D>& m, bool momentum_only, bool internal_force) {
+  auto& ps = m.particles;
+  const int threads = static_cast<int>(thread_grids_.size());
+  for (auto& tg : thread_grids_) {
+    if (tg.size() != m.grid.size()) {
+      tg = m.grid;
+      tg.resize();
+    }
+    std::fill(tg.mass.begin(), tg.mass.end(), 0.0);
+    std::fill(tg.momentum.begin(), tg.momentum.end(), Vec<D>{});
+    std::fill(tg.force.begin(), tg.force.end(), Vec<D>{});
+  }
+  const bool apic = settings_.transfer == scene::Mpm::Transfer::apic;
+#pragma omp parallel num_threads(threads)
+  {
+    auto& tg = thread_grids_[static_cast<std::size_t>(omp_get_thread_num())];
+    Stencil<D> st;
+#pragma omp for schedule(static)
+    for (std::size_t p = 0; p < ps.size(); ++p) {
+      make_stencil<D>(m, start_position_[p], p, st);
+      const double mp = ps.mass[p];
+      for (int q = 0; q < st.count; ++q) {
+        const std::size_t n = st.node[static_cast<std::size_t>(q)];
+        const double w = st.weight[static_cast<std::size_t>(q)];
+        if (w == 0.0) continue;
+        Vec<D> v = ps.velocity[p];
+        if (apic) {
+          const Vec<D> dx = m.grid.node_position(n) - start_position_[p];
+          for (int a = 0; a < D; ++a)
+            for (int b = 0; b < D; ++b) v[a] += ps.affine_velocity[p](a, b) * dx[b];
+        }
+        tg.mass[n] += w * mp;
+        for (int a = 0; a < D; ++a) tg.momentum[n][a] += w * mp * v[a];
+        if (momentum_only) continue;
+        for (int a = 0; a < D; ++a) tg.force[n][a] += w * ps.external_force[p][a];
+        if (internal_force) {
+          const auto& sigma = ps.state[p].stress;
+          const auto& grad = st.gradient[static_cast<std::size_t>(q)];
+          for (int a = 0; a < D; ++a) {
+            double f = 0.0;
+            for (int b = 0; b < D; ++b) f += sigma(a, b) * grad[b];
+            tg.force[n][a] -= ps.volume[p] * f;
+          }
+        }
+      }
+    }
+  }
+  // sum the thread buffers in thread order (reproducible)
+  auto& g = m.grid;
+#pragma omp parallel for schedule(static)
+  for (std::size_t n = 0; n < g.size(); ++n) {
+    double mass = 0.0;
+    Vec<D> mom{}, f{};
+    for (const auto& tg : thread_grids_) {
+      mass += tg.mass[n];
+      for (int a = 0; a < D; ++a) mom[a] += tg.momentum[n][a], f[a] += tg.force[n][a];
+    }
+    g.mass[n] = mass;
+    g.momentum[n] = mom;
+    if (!momentum_only) g.force[n] = f;
+  }
+}
+
+template <int D>
+void Solver<D>::apply_grid_conditions(Model<D>& m, double t, bool on_momentum) {
+  auto& g = m.grid;
+  for (const auto& c : conditions_) {
+    const double amp = load::evaluate(c.time, t);
+    for (auto n : c.nodes)
+      for (int a = 0; a < D; ++a)
+        if (c.value[a]) {
+          g.velocity[n][a] = amp * *c.value[a];
+          if (on_momentum) g.momentum[n][a] = g.mass[n] * g.velocity[n][a];
+        }
+  }
+}
+
+template <int D>
+void Solver<D>::grid_velocities(Model<D>& m, double t) {
+  auto& g = m.grid;
+  const double tiny = 1e-12 * (m.particles.size() ? m.particles.mass[0] : 1.0);
+#pragma omp parallel for schedule(static)
+  for (std::size_t n = 0; n < g.size(); ++n)
+    for (int a = 0; a < D; ++a) g.velocity[n][a] = g.mass[n] > tiny ? g.momentum[n][a] / g.mass[n] : 0.0;
+  apply_grid_conditions(m, t, true);
+}
+
+template <int D>
+void Solver<D>::update_stress(Model<D>& m, double dt) {
+  auto& ps = m.particles;
+#pragma omp parallel
+  {
+    Stencil<D> st;
+#pragma omp for schedule(static)
+    for (std::size_t p = 0; p < ps.size(); ++p) {
+      make_stencil<D>(m, start_position_[p], p, st);
+      Tensor<D> L = Tensor<D>::Zero();  // velocity gradient L_ab = sum v_a dS/dx_b
+      for (int q = 0; q < st.count; ++q) {
+        const auto& v = m.grid.velocity[st.node[static_cast<std::size_t>(q)]];
+        const auto& grad = st.gradient[static_cast<std::size_t>(q)];
+        for (int a = 0; a < D; ++a)
+          for (int b = 0; b < D; ++b) L(a, b) += v[a] * grad[b];
+      }
+      Tensor<D>& F = ps.deformation_gradient[p];
+      F = (Tensor<D>::Identity() + dt * L) * F;
+      ps.volume[p] = ps.reference_volume[p] * F.determinant();
+      material::update_stress<D>(m.bodies[ps.body[p]].constants, ps.state[p], L, F, dt);
+    }
+  }
+}
+
+template <int D>
+void Solver<D>::step(Model<D>& m, double dt) {
+  auto& ps = m.particles;
+  auto& g = m.grid;
+  const double t = m.time;
+  start_position_ = ps.position;
+  const bool measure = measure_;
+  measure_ = false;
+  if (measure) {
+    start_velocity_ = ps.velocity;
+    energy_.time = t;
+    energy_.strain = summarize<D>(m).strain;
+  }
+  // external forces of the step
+  for (auto& f : ps.external_force) f = Vec<D>{};
+  for (const auto& l : loads_) {
+    const double amp = load::evaluate(l.time, t);
+    for (auto p : l.particles)
+      for (int a = 0; a < D; ++a) ps.external_force[p][a] += amp * l.density[a] * ps.volume[p];
+  }
+  using S = scene::Mpm::Scheme;
+  if (settings_.scheme == S::usf) {
+    scatter(m, false, false);
+    grid_velocities(m, t);
+    update_stress(m, dt);
+    scatter(m, false, true);  // forces from the updated stress (mass and momentum unchanged)
+    grid_velocities(m, t);
+  } else {
+    scatter(m, false, true);
+    grid_velocities(m, t);
+  }
+  // grid momentum update with mass-proportional damping: dp/dt = f - damping p
+  const double alpha = settings_.damping;
+#pragma omp parallel for schedule(static)
+  for (std::size_t n = 0; n < g.size(); ++n) {
+    g.velocity_start[n] = g.velocity[n];
+    for (int a = 0; a < D; ++a) g.momentum[n][a] += dt * (g.force[n][a] - alpha * g.momentum[n][a]);
+  }
+  grid_velocities(m, t + dt);
+  // grid to particles
+  const bool apic = settings_.transfer == scene::Mpm::Transfer::apic;
+  const double flip = settings_.flip_fraction;
+#pragma omp parallel
+  {
+    Stencil<D> st;
+#pragma omp for schedule(static)
+    for (std::size_t p = 0; p < ps.size(); ++p) {
+      make_stencil<D>(m, start_position_[p], p, st);
+      Vec<D> pic{}, increment{};
+      Tensor<D> B = Tensor<D>::Zero(), Dp = Tensor<D>::Zero();
+      for (int q = 0; q < st.count; ++q) {
+        const std::size_t n = st.node[static_cast<std::size_t>(q)];
+        const double w = st.weight[static_cast<std::size_t>(q)];
+        for (int a = 0; a < D; ++a) {
+          pic[a] += w * g.velocity[n][a];
+          increment[a] += w * (g.velocity[n][a] - g.velocity_start[n][a]);
+        }
+        if (apic) {
+          const Vec<D> dx = g.node_position(n) - start_position_[p];
+          for (int a = 0; a < D; ++a)
+            for (int b = 0; b < D; ++b) B(a, b) += w * g.velocity[n][a] * dx[b], Dp(a, b) += w * dx[a] * dx[b];
+        }
+      }
+      if (apic) {
+        ps.velocity[p] = pic;
+        ps.affine_velocity[p] = B * Dp.inverse();  // C = B D^-1 (Jiang et al. 2015)
+      } else {
+        for (int a = 0; a < D; ++a) ps.velocity[p][a] = flip * (ps.velocity[p][a] + increment[a]) + (1.0 - flip) * pic[a];
+      }
+      for (int a = 0; a < D; ++a) ps.position[p][a] += dt * pic[a];
+    }
+  }
+  if (measure) {
+    energy_.kinetic = parallel::ordered_sums<1>(ps.size(), [&](std::size_t p, std::array<double, 1>& acc) {
+      acc[0] += 0.5 * ps.mass[p] * dot<D>(start_velocity_[p], ps.velocity[p]);
+    })[0];
+  }
+  if (settings_.scheme == S::usl) {
+    update_stress(m, dt);
+  } else if (settings_.scheme == S::musl) {
+    scatter(m, true, false);  // the new particle momenta back to the grid (Sulsky et al. 1995)
+    grid_velocities(m, t + dt);
+    update_stress(m, dt);
+  }
+  m.time = t + dt;
+}
+
+template class Solver<2>;
+template class Solver<3>;
+
+}  // namespace rift::mpm

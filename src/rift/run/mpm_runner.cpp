@@ -1,0 +1,169 @@
+#include "rift/run/mpm_runner.hpp"
+
+#include <chrono>
+#include <cmath>
+#include <filesystem>
+#include <ostream>
+
+#include "rift/core/progress.hpp"
+#include "rift/io/field_writer.hpp"
+#include "rift/io/history.hpp"
+#include "rift/mpm/discretize.hpp"
+#include "rift/mpm/energy.hpp"
+#include "rift/mpm/solver.hpp"
+
+namespace rift::run {
+
+namespace {
+
+template <int D>
+struct MpmRun {
+  mpm::Model<D> model;
+  mpm::Solver<D> solver;
+  double stable_dt = 0.0, dt = 0.0;
+  long steps = 0;
+
+  explicit MpmRun(const scene::Scene& s) : model(mpm::discretize<D>(s)), solver(s, model) {
+    if (!s.cracks.empty())
+      throw SceneError(s.cracks.front().where, "cracks", "explicit cracks for the material point method are not available yet");
+    stable_dt = solver.stable_time_step(model);
+    if (s.solver.time_step) {
+      if (*s.solver.time_step > stable_dt)
+        throw SceneError(s.solver.time_step_where, "solver.time_step",
+                         "time step " + std::to_string(*s.solver.time_step) + " s exceeds the stable limit " + std::to_string(stable_dt) +
+                             " s (cell size / wave speed); use a smaller value or safety_factor");
+      dt = *s.solver.time_step;
+    } else {
+      dt = s.solver.safety_factor * stable_dt;
+    }
+    steps = std::max(1L, static_cast<long>(std::ceil(s.solver.end_time / dt - 1e-9)));
+    dt = s.solver.end_time / double(steps);
+  }
+};
+
+template <int D>
+Plan check_dim(const scene::Scene& s, std::ostream& out) {
+  MpmRun<D> r(s);
+  Plan plan;
+  plan.particles = r.model.particles.size();
+  plan.bytes_per_particle = sizeof(Vec<D>) * 4 + sizeof(double) * 3 + sizeof(mpm::Tensor<D>) * 2 + sizeof(material::State<D>) + 4;
+  plan.stable_time_step = r.stable_dt;
+  plan.time_step = r.dt;
+  plan.steps = r.steps;
+  const auto& g = r.model.grid;
+  char line[256];
+  out << "scene        " << s.name << " (" << s.file << "), material point method\n";
+  std::snprintf(line, sizeof line, "grid         %ld x %ld%s nodes, cell %g m\n", g.nodes[0], g.nodes[1],
+                D == 3 ? (" x " + std::to_string(g.nodes[2])).c_str() : "", g.cell_size);
+  out << line;
+  for (const auto& b : r.model.bodies) out << "body         " << b.name << ": " << (b.last - b.first) << " material points\n";
+  std::snprintf(line, sizeof line, "particles    %zu\nmemory       %.0f bytes/particle, %.1f MB grid\n", plan.particles,
+                plan.bytes_per_particle, double(g.size()) * (1 + 4 * D) * 8 / 1e6);
+  out << line;
+  std::snprintf(line, sizeof line, "time step    stable %.4g s, used %.4g s\nsteps        %ld (end time %.4g s)\n", r.stable_dt, r.dt,
+                r.steps, s.solver.end_time);
+  out << line;
+  std::string fields;
+  for (const auto& f : s.output.fields) fields += " " + f;
+  out << "output       " << s.output.count << " snapshots (position" << fields << ") -> fields.h5 + fields.xdmf\n";
+  out << "             " << s.output.history_count << " history rows -> history.csv\n";
+  return plan;
+}
+
+template <int D>
+void write_snapshot(io::FieldWriter& w, const mpm::Model<D>& m, const scene::Scene& s) {
+  const auto& ps = m.particles;
+  const std::size_t n = ps.size();
+  auto vec = [&](auto get) {
+    std::vector<double> out(3 * n, 0.0);
+    for (std::size_t p = 0; p < n; ++p)
+      for (int a = 0; a < D; ++a) out[3 * p + a] = get(p, a);
+    return out;
+  };
+  w.begin_snapshot(m.time);
+  w.write("position", vec([&](std::size_t p, int a) { return ps.position[p][a]; }), 3);
+  for (const auto& f : s.output.fields) {
+    if (f == "displacement") w.write(f, vec([&](std::size_t p, int a) { return ps.position[p][a] - ps.reference_position[p][a]; }), 3);
+    else if (f == "velocity") w.write(f, vec([&](std::size_t p, int a) { return ps.velocity[p][a]; }), 3);
+    else if (f == "stress") {
+      // xx, yy, zz, xy, yz, xz (zz and the out-of-plane shears are 0 in 2D)
+      std::vector<double> out(6 * n, 0.0);
+      for (std::size_t p = 0; p < n; ++p) {
+        const auto& sg = ps.state[p].stress;
+        out[6 * p + 0] = sg(0, 0), out[6 * p + 1] = sg(1, 1), out[6 * p + 3] = sg(0, 1);
+        if constexpr (D == 3) out[6 * p + 2] = sg(2, 2), out[6 * p + 4] = sg(1, 2), out[6 * p + 5] = sg(0, 2);
+      }
+      w.write(f, out, 6);
+    } else {
+      std::vector<double> out(n, 0.0);
+      for (std::size_t p = 0; p < n; ++p) {
+        if (f == "volume") out[p] = ps.volume[p];
+        else if (f == "body") out[p] = ps.body[p];
+        else if (f == "equivalent_plastic_strain") out[p] = ps.state[p].equivalent_plastic_strain;
+        else if (f == "strain_energy_density")
+          out[p] = material::strain_energy_density<D>(m.bodies[ps.body[p]].constants, ps.state[p], ps.deformation_gradient[p]);
+      }
+      w.write(f, out, 1);
+    }
+  }
+  w.end_snapshot();
+}
+
+template <int D>
+Result run_dim(const scene::Scene& s, const Options& o) {
+  MpmRun<D> r(s);  // every scene error is raised here, before anything is written
+  auto& m = r.model;
+  Result res;
+  res.output_dir = o.output_dir.empty() ? "results/" + s.name : o.output_dir;
+  std::filesystem::create_directories(res.output_dir);
+  io::FieldWriter fields(res.output_dir, "fields", m.particles.size());
+  res.fields_h5 = fields.h5_path();
+  res.fields_xdmf = fields.xdmf_path();
+  std::vector<std::string> columns{"time", "step"};
+  columns.insert(columns.end(), s.output.history.begin(), s.output.history.end());
+  io::History history(res.output_dir + "/history.csv", columns);
+  res.history_csv = history.path();
+  // rows hold the time-centred energy at the start of the sampled step (see Solver::measure_energy)
+  auto history_row = [&](long step, double time, double kinetic, double strain) {
+    if (!std::isfinite(kinetic) || !std::isfinite(strain))
+      throw PhysicsError("step " + std::to_string(step) + ": energy is not finite; the time step may be above the stable limit");
+    std::vector<double> row{time, double(step)};
+    for (const auto& q : s.output.history) row.push_back(q == "kinetic_energy" ? kinetic : q == "strain_energy" ? strain : kinetic + strain);
+    history.row(row);
+  };
+  const auto start = std::chrono::steady_clock::now();
+  Progress progress(r.steps, s.solver.end_time, o.quiet);
+  write_snapshot<D>(fields, m, s);
+  long next_snapshot = 1, next_history = 0;
+  for (long step = 1; step <= r.steps; ++step) {
+    // history rows at the starts of steps 1 + k steps / rows: energy at t = 0 first
+    const bool sample = (step - 1) * s.output.history_count >= next_history * r.steps;
+    if (sample) r.solver.measure_energy();
+    r.solver.step(m, r.dt);
+    if (sample) {
+      const auto& e = r.solver.measured_energy();
+      history_row(step - 1, e.time, e.kinetic, e.strain);
+      progress.update(step, m.time, 0.0);
+      while (next_history * r.steps <= (step - 1) * s.output.history_count) ++next_history;
+    }
+    if (step * s.output.count >= next_snapshot * r.steps) {
+      write_snapshot<D>(fields, m, s);
+      while (next_snapshot * r.steps <= step * s.output.count) ++next_snapshot;
+    }
+  }
+  res.loop_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  progress.finish(r.steps, m.time, 0.0);
+  auto e = mpm::summarize<D>(m);
+  res.final_energy.kinetic = e.kinetic;
+  res.final_energy.strain = e.strain;
+  res.steps = r.steps;
+  res.time = m.time;
+  return res;
+}
+
+}  // namespace
+
+Plan check_mpm(const scene::Scene& s, std::ostream& out) { return s.dimension == 2 ? check_dim<2>(s, out) : check_dim<3>(s, out); }
+Result run_mpm(const scene::Scene& s, const Options& o) { return s.dimension == 2 ? run_dim<2>(s, o) : run_dim<3>(s, o); }
+
+}  // namespace rift::run
