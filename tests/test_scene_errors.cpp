@@ -144,3 +144,110 @@ TEST(SceneErrors, BaseSceneIsValid) {
 }
 
 }  // namespace
+
+namespace {
+
+const char* mpm_base = R"(
+[scene]
+method = "mpm"
+dimension = 2
+plane = "strain"
+thickness = 0.001
+
+[materials.steel]
+model = "linear_elastic"
+density = 7800.0
+youngs_modulus = 200e9
+poisson_ratio = 0.3
+
+[regions.beam]
+shape = "box"
+min = [0.0, 0.0]
+max = [0.02, 0.004]
+
+[regions.clamp]
+shape = "box"
+min = [-0.01, -0.01]
+max = [0.0, 0.02]
+
+[bodies.beam]
+material = "steel"
+region = "beam"
+particles_per_cell = 2
+
+[[boundaries]]
+region = "clamp"
+type = "fixed"
+
+[mpm]
+cell_size = 0.001
+
+[solver]
+end_time = 1e-6
+)";
+
+struct MpmCase {
+  const char* name;
+  const char* find;
+  const char* replace;
+  const char* key;
+};
+
+const MpmCase mpm_cases[] = {
+    {"peridynamic model in mpm", "model = \"linear_elastic\"", "model = \"pmb\"", "materials.steel.model"},
+    {"missing mpm table", "[mpm]\ncell_size = 0.001\n", "", "mpm"},
+    {"negative cell size", "cell_size = 0.001", "cell_size = -0.001", "mpm.cell_size"},
+    {"unknown shape function", "cell_size = 0.001", "cell_size = 0.001\nshape = \"sinc\"", "mpm.shape"},
+    {"flip fraction above one", "cell_size = 0.001", "cell_size = 0.001\nflip_fraction = 1.5", "mpm.flip_fraction"},
+    {"zero particles per cell", "particles_per_cell = 2", "particles_per_cell = 0", "bodies.beam.particles_per_cell"},
+    {"horizon in an mpm body", "particles_per_cell = 2", "horizon = 3.0", "bodies.beam.horizon"},
+    {"dynamic relaxation in mpm", "end_time = 1e-6", "type = \"dynamic_relaxation\"", "solver.type"},
+    {"displacement condition on the grid", "type = \"fixed\"", "type = \"displacement\"\nx = 0.001", "boundaries[0].type"},
+    {"neo-Hookean in plane stress", "plane = \"strain\"", "plane = \"stress\"\n", ""},
+    {"j2 without yield stress", "model = \"linear_elastic\"", "model = \"j2_plasticity\"", "materials.steel.yield_stress"},
+    {"fixed region without grid nodes", "max = [0.0, 0.02]", "max = [-0.0095, -0.0095]", "boundaries[0].region"},
+    {"mpm table in a peridynamic scene", "method = \"mpm\"", "method = \"peridynamics\"", ""},
+};
+
+class MpmSceneErrors : public ::testing::TestWithParam<MpmCase> {};
+
+TEST_P(MpmSceneErrors, NamesFileLineColumnAndKey) {
+  const auto& c = GetParam();
+  std::string text = mpm_base;
+  auto p = text.find(c.find);
+  ASSERT_NE(p, std::string::npos) << c.name;
+  text.replace(p, std::string(c.find).size(), c.replace);
+  if (std::string(c.name) == "neo-Hookean in plane stress") {
+    auto q = text.find("model = \"linear_elastic\"");
+    text.replace(q, 24, "model = \"neo_hookean\"");
+  }
+  try {
+    auto s = rift::scene::parse_string(text, "bad.toml");
+    std::ostringstream out;
+    rift::run::check(s, out);
+    FAIL() << c.name << ": no error raised";
+  } catch (const rift::SceneError& e) {
+    const std::string msg = e.what();
+    EXPECT_EQ(msg.rfind("bad.toml:", 0), 0u) << msg;
+    EXPECT_GT(e.where().line, 0) << msg;
+    if (std::string(c.key).size()) {
+      EXPECT_EQ(e.key(), c.key) << msg;
+    }
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(Mpm, MpmSceneErrors, ::testing::ValuesIn(mpm_cases), [](const auto& info) {
+  std::string n = info.param.name;
+  for (auto& ch : n)
+    if (!isalnum(static_cast<unsigned char>(ch))) ch = '_';
+  return n;
+});
+
+TEST(MpmSceneErrors, BaseSceneIsValid) {
+  auto s = rift::scene::parse_string(mpm_base, "good.toml");
+  std::ostringstream out;
+  auto plan = rift::run::check(s, out);
+  EXPECT_EQ(plan.particles, 20u * 4u * 4u);
+}
+
+}  // namespace

@@ -36,6 +36,7 @@ Result pd_quasistatic_plate(const Settings&);
 Result kalthoff_winkler(const Settings&);
 Result glass_branching(const Settings&);
 Result mpm_energy(const Settings&);
+Result mpm_cantilever(const Settings&);
 
 struct Entry {
   const char* name;
