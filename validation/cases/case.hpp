@@ -37,6 +37,7 @@ Result kalthoff_winkler(const Settings&);
 Result glass_branching(const Settings&);
 Result mpm_energy(const Settings&);
 Result mpm_cantilever(const Settings&);
+Result mpm_disks(const Settings&);
 
 struct Entry {
   const char* name;

@@ -26,16 +26,22 @@ struct Particles {
   std::size_t size() const { return position.size(); }
 };
 
-/// Regular background grid: node (i, j, k) sits at origin + h (i, j, k).
+/// Regular background grid: node (i, j, k) sits at origin + h (i, j, k). Every node carries
+/// `fields` velocity fields (one per body with multi-material contact, else one); the quantities of
+/// field f at node n are at slot n * fields + f.
 template <int D>
 struct Grid {
   Vec<D> origin{};
   double cell_size = 0.0;
   std::array<long, 3> nodes{1, 1, 1};  // per axis
+  int fields = 1;
   std::vector<double> mass;
   std::vector<Vec<D>> momentum, force, velocity, velocity_start;  // velocity_start: before the force update
+  std::vector<Vec<D>> mass_gradient;  // sum m_p grad S_ip per field (contact normals; empty with one field)
+  std::vector<double> volume;         // sum V_p S_ip per field (contact detection; empty with one field)
 
   std::size_t size() const { return static_cast<std::size_t>(nodes[0] * nodes[1] * nodes[2]); }
+  std::size_t slots() const { return size() * static_cast<std::size_t>(fields); }
   std::size_t index(long i, long j, long k) const { return static_cast<std::size_t>((k * nodes[1] + j) * nodes[0] + i); }
   Vec<D> node_position(std::size_t n) const {
     Vec<D> x;
@@ -49,12 +55,14 @@ struct Grid {
     return x;
   }
   void resize() {
-    const std::size_t n = size();
+    const std::size_t n = slots();
     mass.assign(n, 0.0);
     momentum.assign(n, Vec<D>{});
     force.assign(n, Vec<D>{});
     velocity.assign(n, Vec<D>{});
     velocity_start.assign(n, Vec<D>{});
+    mass_gradient.assign(fields > 1 ? n : 0, Vec<D>{});
+    volume.assign(fields > 1 ? n : 0, 0.0);
   }
 };
 

@@ -24,17 +24,32 @@ struct Stencil {
   std::array<Vec<D>, capacity> gradient{};
 };
 
+/// Records the first material point that left the grid inside a parallel loop (exceptions must
+/// not cross an OpenMP region); raise() throws after the loop.
+struct LostParticle {
+  long index = -1;
+  void record(std::size_t p) {
+#pragma omp critical(rift_mpm_lost)
+    if (index < 0 || static_cast<long>(p) < index) index = static_cast<long>(p);
+  }
+  void raise(double time) const {
+    if (index >= 0)
+      throw PhysicsError("material point " + std::to_string(index) + " left the background grid at t = " + std::to_string(time) +
+                         " s; enlarge [mpm] grid_min / grid_max");
+  }
+};
+
 /// Tensor-product shape functions of the particle at x: nodes, weights S_ip, gradients grad S_ip.
+/// Returns false (count 0) when the particle's stencil reaches past the grid.
 template <int D>
-void make_stencil(const Model<D>& m, const Vec<D>& x, std::size_t particle, Stencil<D>& st) {
+bool make_stencil(const Model<D>& m, const Vec<D>& x, Stencil<D>& st) {
   const auto& g = m.grid;
   std::array<Stencil1, 3> s;
+  st.count = 0;
   for (int a = 0; a < 3; ++a) {
     if (a < D) {
       s[a] = stencil_1d(m.shape, x[a] - g.origin[a], g.cell_size, m.particle_half_width);
-      if (s[a].first < 0 || s[a].first + s[a].count > g.nodes[a])
-        throw PhysicsError("material point " + std::to_string(particle) + " left the background grid at t = " +
-                           std::to_string(m.time) + " s; enlarge [mpm] grid_min / grid_max");
+      if (s[a].first < 0 || s[a].first + s[a].count > g.nodes[a] || !std::isfinite(x[a])) return false;
     } else {
       s[a].first = 0, s[a].count = 1, s[a].weight = {1, 0, 0, 0}, s[a].gradient = {0, 0, 0, 0};
     }
@@ -51,6 +66,7 @@ void make_stencil(const Model<D>& m, const Vec<D>& x, std::size_t particle, Sten
         if constexpr (D >= 2) st.gradient[q][1] = wx * s[1].gradient[j] * wz;
         if constexpr (D == 3) st.gradient[q][2] = wx * wy * s[2].gradient[k];
       }
+  return true;
 }
 
 template <int D>
@@ -107,6 +123,7 @@ Solver<D>::Solver(const scene::Scene& s, Model<D>& m) : settings_(s.mpm) {
     }
   }
   thread_grids_.resize(static_cast<std::size_t>(omp_get_max_threads()));
+  cell_volume_ = std::pow(m.grid.cell_size, D) * (D == 2 ? s.thickness : 1.0);
 }
 
 template <int D>
@@ -122,35 +139,49 @@ void Solver<D>::scatter(Model<D>& m, bool momentum_only, bool internal_force) {
   auto& ps = m.particles;
   const int threads = static_cast<int>(thread_grids_.size());
   for (auto& tg : thread_grids_) {
-    if (tg.size() != m.grid.size()) {
+    if (tg.slots() != m.grid.slots()) {
       tg = m.grid;
       tg.resize();
     }
     std::fill(tg.mass.begin(), tg.mass.end(), 0.0);
     std::fill(tg.momentum.begin(), tg.momentum.end(), Vec<D>{});
     std::fill(tg.force.begin(), tg.force.end(), Vec<D>{});
+    std::fill(tg.mass_gradient.begin(), tg.mass_gradient.end(), Vec<D>{});
+    std::fill(tg.volume.begin(), tg.volume.end(), 0.0);
   }
+  const std::size_t fields = static_cast<std::size_t>(m.grid.fields);
+  const bool normals = fields > 1 && !momentum_only;
   const bool apic = settings_.transfer == scene::Mpm::Transfer::apic;
+  LostParticle lost;
 #pragma omp parallel num_threads(threads)
   {
     auto& tg = thread_grids_[static_cast<std::size_t>(omp_get_thread_num())];
     Stencil<D> st;
 #pragma omp for schedule(static)
     for (std::size_t p = 0; p < ps.size(); ++p) {
-      make_stencil<D>(m, start_position_[p], p, st);
+      if (!make_stencil<D>(m, start_position_[p], st)) {
+        lost.record(p);
+        continue;
+      }
       const double mp = ps.mass[p];
+      const std::size_t field = fields > 1 ? ps.body[p] : 0;
       for (int q = 0; q < st.count; ++q) {
-        const std::size_t n = st.node[static_cast<std::size_t>(q)];
+        const std::size_t node = st.node[static_cast<std::size_t>(q)];
+        const std::size_t n = node * fields + field;
         const double w = st.weight[static_cast<std::size_t>(q)];
         if (w == 0.0) continue;
         Vec<D> v = ps.velocity[p];
         if (apic) {
-          const Vec<D> dx = m.grid.node_position(n) - start_position_[p];
+          const Vec<D> dx = m.grid.node_position(node) - start_position_[p];
           for (int a = 0; a < D; ++a)
             for (int b = 0; b < D; ++b) v[a] += ps.affine_velocity[p](a, b) * dx[b];
         }
         tg.mass[n] += w * mp;
         for (int a = 0; a < D; ++a) tg.momentum[n][a] += w * mp * v[a];
+        if (normals) {
+          for (int a = 0; a < D; ++a) tg.mass_gradient[n][a] += mp * st.gradient[static_cast<std::size_t>(q)][a];
+          tg.volume[n] += w * ps.volume[p];
+        }
         if (momentum_only) continue;
         for (int a = 0; a < D; ++a) tg.force[n][a] += w * ps.external_force[p][a];
         if (internal_force) {
@@ -165,19 +196,26 @@ void Solver<D>::scatter(Model<D>& m, bool momentum_only, bool internal_force) {
       }
     }
   }
+  lost.raise(m.time);
   // sum the thread buffers in thread order (reproducible)
   auto& g = m.grid;
 #pragma omp parallel for schedule(static)
-  for (std::size_t n = 0; n < g.size(); ++n) {
+  for (std::size_t n = 0; n < g.slots(); ++n) {
     double mass = 0.0;
-    Vec<D> mom{}, f{};
+    Vec<D> mom{}, f{}, grad{};
+    double volume = 0.0;
     for (const auto& tg : thread_grids_) {
       mass += tg.mass[n];
       for (int a = 0; a < D; ++a) mom[a] += tg.momentum[n][a], f[a] += tg.force[n][a];
+      if (normals) {
+        for (int a = 0; a < D; ++a) grad[a] += tg.mass_gradient[n][a];
+        volume += tg.volume[n];
+      }
     }
     g.mass[n] = mass;
     g.momentum[n] = mom;
     if (!momentum_only) g.force[n] = f;
+    if (normals) g.mass_gradient[n] = grad, g.volume[n] = volume;
   }
 }
 
@@ -186,37 +224,106 @@ void Solver<D>::apply_grid_conditions(Model<D>& m, double t, bool on_momentum) {
   auto& g = m.grid;
   for (const auto& c : conditions_) {
     const double amp = load::evaluate(c.time, t);
-    for (auto n : c.nodes)
-      for (int a = 0; a < D; ++a)
-        if (c.value[a]) {
-          g.velocity[n][a] = amp * *c.value[a];
-          if (on_momentum) g.momentum[n][a] = g.mass[n] * g.velocity[n][a];
-        }
+    for (auto node : c.nodes)
+      for (int f = 0; f < g.fields; ++f) {
+        const std::size_t n = node * static_cast<std::size_t>(g.fields) + static_cast<std::size_t>(f);
+        for (int a = 0; a < D; ++a)
+          if (c.value[a]) {
+            g.velocity[n][a] = amp * *c.value[a];
+            if (on_momentum) g.momentum[n][a] = g.mass[n] * g.velocity[n][a];
+          }
+      }
   }
 }
 
 template <int D>
-void Solver<D>::grid_velocities(Model<D>& m, double t) {
+void Solver<D>::apply_contact(Model<D>& m) {
+  // Multi-material contact (Bardenhagen et al. 2001): at a node where two or more bodies have mass,
+  // a body approaching the others along the contact normal gets the normal part of its velocity
+  // relative to the centre of mass removed (frictionless), also its tangential part within the
+  // Coulomb limit (friction), or all of it (stick). The normal of body f points from f to the
+  // others: n = (grad m_others - grad m_f) / |.|, equal and opposite for two bodies, so the
+  // corrections conserve momentum.
+  auto& g = m.grid;
+  const std::size_t fields = static_cast<std::size_t>(g.fields);
+  const double tiny = 1e-12 * (m.particles.size() ? m.particles.mass[0] : 1.0);
+  using C = scene::Mpm::Contact;
+#pragma omp parallel for schedule(static)
+  for (std::size_t node = 0; node < g.size(); ++node) {
+    const std::size_t base = node * fields;
+    int present = 0;
+    double mass = 0.0, volume = 0.0;
+    Vec<D> momentum{}, gradient{};
+    for (std::size_t f = 0; f < fields; ++f) {
+      if (g.mass[base + f] <= tiny) continue;
+      ++present;
+      mass += g.mass[base + f];
+      volume += g.volume[base + f];
+      for (int a = 0; a < D; ++a) momentum[a] += g.momentum[base + f][a], gradient[a] += g.mass_gradient[base + f][a];
+    }
+    // the bodies touch at this node only when together they fill its cell (their stencils
+    // already overlap a couple of cells before they meet)
+    if (present < 2 || volume < contact_volume_ * cell_volume_) continue;
+    const Vec<D> v_cm = (1.0 / mass) * momentum;
+    for (std::size_t f = 0; f < fields; ++f) {
+      const std::size_t n = base + f;
+      if (g.mass[n] <= tiny) continue;
+      // mass_gradient holds sum m_p dS/dx_p = -grad m (the gradient with respect to the node is the
+      // opposite), so grad m_others - grad m_f = 2 mass_gradient_f - sum of all
+      Vec<D> normal = 2.0 * g.mass_gradient[n] - gradient;
+      const double length = norm<D>(normal);
+      if (length == 0.0) continue;
+      normal = (1.0 / length) * normal;
+      const Vec<D> dv = g.velocity[n] - v_cm;
+      const double approach = dot<D>(dv, normal);
+      if (approach <= 0.0) continue;  // separating: free
+      Vec<D> correction = approach * normal;
+      if (settings_.contact == C::stick) {
+        correction = dv;
+      } else if (settings_.contact == C::friction) {
+        const Vec<D> tangential = dv - approach * normal;
+        const double slip = norm<D>(tangential);
+        const double limit = settings_.friction * approach;
+        if (slip > 0.0) correction = correction + (slip <= limit ? 1.0 : limit / slip) * tangential;
+      }
+      g.velocity[n] = g.velocity[n] - correction;
+      g.momentum[n] = g.mass[n] * g.velocity[n];
+    }
+  }
+}
+
+template <int D>
+void Solver<D>::grid_velocities(Model<D>& m, double t, bool record_start) {
   auto& g = m.grid;
   const double tiny = 1e-12 * (m.particles.size() ? m.particles.mass[0] : 1.0);
 #pragma omp parallel for schedule(static)
-  for (std::size_t n = 0; n < g.size(); ++n)
+  for (std::size_t n = 0; n < g.slots(); ++n) {
     for (int a = 0; a < D; ++a) g.velocity[n][a] = g.mass[n] > tiny ? g.momentum[n][a] / g.mass[n] : 0.0;
+    // FLIP increments are taken from the plain projection, so that contact and boundary
+    // corrections reach the particles too
+    if (record_start) g.velocity_start[n] = g.velocity[n];
+  }
+  if (g.fields > 1) apply_contact(m);
   apply_grid_conditions(m, t, true);
 }
 
 template <int D>
 void Solver<D>::update_stress(Model<D>& m, double dt) {
   auto& ps = m.particles;
+  LostParticle lost;
 #pragma omp parallel
   {
     Stencil<D> st;
 #pragma omp for schedule(static)
     for (std::size_t p = 0; p < ps.size(); ++p) {
-      make_stencil<D>(m, start_position_[p], p, st);
+      if (!make_stencil<D>(m, start_position_[p], st)) {
+        lost.record(p);
+        continue;
+      }
+      const std::size_t fields = static_cast<std::size_t>(m.grid.fields), field = fields > 1 ? ps.body[p] : 0;
       Tensor<D> L = Tensor<D>::Zero();  // velocity gradient L_ab = sum v_a dS/dx_b
       for (int q = 0; q < st.count; ++q) {
-        const auto& v = m.grid.velocity[st.node[static_cast<std::size_t>(q)]];
+        const auto& v = m.grid.velocity[st.node[static_cast<std::size_t>(q)] * fields + field];
         const auto& grad = st.gradient[static_cast<std::size_t>(q)];
         for (int a = 0; a < D; ++a)
           for (int b = 0; b < D; ++b) L(a, b) += v[a] * grad[b];
@@ -227,6 +334,7 @@ void Solver<D>::update_stress(Model<D>& m, double dt) {
       material::update_stress<D>(m.bodies[ps.body[p]].constants, ps.state[p], L, F, dt);
     }
   }
+  lost.raise(m.time);
 }
 
 template <int D>
@@ -252,42 +360,46 @@ void Solver<D>::step(Model<D>& m, double dt) {
   using S = scene::Mpm::Scheme;
   if (settings_.scheme == S::usf) {
     scatter(m, false, false);
-    grid_velocities(m, t);
+    grid_velocities(m, t, false);
     update_stress(m, dt);
     scatter(m, false, true);  // forces from the updated stress (mass and momentum unchanged)
-    grid_velocities(m, t);
+    grid_velocities(m, t, true);
   } else {
     scatter(m, false, true);
-    grid_velocities(m, t);
+    grid_velocities(m, t, true);
   }
   // grid momentum update with mass-proportional damping: dp/dt = f - damping p
   const double alpha = settings_.damping;
 #pragma omp parallel for schedule(static)
-  for (std::size_t n = 0; n < g.size(); ++n) {
-    g.velocity_start[n] = g.velocity[n];
+  for (std::size_t n = 0; n < g.slots(); ++n)
     for (int a = 0; a < D; ++a) g.momentum[n][a] += dt * (g.force[n][a] - alpha * g.momentum[n][a]);
-  }
-  grid_velocities(m, t + dt);
+  grid_velocities(m, t + dt, false);
   // grid to particles
   const bool apic = settings_.transfer == scene::Mpm::Transfer::apic;
   const double flip = settings_.flip_fraction;
+  LostParticle lost;
 #pragma omp parallel
   {
     Stencil<D> st;
 #pragma omp for schedule(static)
     for (std::size_t p = 0; p < ps.size(); ++p) {
-      make_stencil<D>(m, start_position_[p], p, st);
+      if (!make_stencil<D>(m, start_position_[p], st)) {
+        lost.record(p);
+        continue;
+      }
+      const std::size_t fields = static_cast<std::size_t>(g.fields), field = fields > 1 ? ps.body[p] : 0;
       Vec<D> pic{}, increment{};
       Tensor<D> B = Tensor<D>::Zero(), Dp = Tensor<D>::Zero();
       for (int q = 0; q < st.count; ++q) {
-        const std::size_t n = st.node[static_cast<std::size_t>(q)];
+        const std::size_t node = st.node[static_cast<std::size_t>(q)];
+        const std::size_t n = node * fields + field;
         const double w = st.weight[static_cast<std::size_t>(q)];
         for (int a = 0; a < D; ++a) {
           pic[a] += w * g.velocity[n][a];
           increment[a] += w * (g.velocity[n][a] - g.velocity_start[n][a]);
         }
         if (apic) {
-          const Vec<D> dx = g.node_position(n) - start_position_[p];
+          const Vec<D> dx = g.node_position(node) - start_position_[p];
           for (int a = 0; a < D; ++a)
             for (int b = 0; b < D; ++b) B(a, b) += w * g.velocity[n][a] * dx[b], Dp(a, b) += w * dx[a] * dx[b];
         }
@@ -301,6 +413,7 @@ void Solver<D>::step(Model<D>& m, double dt) {
       for (int a = 0; a < D; ++a) ps.position[p][a] += dt * pic[a];
     }
   }
+  lost.raise(m.time);
   if (measure) {
     energy_.kinetic = parallel::ordered_sums<1>(ps.size(), [&](std::size_t p, std::array<double, 1>& acc) {
       acc[0] += 0.5 * ps.mass[p] * dot<D>(start_velocity_[p], ps.velocity[p]);
@@ -310,7 +423,7 @@ void Solver<D>::step(Model<D>& m, double dt) {
     update_stress(m, dt);
   } else if (settings_.scheme == S::musl) {
     scatter(m, true, false);  // the new particle momenta back to the grid (Sulsky et al. 1995)
-    grid_velocities(m, t + dt);
+    grid_velocities(m, t + dt, false);
     update_stress(m, dt);
   }
   m.time = t + dt;

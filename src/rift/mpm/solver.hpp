@@ -47,9 +47,10 @@ class Solver {
     scene::TimeFunction time;
   };
   void scatter(Model<D>& m, bool momentum_only, bool internal_force);
-  void grid_velocities(Model<D>& m, double t);
+  void grid_velocities(Model<D>& m, double t, bool record_start);
   void update_stress(Model<D>& m, double dt);
   void apply_grid_conditions(Model<D>& m, double t, bool on_momentum);
+  void apply_contact(Model<D>& m);
 
   scene::Mpm settings_;
   std::vector<GridCondition> conditions_;
@@ -58,6 +59,7 @@ class Solver {
   std::vector<Vec<D>> start_position_;
   std::vector<Vec<D>> start_velocity_;
   bool measure_ = false;
+  double cell_volume_ = 0.0, contact_volume_ = 0.9;
   Energy energy_;  // x_p at the start of the step: every transfer of the step uses S_ip(x_p^n)
 };
 

@@ -428,10 +428,19 @@ void parse_mpm(R& root, Scene& s) {
     m.flip_fraction = *v;
   }
   m.damping = r.non_negative("damping", r.number("damping", 0.0));
+  if (auto v = r.choice("contact", {"none", "frictionless", "friction", "stick"}))
+    m.contact = *v == "none" ? Mpm::Contact::none : *v == "frictionless" ? Mpm::Contact::frictionless
+              : *v == "friction" ? Mpm::Contact::friction : Mpm::Contact::stick;
+  if (auto v = r.number("friction")) {
+    if (m.contact != Mpm::Contact::friction) r.fail("friction", "only with contact = \"friction\"");
+    m.friction = r.non_negative("friction", *v);
+  } else if (m.contact == Mpm::Contact::friction) {
+    throw SceneError(r.where(), r.key("friction"), "missing required key (Coulomb coefficient) for contact = \"friction\"");
+  }
   if (r.has("grid_min")) m.grid_min = point(r, "grid_min", s.dimension, true);
   if (r.has("grid_max")) m.grid_max = point(r, "grid_max", s.dimension, true);
   if (m.grid_min.has_value() != m.grid_max.has_value()) r.fail(m.grid_min ? "grid_min" : "grid_max", "give both grid_min and grid_max");
-  r.finish({"cell_size", "shape", "scheme", "transfer", "flip_fraction", "damping", "grid_min", "grid_max"});
+  r.finish({"cell_size", "shape", "scheme", "transfer", "flip_fraction", "damping", "contact", "friction", "grid_min", "grid_max"});
 }
 
 void parse_contact(R& root, Scene& s) {

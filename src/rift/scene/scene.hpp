@@ -122,6 +122,9 @@ struct Mpm {
   enum class Shape { linear, gimp, bspline2, bspline3 } shape = Shape::bspline2;
   enum class Scheme { usl, usf, musl } scheme = Scheme::musl;
   enum class Transfer { flip, apic } transfer = Transfer::flip;
+  /// Multi-material contact between bodies (Bardenhagen et al. 2001); none: one shared velocity field.
+  enum class Contact { none, frictionless, friction, stick } contact = Contact::none;
+  double friction = 0.0;  // Coulomb coefficient (contact = friction)
   double cell_size = 0.0;
   double flip_fraction = 1.0;  // velocity update: flip_fraction * FLIP + (1 - flip_fraction) * PIC
   double damping = 0.0;        // mass-proportional (external) damping coefficient, 1/s
