@@ -75,3 +75,92 @@ TEST(Constitutive, J2ReturnAndNeoHookean) {
 }
 
 }  // namespace
+
+#include "rift/mpm/crack.hpp"
+#include "rift/mpm/discretize.hpp"
+#include "rift/mpm/solver.hpp"
+#include "rift/scene/parse.hpp"
+
+namespace {
+
+// CRAMP line-crossing test (Nairn 2003): a crack from (1, 0) to (0, 0) (its "above" side is y < 0,
+// left of the direction of travel). A point and a node on the same side share field 0; across the
+// crack the point's field is 1 when it is above, 2 when below; past the tip the line crosses nothing.
+TEST(Cramp, FieldsFromTheLineCrossingTest) {
+  rift::scene::Scene s;
+  s.dimension = 2;
+  rift::scene::Crack c;
+  c.points = {{1.0, 0.0, 0.0}, {0.0, 0.0, 0.0}};
+  s.cracks.push_back(c);
+  rift::mpm::CrackSet cracks(s, 0.1);
+  EXPECT_EQ(cracks.field({0.5, 0.1}, {0.5, 0.3}), 0);
+  EXPECT_EQ(cracks.field({0.5, -0.1}, {0.5, 0.1}), 1);  // point above (y < 0) seen from a node below
+  EXPECT_EQ(cracks.field({0.5, 0.1}, {0.5, -0.1}), 2);
+  EXPECT_EQ(cracks.field({-0.1, 0.1}, {-0.1, -0.1}), 0);  // beyond the tip at x = 0
+  EXPECT_EQ(cracks.field({0.5, 0.1}, {0.5, 0.0}), 2);   // a node on the crack line counts as on its "above" side
+  EXPECT_EQ(cracks.field({0.5, -0.1}, {0.5, 0.0}), 0);
+}
+
+// A few steps of a cracked beam pulled open: the crack surfaces separate (positive opening behind
+// the tip, none ahead of it) and a crack along a grid line is refused with a clear message.
+TEST(Cramp, CrackOpensAndGridLineCrackIsRefused) {
+  const std::string scene = R"([scene]
+method = "mpm"
+dimension = 2
+plane = "strain"
+thickness = 0.001
+[materials.m]
+model = "linear_elastic"
+density = 1000.0
+youngs_modulus = 1e7
+poisson_ratio = 0.3
+[regions.beam]
+shape = "box"
+min = [0.0, 0.0]
+max = [0.02, 0.008]
+[regions.top]
+shape = "box"
+min = [0.018, 0.004]
+max = [0.02, 0.008]
+[regions.bottom]
+shape = "box"
+min = [0.018, 0.0]
+max = [0.02, 0.004]
+[bodies.beam]
+material = "m"
+region = "beam"
+[[cracks]]
+points = [[0.0205, 0.004], [0.01, 0.004]]
+[[boundaries]]
+region = "top"
+type = "velocity"
+y = 1.0
+[[boundaries]]
+region = "bottom"
+type = "velocity"
+y = -1.0
+[mpm]
+cell_size = 0.001
+grid_min = [-0.003, -0.0035]
+grid_max = [0.023, 0.0115]
+[solver]
+end_time = 1e-4
+)";
+  auto s = rift::scene::parse_string(scene, "cramp.toml");
+  auto m = rift::mpm::discretize<2>(s);
+  rift::mpm::Solver<2> solver(s, m);
+  const double dt = 0.5 * solver.stable_time_step(m);
+  for (int k = 0; k < 40; ++k) solver.step(m, dt);
+  const auto& crack = solver.cracks().cracks()[0];
+  const auto mouth = solver.cracks().opening(0, 11);  // x = 15 mm, clear of the driven ends
+  const auto tip = solver.cracks().opening(0, crack.points.size() - 1);
+  EXPECT_GT(std::abs(mouth[0]), 1e-6);  // the mouth opened (the normal points to y < 0: negative sign)
+  EXPECT_LT(std::abs(tip[0]), 0.2 * std::abs(mouth[0]));
+
+  auto bad = s;
+  bad.mpm.grid_min = rift::Point3{-0.003, -0.004, 0.0};  // grid line at y = 0.004: on the crack
+  auto mb = rift::mpm::discretize<2>(bad);
+  EXPECT_THROW(rift::mpm::Solver<2>(bad, mb), rift::SceneError);
+}
+
+}  // namespace

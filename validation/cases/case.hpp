@@ -38,6 +38,7 @@ Result glass_branching(const Settings&);
 Result mpm_energy(const Settings&);
 Result mpm_cantilever(const Settings&);
 Result mpm_disks(const Settings&);
+Result mpm_dcb(const Settings&);
 
 struct Entry {
   const char* name;

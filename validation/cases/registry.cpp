@@ -13,6 +13,7 @@ const std::vector<Entry>& all_cases() {
       {"pd_quasistatic_plate", pd_quasistatic_plate}, {"kalthoff_winkler", kalthoff_winkler},
       {"glass_branching", glass_branching},       {"mpm_energy", mpm_energy},
       {"mpm_cantilever", mpm_cantilever},         {"mpm_disks", mpm_disks},
+      {"mpm_dcb", mpm_dcb},
   };
   return cases;
 }

@@ -58,7 +58,11 @@ Model<D> discretize(const scene::Scene& s) {
     if (cells > 1e6) throw SceneError({s.file, 0, 0}, "mpm.cell_size", "more than a million cells along one axis");
     m.grid.nodes[a] = static_cast<long>(cells) + 1;
   }
-  m.grid.fields = s.mpm.contact != scene::Mpm::Contact::none && s.bodies.size() > 1 ? static_cast<int>(s.bodies.size()) : 1;
+  // velocity fields per node: 3 with explicit cracks (CRAMP: same side, above, below), one per body
+  // with multi-material contact, else 1
+  m.grid.fields = !s.cracks.empty() ? 3
+                : s.mpm.contact != scene::Mpm::Contact::none && s.bodies.size() > 1 ? static_cast<int>(s.bodies.size())
+                                                                                     : 1;
   m.grid.resize();
   // material points: particles_per_cell^D per cell, at sub-cell centres, inside the body's region
   auto& ps = m.particles;

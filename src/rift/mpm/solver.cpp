@@ -122,6 +122,29 @@ Solver<D>::Solver(const scene::Scene& s, Model<D>& m) : settings_(s.mpm) {
       loads_.push_back(std::move(l));
     }
   }
+  if (!s.cracks.empty()) {
+    if constexpr (D == 3) {
+      throw SceneError(s.cracks.front().where, "cracks", "explicit cracks in the material point method are 2D (polylines)");
+    } else {
+      if (s.mpm.contact != scene::Mpm::Contact::none && s.bodies.size() > 1)
+        throw SceneError(s.cracks.front().where, "cracks", "explicit cracks with multi-material contact are not available yet; use one body or [mpm] contact = \"none\"");
+      cracks_ = CrackSet(s, m.grid.cell_size);
+      crack_contact_ = s.mpm.crack_contact;
+      // a crack segment lying on a grid line leaves nodes on the crack itself; CRAMP then goes
+      // unstable, so ask for the half-cell shift that avoids it
+      for (std::size_t c = 0; c < s.cracks.size(); ++c) {
+        const auto& pts = s.cracks[c].points;
+        for (std::size_t k = 0; k + 1 < pts.size(); ++k)
+          for (int a = 0; a < 2; ++a) {
+            const double u0 = (pts[k][a] - m.grid.origin[a]) / m.grid.cell_size, u1 = (pts[k + 1][a] - m.grid.origin[a]) / m.grid.cell_size;
+            if (std::abs(u0 - u1) < 1e-9 && std::abs(u0 - std::round(u0)) < 1e-6)
+              throw SceneError(s.cracks[c].where, "cracks[" + std::to_string(c) + "].points",
+                               std::string("a crack segment lies on a grid line (") + (a == 0 ? "x" : "y") + " = " +
+                                   std::to_string(pts[k][a]) + " m); shift it or [mpm] grid_min by half a cell");
+          }
+      }
+    }
+  }
   thread_grids_.resize(static_cast<std::size_t>(omp_get_max_threads()));
   cell_volume_ = std::pow(m.grid.cell_size, D) * (D == 2 ? s.thickness : 1.0);
 }
@@ -164,10 +187,9 @@ void Solver<D>::scatter(Model<D>& m, bool momentum_only, bool internal_force) {
         continue;
       }
       const double mp = ps.mass[p];
-      const std::size_t field = fields > 1 ? ps.body[p] : 0;
       for (int q = 0; q < st.count; ++q) {
         const std::size_t node = st.node[static_cast<std::size_t>(q)];
-        const std::size_t n = node * fields + field;
+        const std::size_t n = node * fields + field_of(m, p, q);
         const double w = st.weight[static_cast<std::size_t>(q)];
         if (w == 0.0) continue;
         Vec<D> v = ps.velocity[p];
@@ -237,6 +259,15 @@ void Solver<D>::apply_grid_conditions(Model<D>& m, double t, bool on_momentum) {
 }
 
 template <int D>
+std::size_t Solver<D>::field_of(const Model<D>& m, std::size_t p, int q) const {
+  if constexpr (D == 2) {
+    if (!cracks_.empty())
+      return near_crack_[p] ? crack_field_[p * Stencil<D>::capacity + static_cast<std::size_t>(q)] : 0;
+  }
+  return m.grid.fields > 1 ? m.particles.body[p] : 0;
+}
+
+template <int D>
 void Solver<D>::apply_contact(Model<D>& m) {
   // Multi-material contact (Bardenhagen et al. 2001): at a node where two or more bodies have mass,
   // a body approaching the others along the contact normal gets the normal part of its velocity
@@ -261,9 +292,20 @@ void Solver<D>::apply_contact(Model<D>& m) {
       volume += g.volume[base + f];
       for (int a = 0; a < D; ++a) momentum[a] += g.momentum[base + f][a], gradient[a] += g.mass_gradient[base + f][a];
     }
-    // the bodies touch at this node only when together they fill its cell (their stencils
-    // already overlap a couple of cells before they meet)
-    if (present < 2 || volume < contact_volume_ * cell_volume_) continue;
+    if (present < 2) continue;
+    scene::Mpm::Contact kind = settings_.contact;
+    if constexpr (D == 2) {
+      if (!cracks_.empty()) {
+        // crack faces: in contact only where the crack is closed (no positive opening nearby)
+        kind = crack_contact_;
+        if (kind == C::none) continue;
+        const auto near = cracks_.nearest(g.node_position(node));
+        if (cracks_.opening(near.crack, near.particle)[0] > 1e-6 * g.cell_size) continue;
+      }
+    }
+    // bodies touch at this node only when together they fill its cell (their stencils already
+    // overlap a couple of cells before they meet)
+    if (cracks_.empty() && volume < contact_volume_ * cell_volume_) continue;
     const Vec<D> v_cm = (1.0 / mass) * momentum;
     for (std::size_t f = 0; f < fields; ++f) {
       const std::size_t n = base + f;
@@ -278,9 +320,9 @@ void Solver<D>::apply_contact(Model<D>& m) {
       const double approach = dot<D>(dv, normal);
       if (approach <= 0.0) continue;  // separating: free
       Vec<D> correction = approach * normal;
-      if (settings_.contact == C::stick) {
+      if (kind == C::stick) {
         correction = dv;
-      } else if (settings_.contact == C::friction) {
+      } else if (kind == C::friction) {
         const Vec<D> tangential = dv - approach * normal;
         const double slip = norm<D>(tangential);
         const double limit = settings_.friction * approach;
@@ -320,10 +362,11 @@ void Solver<D>::update_stress(Model<D>& m, double dt) {
         lost.record(p);
         continue;
       }
-      const std::size_t fields = static_cast<std::size_t>(m.grid.fields), field = fields > 1 ? ps.body[p] : 0;
+      const std::size_t fields = static_cast<std::size_t>(m.grid.fields);
       Tensor<D> L = Tensor<D>::Zero();  // velocity gradient L_ab = sum v_a dS/dx_b
       for (int q = 0; q < st.count; ++q) {
-        const auto& v = m.grid.velocity[st.node[static_cast<std::size_t>(q)] * fields + field];
+        const std::size_t node = st.node[static_cast<std::size_t>(q)];
+        const auto& v = m.grid.velocity[node * fields + field_of(m, p, q)];
         const auto& grad = st.gradient[static_cast<std::size_t>(q)];
         for (int a = 0; a < D; ++a)
           for (int b = 0; b < D; ++b) L(a, b) += v[a] * grad[b];
@@ -343,6 +386,26 @@ void Solver<D>::step(Model<D>& m, double dt) {
   auto& g = m.grid;
   const double t = m.time;
   start_position_ = ps.position;
+  if constexpr (D == 2) {
+    if (!cracks_.empty()) {
+      // points farther than the stencil reach (2 cells) from every crack's box see no crack
+      near_crack_.resize(ps.size());
+      crack_field_.resize(ps.size() * Stencil<D>::capacity);
+      const double reach = 2.0 * g.cell_size;
+#pragma omp parallel
+      {
+        Stencil<D> st;
+#pragma omp for schedule(static)
+        for (std::size_t p = 0; p < ps.size(); ++p) {
+          near_crack_[p] = cracks_.near(ps.position[p], reach);
+          if (!near_crack_[p] || !make_stencil<D>(m, ps.position[p], st)) continue;
+          for (int q = 0; q < st.count; ++q)
+            crack_field_[p * Stencil<D>::capacity + static_cast<std::size_t>(q)] =
+                static_cast<std::uint8_t>(cracks_.field(ps.position[p], g.node_position(st.node[static_cast<std::size_t>(q)])));
+        }
+      }
+    }
+  }
   const bool measure = measure_;
   measure_ = false;
   if (measure) {
@@ -387,12 +450,12 @@ void Solver<D>::step(Model<D>& m, double dt) {
         lost.record(p);
         continue;
       }
-      const std::size_t fields = static_cast<std::size_t>(g.fields), field = fields > 1 ? ps.body[p] : 0;
+      const std::size_t fields = static_cast<std::size_t>(g.fields);
       Vec<D> pic{}, increment{};
       Tensor<D> B = Tensor<D>::Zero(), Dp = Tensor<D>::Zero();
       for (int q = 0; q < st.count; ++q) {
         const std::size_t node = st.node[static_cast<std::size_t>(q)];
-        const std::size_t n = node * fields + field;
+        const std::size_t n = node * fields + field_of(m, p, q);
         const double w = st.weight[static_cast<std::size_t>(q)];
         for (int a = 0; a < D; ++a) {
           pic[a] += w * g.velocity[n][a];
@@ -414,6 +477,9 @@ void Solver<D>::step(Model<D>& m, double dt) {
     }
   }
   lost.raise(m.time);
+  if constexpr (D == 2) {
+    if (!cracks_.empty()) move_cracks(m, dt);
+  }
   if (measure) {
     energy_.kinetic = parallel::ordered_sums<1>(ps.size(), [&](std::size_t p, std::array<double, 1>& acc) {
       acc[0] += 0.5 * ps.mass[p] * dot<D>(start_velocity_[p], ps.velocity[p]);
@@ -427,6 +493,56 @@ void Solver<D>::step(Model<D>& m, double dt) {
     update_stress(m, dt);
   }
   m.time = t + dt;
+}
+
+template <int D>
+void Solver<D>::move_cracks(const Model<D>& m, double dt) {
+  if constexpr (D == 2) {
+    // crack particles move with the centre-of-mass velocity of the nodes, each surface with the
+    // field it belongs to: the field a point just above (below) the crack would use
+    const auto& g = m.grid;
+    const std::size_t fields = static_cast<std::size_t>(g.fields);
+    auto velocity = [&](const Vec<2>& x, int side, const Vec<2>& probe) {
+      Stencil<2> st;
+      Vec<2> v{};
+      if (!make_stencil<2>(m, x, st)) return v;
+      for (int q = 0; q < st.count; ++q) {
+        const std::size_t node = st.node[static_cast<std::size_t>(q)];
+        const double w = st.weight[static_cast<std::size_t>(q)];
+        Vec<2> vn{};
+        if (side == 0) {
+          double mass = 0.0;
+          Vec<2> mom{};
+          for (std::size_t f = 0; f < fields; ++f) mass += g.mass[node * fields + f], mom = mom + g.momentum[node * fields + f];
+          if (mass > 0.0) vn = (1.0 / mass) * mom;
+        } else {
+          const int field = cracks_.field(probe, g.node_position(node));
+          vn = g.velocity[node * fields + static_cast<std::size_t>(field)];
+        }
+        v = v + w * vn;
+      }
+      return v;
+    };
+    auto& cracks = cracks_.cracks();
+    for (std::size_t c = 0; c < cracks.size(); ++c) {
+      auto& crack = cracks[c];
+      const std::size_t n = crack.points.size();
+      std::vector<Vec<2>> v_mid(n), v_up(n), v_down(n);
+      for (std::size_t k = 0; k < n; ++k) {
+        const Vec<2> nrm = cracks_.normal(c, k);
+        const double eps = 1e-6 * g.cell_size;
+        v_mid[k] = velocity(crack.points[k], 0, crack.points[k]);
+        v_up[k] = velocity(crack.above[k], 1, crack.points[k] + eps * nrm);
+        v_down[k] = velocity(crack.below[k], 2, crack.points[k] - eps * nrm);
+      }
+      for (std::size_t k = 0; k < n; ++k) {
+        crack.points[k] = crack.points[k] + dt * v_mid[k];
+        crack.above[k] = crack.above[k] + dt * v_up[k];
+        crack.below[k] = crack.below[k] + dt * v_down[k];
+      }
+    }
+    cracks_.update_bounds();
+  }
 }
 
 template class Solver<2>;

@@ -11,6 +11,7 @@
 #include <optional>
 #include <vector>
 
+#include "rift/mpm/crack.hpp"
 #include "rift/mpm/model.hpp"
 #include "rift/scene/scene.hpp"
 
@@ -34,6 +35,8 @@ class Solver {
     double time = 0.0, kinetic = 0.0, strain = 0.0;
   };
   const Energy& measured_energy() const { return energy_; }
+  /// Explicit cracks (2D), with their crack particles and surfaces moved every step.
+  const CrackSet& cracks() const { return cracks_; }
 
  private:
   struct GridCondition {
@@ -51,6 +54,11 @@ class Solver {
   void update_stress(Model<D>& m, double dt);
   void apply_grid_conditions(Model<D>& m, double t, bool on_momentum);
   void apply_contact(Model<D>& m);
+  /// Velocity field of material point p at a node: crack side (CRAMP), body (multi-material
+  /// contact) or the single shared field.
+  /// (q: the node's place in the point's stencil, for the per-step crack-field cache)
+  std::size_t field_of(const Model<D>& m, std::size_t p, int q) const;
+  void move_cracks(const Model<D>& m, double dt);
 
   scene::Mpm settings_;
   std::vector<GridCondition> conditions_;
@@ -58,6 +66,10 @@ class Solver {
   std::vector<Grid<D>> thread_grids_;
   std::vector<Vec<D>> start_position_;
   std::vector<Vec<D>> start_velocity_;
+  CrackSet cracks_;
+  std::vector<std::uint8_t> near_crack_;  // material points whose stencil may reach across a crack
+  std::vector<std::uint8_t> crack_field_; // per point and stencil node: CRAMP field of the step
+  scene::Mpm::Contact crack_contact_ = scene::Mpm::Contact::frictionless;
   bool measure_ = false;
   double cell_volume_ = 0.0, contact_volume_ = 0.9;
   Energy energy_;  // x_p at the start of the step: every transfer of the step uses S_ip(x_p^n)

@@ -97,7 +97,13 @@ template <int D>
 void build_bonds(const scene::Scene& s, Model<D>& m, const std::vector<std::array<long, 3>>& lattice_index) {
   const std::size_t n = m.size();
   std::vector<geometry::PreCrack> cracks;
-  for (const auto& c : s.cracks) cracks.emplace_back(D, c.points);
+  for (const auto& c : s.cracks) {
+    if (D == 2) {  // a polyline: one segment each
+      for (std::size_t k = 0; k + 1 < c.points.size(); ++k) cracks.emplace_back(D, std::vector<Point3>{c.points[k], c.points[k + 1]});
+    } else {
+      cracks.emplace_back(D, c.points);
+    }
+  }
   std::vector<std::vector<std::int32_t>> nb(n);
   std::vector<std::vector<float>> frac(n);
   for (std::size_t bi = 0; bi < m.bodies.size(); ++bi) {

@@ -24,8 +24,6 @@ struct MpmRun {
   long steps = 0;
 
   explicit MpmRun(const scene::Scene& s) : model(mpm::discretize<D>(s)), solver(s, model) {
-    if (!s.cracks.empty())
-      throw SceneError(s.cracks.front().where, "cracks", "explicit cracks for the material point method are not available yet");
     stable_dt = solver.stable_time_step(model);
     if (s.solver.time_step) {
       if (*s.solver.time_step > stable_dt)

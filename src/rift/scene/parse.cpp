@@ -317,8 +317,7 @@ void parse_cracks(R& root, Scene& s) {
   for_each_entry(root, "cracks", s.file, [&](R& r, std::size_t) {
     Crack c;
     c.where = r.where();
-    c.points = point_list(r, "points", s.dimension, s.dimension == 2 ? 2 : 3);
-    if (s.dimension == 2 && c.points.size() != 2) r.fail("points", "a 2D crack is a segment: exactly two points");
+    c.points = point_list(r, "points", s.dimension, s.dimension == 2 ? 2 : 3);  // 2D: a polyline; 3D: a planar polygon
     r.finish({"points"});
     s.cracks.push_back(c);
   });
@@ -431,16 +430,20 @@ void parse_mpm(R& root, Scene& s) {
   if (auto v = r.choice("contact", {"none", "frictionless", "friction", "stick"}))
     m.contact = *v == "none" ? Mpm::Contact::none : *v == "frictionless" ? Mpm::Contact::frictionless
               : *v == "friction" ? Mpm::Contact::friction : Mpm::Contact::stick;
+  if (auto v = r.choice("crack_contact", {"none", "frictionless", "friction"}))
+    m.crack_contact = *v == "none" ? Mpm::Contact::none : *v == "frictionless" ? Mpm::Contact::frictionless : Mpm::Contact::friction;
+  const bool frictional = m.contact == Mpm::Contact::friction || m.crack_contact == Mpm::Contact::friction;
   if (auto v = r.number("friction")) {
-    if (m.contact != Mpm::Contact::friction) r.fail("friction", "only with contact = \"friction\"");
+    if (!frictional) r.fail("friction", "only with contact or crack_contact = \"friction\"");
     m.friction = r.non_negative("friction", *v);
-  } else if (m.contact == Mpm::Contact::friction) {
-    throw SceneError(r.where(), r.key("friction"), "missing required key (Coulomb coefficient) for contact = \"friction\"");
+  } else if (frictional) {
+    throw SceneError(r.where(), r.key("friction"), "missing required key (Coulomb coefficient) for \"friction\" contact");
   }
   if (r.has("grid_min")) m.grid_min = point(r, "grid_min", s.dimension, true);
   if (r.has("grid_max")) m.grid_max = point(r, "grid_max", s.dimension, true);
   if (m.grid_min.has_value() != m.grid_max.has_value()) r.fail(m.grid_min ? "grid_min" : "grid_max", "give both grid_min and grid_max");
-  r.finish({"cell_size", "shape", "scheme", "transfer", "flip_fraction", "damping", "contact", "friction", "grid_min", "grid_max"});
+  r.finish({"cell_size", "shape", "scheme", "transfer", "flip_fraction", "damping", "contact", "crack_contact", "friction", "grid_min",
+             "grid_max"});
 }
 
 void parse_contact(R& root, Scene& s) {

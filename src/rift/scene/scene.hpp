@@ -124,7 +124,9 @@ struct Mpm {
   enum class Transfer { flip, apic } transfer = Transfer::flip;
   /// Multi-material contact between bodies (Bardenhagen et al. 2001); none: one shared velocity field.
   enum class Contact { none, frictionless, friction, stick } contact = Contact::none;
-  double friction = 0.0;  // Coulomb coefficient (contact = friction)
+  double friction = 0.0;  // Coulomb coefficient (contact or crack_contact = friction)
+  /// Contact of the two faces of an explicit crack where it is closed (Nairn 2003).
+  Contact crack_contact = Contact::frictionless;
   double cell_size = 0.0;
   double flip_fraction = 1.0;  // velocity update: flip_fraction * FLIP + (1 - flip_fraction) * PIC
   double damping = 0.0;        // mass-proportional (external) damping coefficient, 1/s
