@@ -78,6 +78,7 @@ TEST(Constitutive, J2ReturnAndNeoHookean) {
 
 #include "rift/mpm/crack.hpp"
 #include "rift/mpm/discretize.hpp"
+#include "rift/mpm/j_integral.hpp"
 #include "rift/mpm/solver.hpp"
 #include "rift/scene/parse.hpp"
 
@@ -156,6 +157,9 @@ end_time = 1e-4
   const auto tip = solver.cracks().opening(0, crack.points.size() - 1);
   EXPECT_GT(std::abs(mouth[0]), 1e-6);  // the mouth opened (the normal points to y < 0: negative sign)
   EXPECT_LT(std::abs(tip[0]), 0.2 * std::abs(mouth[0]));
+  // the J-integral runs on a young crack (its accuracy is validated by validation/cases/mpm_dcb.cpp)
+  const auto k = rift::mpm::crack_tip_parameters(m, solver.cracks(), 0, 2, s.plane, 1e7, 0.3);
+  EXPECT_TRUE(std::isfinite(k.J1) && std::isfinite(k.J2) && std::isfinite(k.KI) && std::isfinite(k.KII));
 
   auto bad = s;
   bad.mpm.grid_min = rift::Point3{-0.003, -0.004, 0.0};  // grid line at y = 0.004: on the crack

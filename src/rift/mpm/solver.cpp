@@ -10,64 +10,11 @@
 #include "rift/geometry/region.hpp"
 #include "rift/load/time_function.hpp"
 #include "rift/mpm/energy.hpp"
+#include "rift/mpm/stencil.hpp"
 
 namespace rift::mpm {
 
 namespace {
-
-template <int D>
-struct Stencil {
-  static constexpr int capacity = D == 3 ? 64 : 16;
-  int count = 0;
-  std::array<std::size_t, capacity> node{};
-  std::array<double, capacity> weight{};
-  std::array<Vec<D>, capacity> gradient{};
-};
-
-/// Records the first material point that left the grid inside a parallel loop (exceptions must
-/// not cross an OpenMP region); raise() throws after the loop.
-struct LostParticle {
-  long index = -1;
-  void record(std::size_t p) {
-#pragma omp critical(rift_mpm_lost)
-    if (index < 0 || static_cast<long>(p) < index) index = static_cast<long>(p);
-  }
-  void raise(double time) const {
-    if (index >= 0)
-      throw PhysicsError("material point " + std::to_string(index) + " left the background grid at t = " + std::to_string(time) +
-                         " s; enlarge [mpm] grid_min / grid_max");
-  }
-};
-
-/// Tensor-product shape functions of the particle at x: nodes, weights S_ip, gradients grad S_ip.
-/// Returns false (count 0) when the particle's stencil reaches past the grid.
-template <int D>
-bool make_stencil(const Model<D>& m, const Vec<D>& x, Stencil<D>& st) {
-  const auto& g = m.grid;
-  std::array<Stencil1, 3> s;
-  st.count = 0;
-  for (int a = 0; a < 3; ++a) {
-    if (a < D) {
-      s[a] = stencil_1d(m.shape, x[a] - g.origin[a], g.cell_size, m.particle_half_width);
-      if (s[a].first < 0 || s[a].first + s[a].count > g.nodes[a] || !std::isfinite(x[a])) return false;
-    } else {
-      s[a].first = 0, s[a].count = 1, s[a].weight = {1, 0, 0, 0}, s[a].gradient = {0, 0, 0, 0};
-    }
-  }
-  st.count = 0;
-  for (int k = 0; k < s[2].count; ++k)
-    for (int j = 0; j < s[1].count; ++j)
-      for (int i = 0; i < s[0].count; ++i) {
-        const std::size_t q = static_cast<std::size_t>(st.count++);
-        st.node[q] = g.index(s[0].first + i, s[1].first + j, s[2].first + k);
-        const double wx = s[0].weight[i], wy = s[1].weight[j], wz = s[2].weight[k];
-        st.weight[q] = wx * wy * wz;
-        st.gradient[q][0] = s[0].gradient[i] * wy * wz;
-        if constexpr (D >= 2) st.gradient[q][1] = wx * s[1].gradient[j] * wz;
-        if constexpr (D == 3) st.gradient[q][2] = wx * wy * s[2].gradient[k];
-      }
-  return true;
-}
 
 template <int D>
 std::vector<std::size_t> nodes_in(const scene::Scene& s, const Grid<D>& g, const std::string& region) {
@@ -294,6 +241,8 @@ void Solver<D>::apply_contact(Model<D>& m) {
     }
     if (present < 2) continue;
     scene::Mpm::Contact kind = settings_.contact;
+    Vec<D> crack_normal{};  // crack faces: the crack's normal, pointing to its "above" side
+    bool node_above = false;
     if constexpr (D == 2) {
       if (!cracks_.empty()) {
         // crack faces: in contact only where the crack is closed (no positive opening nearby)
@@ -301,6 +250,8 @@ void Solver<D>::apply_contact(Model<D>& m) {
         if (kind == C::none) continue;
         const auto near = cracks_.nearest(g.node_position(node));
         if (cracks_.opening(near.crack, near.particle)[0] > 1e-6 * g.cell_size) continue;
+        crack_normal = cracks_.normal(near.crack, near.particle);
+        node_above = dot<D>(g.node_position(node) - cracks_.cracks()[near.crack].points[near.particle], crack_normal) >= 0.0;
       }
     }
     // bodies touch at this node only when together they fill its cell (their stencils already
@@ -310,12 +261,20 @@ void Solver<D>::apply_contact(Model<D>& m) {
     for (std::size_t f = 0; f < fields; ++f) {
       const std::size_t n = base + f;
       if (g.mass[n] <= tiny) continue;
-      // mass_gradient holds sum m_p dS/dx_p = -grad m (the gradient with respect to the node is the
-      // opposite), so grad m_others - grad m_f = 2 mass_gradient_f - sum of all
-      Vec<D> normal = 2.0 * g.mass_gradient[n] - gradient;
-      const double length = norm<D>(normal);
-      if (length == 0.0) continue;
-      normal = (1.0 / length) * normal;
+      Vec<D> normal;
+      if (!cracks_.empty()) {
+        // field 1 holds the material above the crack, field 2 below, field 0 the node's own side;
+        // each is pushed toward the other face
+        const bool above = f == 1 || (f == 0 && node_above);
+        normal = (above ? -1.0 : 1.0) * crack_normal;
+      } else {
+        // mass_gradient holds sum m_p dS/dx_p = -grad m (the gradient with respect to the node is the
+        // opposite), so grad m_others - grad m_f = 2 mass_gradient_f - sum of all
+        normal = 2.0 * g.mass_gradient[n] - gradient;
+        const double length = norm<D>(normal);
+        if (length == 0.0) continue;
+        normal = (1.0 / length) * normal;
+      }
       const Vec<D> dv = g.velocity[n] - v_cm;
       const double approach = dot<D>(dv, normal);
       if (approach <= 0.0) continue;  // separating: free
