@@ -24,4 +24,17 @@ class Region {
   std::vector<Region> children_;
 };
 
+/// Indices i in [0, n) whose point position(i) (a D-vector) lies inside the region.
+template <int D, class Position>
+std::vector<std::size_t> indices_inside(const Region& region, std::size_t n, Position&& position) {
+  std::vector<std::size_t> out;
+  for (std::size_t i = 0; i < n; ++i) {
+    const auto x = position(i);
+    Point3 p{0, 0, 0};
+    for (int a = 0; a < D; ++a) p[a] = x[a];
+    if (region.contains(p)) out.push_back(i);
+  }
+  return out;
+}
+
 }  // namespace rift::geometry

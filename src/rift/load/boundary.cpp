@@ -8,14 +8,8 @@ namespace rift::load {
 namespace {
 template <int D>
 std::vector<std::size_t> select(const scene::Scene& s, const pd::Model<D>& m, const std::string& region) {
-  auto r = geometry::Region::build(s, region);
-  std::vector<std::size_t> out;
-  for (std::size_t i = 0; i < m.size(); ++i) {
-    Point3 p{0, 0, 0};
-    for (int k = 0; k < D; ++k) p[k] = m.reference_position[i][k];
-    if (r.contains(p)) out.push_back(i);
-  }
-  return out;
+  return geometry::indices_inside<D>(geometry::Region::build(s, region), m.size(),
+                                     [&](std::size_t i) { return m.reference_position[i]; });
 }
 }  // namespace
 

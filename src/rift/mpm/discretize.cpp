@@ -103,16 +103,11 @@ Model<D> discretize(const scene::Scene& s) {
     m.bodies.push_back(info);
   }
   for (const auto& iv : s.initial_velocities) {
-    auto region = geometry::Region::build(s, iv.region);
-    std::size_t count = 0;
-    for (std::size_t i = 0; i < ps.size(); ++i) {
-      Point3 p{0, 0, 0};
-      for (int a = 0; a < D; ++a) p[a] = ps.position[i][a];
-      if (!region.contains(p)) continue;
+    const auto selected = geometry::indices_inside<D>(geometry::Region::build(s, iv.region), ps.size(),
+                                                      [&](std::size_t i) { return ps.position[i]; });
+    for (auto i : selected)
       for (int a = 0; a < D; ++a) ps.velocity[i][a] = iv.velocity[a];
-      ++count;
-    }
-    if (count == 0) throw SceneError(iv.where, "initial_velocity.region", "region \"" + iv.region + "\" selects no material point");
+    if (selected.empty()) throw SceneError(iv.where, "initial_velocity.region", "region \"" + iv.region + "\" selects no material point");
   }
   return m;
 }

@@ -18,27 +18,13 @@ namespace {
 
 template <int D>
 std::vector<std::size_t> nodes_in(const scene::Scene& s, const Grid<D>& g, const std::string& region) {
-  auto r = geometry::Region::build(s, region);
-  std::vector<std::size_t> out;
-  for (std::size_t n = 0; n < g.size(); ++n) {
-    const Vec<D> x = g.node_position(n);
-    Point3 p{0, 0, 0};
-    for (int a = 0; a < D; ++a) p[a] = x[a];
-    if (r.contains(p)) out.push_back(n);
-  }
-  return out;
+  return geometry::indices_inside<D>(geometry::Region::build(s, region), g.size(), [&](std::size_t n) { return g.node_position(n); });
 }
 
 template <int D>
 std::vector<std::size_t> particles_in(const scene::Scene& s, const Particles<D>& ps, const std::string& region) {
-  auto r = geometry::Region::build(s, region);
-  std::vector<std::size_t> out;
-  for (std::size_t i = 0; i < ps.size(); ++i) {
-    Point3 p{0, 0, 0};
-    for (int a = 0; a < D; ++a) p[a] = ps.reference_position[i][a];
-    if (r.contains(p)) out.push_back(i);
-  }
-  return out;
+  return geometry::indices_inside<D>(geometry::Region::build(s, region), ps.size(),
+                                     [&](std::size_t i) { return ps.reference_position[i]; });
 }
 
 }  // namespace

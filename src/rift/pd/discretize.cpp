@@ -237,16 +237,11 @@ Model<D> discretize(const scene::Scene& s) {
   compute_dilatation_weights<D>(m);
 
   for (const auto& iv : s.initial_velocities) {
-    auto region = geometry::Region::build(s, iv.region);
-    std::size_t count = 0;
-    for (std::size_t i = 0; i < n; ++i) {
-      Point3 p{0, 0, 0};
-      for (int k = 0; k < D; ++k) p[k] = m.reference_position[i][k];
-      if (!region.contains(p)) continue;
+    const auto selected = geometry::indices_inside<D>(geometry::Region::build(s, iv.region), n,
+                                                      [&](std::size_t i) { return m.reference_position[i]; });
+    for (auto i : selected)
       for (int k = 0; k < D; ++k) m.velocity[i][k] = iv.velocity[k];
-      ++count;
-    }
-    if (count == 0)
+    if (selected.empty())
       throw SceneError(iv.where, "initial_velocity.region", "region \"" + iv.region + "\" selects no particle");
   }
   return m;

@@ -11,6 +11,7 @@
 #include "rift/mpm/discretize.hpp"
 #include "rift/mpm/energy.hpp"
 #include "rift/mpm/solver.hpp"
+#include "rift/run/time_step.hpp"
 
 namespace rift::run {
 
@@ -25,17 +26,9 @@ struct MpmRun {
 
   explicit MpmRun(const scene::Scene& s) : model(mpm::discretize<D>(s)), solver(s, model) {
     stable_dt = solver.stable_time_step(model);
-    if (s.solver.time_step) {
-      if (*s.solver.time_step > stable_dt)
-        throw SceneError(s.solver.time_step_where, "solver.time_step",
-                         "time step " + std::to_string(*s.solver.time_step) + " s exceeds the stable limit " + std::to_string(stable_dt) +
-                             " s (cell size / wave speed); use a smaller value or safety_factor");
-      dt = *s.solver.time_step;
-    } else {
-      dt = s.solver.safety_factor * stable_dt;
-    }
-    steps = std::max(1L, static_cast<long>(std::ceil(s.solver.end_time / dt - 1e-9)));
-    dt = s.solver.end_time / double(steps);
+    const auto plan = explicit_steps(s.solver, stable_dt, "cell size / wave speed");
+    dt = plan.dt;
+    steps = plan.steps;
   }
 };
 
