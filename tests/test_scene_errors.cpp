@@ -207,6 +207,8 @@ const MpmCase mpm_cases[] = {
     {"j2 without yield stress", "model = \"linear_elastic\"", "model = \"j2_plasticity\"", "materials.steel.yield_stress"},
     {"fixed region without grid nodes", "max = [0.0, 0.02]", "max = [-0.0095, -0.0095]", "boundaries[0].region"},
     {"mpm table in a peridynamic scene", "method = \"mpm\"", "method = \"peridynamics\"", ""},
+    {"J contour of zero cells", "cell_size = 0.001", "cell_size = 0.001\nj_contour = 0", "mpm.j_contour"},
+    {"J area term not a boolean", "cell_size = 0.001", "cell_size = 0.001\nj_area_term = \"yes\"", "mpm.j_area_term"},
 };
 
 class MpmSceneErrors : public ::testing::TestWithParam<MpmCase> {};

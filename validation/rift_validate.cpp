@@ -3,6 +3,7 @@
 // Exit status 0 when every case passes, 1 otherwise, 2 for an unknown case.
 #include <cstdio>
 #include <cstring>
+#include <exception>
 #include <filesystem>
 #include <string>
 #include <vector>
@@ -34,7 +35,14 @@ int main(int argc, char** argv) {
       std::fprintf(stderr, "rift-validate: unknown case '%s' (--list shows them)\n", name.c_str());
       return 2;
     }
-    auto r = entry->run(settings);
+    rift::validation::Result r;
+    try {
+      r = entry->run(settings);
+    } catch (const std::exception& e) {  // a case that cannot finish fails with the reason
+      r.name = name;
+      r.pass = false;
+      r.details = std::string("stopped: ") + e.what();
+    }
     all_pass = all_pass && r.pass;
     std::printf("%s %s measured=%.6g reference=%.6g tolerance=%.6g unit=\"%s\" details=\"%s\" source=\"%s\"\n", name.c_str(),
                 r.pass ? "PASS" : "FAIL", r.measured, r.reference, r.tolerance, r.unit.c_str(), r.details.c_str(), r.source.c_str());

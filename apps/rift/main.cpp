@@ -43,15 +43,19 @@ int main(int argc, char** argv) {
     }
     rift::run::Options options{output_dir, threads, quiet};
     auto r = rift::run::run(scene, options);
-    std::printf("rift: %ld steps, t = %.6g s, kinetic energy %.6g J, strain energy %.6g J, broken bonds %lld, max damage %.3f\n",
-                r.steps, r.time, r.final_energy.kinetic, r.final_energy.strain,
-                static_cast<long long>(r.final_energy.broken_bonds), r.max_damage);
+    if (scene.method == rift::scene::Method::mpm)
+      std::printf("rift: %ld steps, t = %.6g s, kinetic energy %.6g J, strain energy %.6g J\n", r.steps, r.time, r.final_energy.kinetic,
+                  r.final_energy.strain);
+    else
+      std::printf("rift: %ld steps, t = %.6g s, kinetic energy %.6g J, strain energy %.6g J, broken bonds %lld, max damage %.3f\n",
+                  r.steps, r.time, r.final_energy.kinetic, r.final_energy.strain, static_cast<long long>(r.final_energy.broken_bonds),
+                  r.max_damage);
     std::printf("rift: loop time %.6g s (%.4g s per step, %d threads)\n", r.loop_seconds, r.loop_seconds / double(std::max(1L, r.steps)),
                 omp_get_max_threads());
     std::printf("results in %s/\n  fields   %s (open in ParaView)\n  history  %s\n", r.output_dir.c_str(), r.fields_xdmf.c_str(),
                 r.history_csv.c_str());
-    if (!r.damage_png.empty()) std::printf("  damage   %s\n", r.damage_png.c_str());
-    if (!r.damage_png_note.empty()) std::printf("  damage image not written: %s\n", r.damage_png_note.c_str());
+    for (const auto& [what, path] : r.files) std::printf("  %-8s %s\n", what.c_str(), path.c_str());
+    for (const auto& note : r.notes) std::printf("  %s\n", note.c_str());
     return 0;
   } catch (const rift::SceneError& e) {
     std::fprintf(stderr, "%s\n", e.what());

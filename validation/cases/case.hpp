@@ -39,6 +39,11 @@ Result mpm_energy(const Settings&);
 Result mpm_cantilever(const Settings&);
 Result mpm_disks(const Settings&);
 Result mpm_dcb(const Settings&);
+Result mpm_enf(const Settings&);
+Result mpm_mixed_mode(const Settings&);
+Result mpm_cct(const Settings&);
+Result mpm_sent(const Settings&);
+Result mpm_denp(const Settings&);
 
 struct Entry {
   const char* name;

@@ -14,6 +14,11 @@ const std::vector<Entry>& all_cases() {
       {"glass_branching", glass_branching},       {"mpm_energy", mpm_energy},
       {"mpm_cantilever", mpm_cantilever},         {"mpm_disks", mpm_disks},
       {"mpm_dcb", mpm_dcb},
+      {"mpm_enf", mpm_enf},
+      {"mpm_mixed_mode", mpm_mixed_mode},
+      {"mpm_cct", mpm_cct},
+      {"mpm_sent", mpm_sent},
+      {"mpm_denp", mpm_denp},
   };
   return cases;
 }

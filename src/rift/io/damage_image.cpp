@@ -1,26 +1,12 @@
 #include "rift/io/damage_image.hpp"
 
-#include <unistd.h>
-
 #include <cstdio>
 #include <fstream>
 
 #include "rift/io/plot_damage_script.hpp"  // generated from share/plot_damage.py
+#include "rift/io/python_plot.hpp"
 
 namespace rift::io {
-
-namespace {
-std::string python() {
-  // Debian's interpreter carries python3-matplotlib; a python3 earlier on PATH may not.
-  if (access("/usr/bin/python3", X_OK) == 0) return "/usr/bin/python3";
-  return "python3";
-}
-std::string quote(const std::string& s) {
-  std::string q = "'";
-  for (char c : s) q += c == '\'' ? std::string("'\\''") : std::string(1, c);
-  return q + "'";
-}
-}  // namespace
 
 bool write_damage_image(const std::string& directory, const std::string& png, const std::vector<double>& x,
                         const std::vector<double>& y, const std::vector<double>& damage, const std::string& title,
@@ -35,19 +21,7 @@ bool write_damage_image(const std::string& directory, const std::string& png, co
       out << line;
     }
   }
-  const std::string cmd = python() + " - " + quote(csv) + " " + quote(png) + " " + quote(title) + " 2>&1";
-  std::FILE* p = popen(cmd.c_str(), "w");
-  if (!p) {
-    reason = "cannot start python3";
-    return false;
-  }
-  std::fputs(plot_damage_script, p);
-  int status = pclose(p);
-  if (status != 0) {
-    reason = "python3 with matplotlib failed (install python3-matplotlib)";
-    return false;
-  }
-  return true;
+  return run_python_script(plot_damage_script, {csv, png, title}, reason);
 }
 
 }  // namespace rift::io

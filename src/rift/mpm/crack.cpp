@@ -78,6 +78,26 @@ std::array<double, 2> CrackSet::opening(std::size_t c, std::size_t k) const {
   return {dot<2>(gap, n), dot<2>(gap, t)};
 }
 
+Vec<2> CrackSet::side_point(std::size_t c, std::size_t k, const Vec<2>& x, int side, double offset, std::size_t window) const {
+  const auto& pts = cracks_[c].points;
+  const std::size_t first = k > window ? k - window : 0, last = std::min(pts.size() - 1, k + window);
+  Vec<2> best = pts[k], best_normal = normal(c, k);
+  double best_distance = norm<2>(x - best);
+  for (std::size_t j = first; j < last; ++j) {
+    const Vec<2> e = pts[j + 1] - pts[j];
+    const double length2 = dot<2>(e, e);
+    if (length2 == 0.0) continue;
+    const double t = std::clamp(dot<2>(x - pts[j], e) / length2, 0.0, 1.0);
+    const Vec<2> q = pts[j] + t * e;
+    const double d = norm<2>(x - q);
+    if (d < best_distance) {
+      const double l = std::sqrt(length2);
+      best_distance = d, best = q, best_normal = {-e[1] / l, e[0] / l};
+    }
+  }
+  return best + ((side == 1 ? 1.0 : -1.0) * offset) * best_normal;
+}
+
 CrackSet::Nearest CrackSet::nearest(const Vec<2>& x) const {
   Nearest best;
   for (std::size_t c = 0; c < cracks_.size(); ++c)

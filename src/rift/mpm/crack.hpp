@@ -44,6 +44,11 @@ class CrackSet {
     double distance = 1e300;
   };
   Nearest nearest(const Vec<2>& x) const;
+  /// A point just on one side (1: above, 2: below) of crack c, next to x: the nearest point of the
+  /// crack's segments within `window` particles of particle k, moved `offset` along that side's
+  /// normal. Seen from it, a node's field is the one the material on that side uses there (crack
+  /// surfaces slide away from their crack particle, so the particle itself is not a safe probe).
+  Vec<2> side_point(std::size_t c, std::size_t k, const Vec<2>& x, int side, double offset, std::size_t window = 16) const;
   void update_bounds();
 
  private:

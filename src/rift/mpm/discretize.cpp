@@ -74,6 +74,7 @@ Model<D> discretize(const scene::Scene& s) {
     info.constants = continuum_constants(s, s.materials[b.material]);
     const double spacing = h / b.particles_per_cell;
     m.particle_half_width = 0.5 * spacing;
+    m.thickness = D == 2 ? s.thickness : 1.0;
     const double volume = std::pow(spacing, D) * (D == 2 ? s.thickness : 1.0);
     std::array<long, 3> count{1, 1, 1};
     for (int a = 0; a < D; ++a) count[a] = (m.grid.nodes[a] - 1) * b.particles_per_cell;

@@ -18,17 +18,54 @@ struct NodalField {
 
 }  // namespace
 
-CrackTipParameters crack_tip_parameters(const Model<2>& m, const CrackSet& cracks, std::size_t c, int cells,
-                                        scene::PlaneCondition plane, double youngs_modulus, double poisson_ratio) {
+namespace {
+
+/// The polyline's points ordered from the far end to the tip.
+struct TipGeometry {
+  Vec<2> tip, behind;
+  std::size_t next_point;  // crack particle next to the tip
+};
+
+TipGeometry tip_geometry(const CrackSet& cracks, const CrackTip& t) {
+  const auto& pts = cracks.cracks()[t.crack].points;
+  if (t.end == TipEnd::end) return {pts.back(), pts[pts.size() - 2], pts.size() - 2};
+  return {pts.front(), pts[1], 1};
+}
+
+/// In-plane E' = 4 mu (lambda' + mu) / (lambda' + 2 mu) of the 2D constants: E in plane stress
+/// (lambda' = lambda*), E / (1 - nu^2) in plane strain.
+double plane_modulus(const material::Constants& c) {
+  return 4.0 * c.shear_modulus * (c.lambda + c.shear_modulus) / (c.lambda + 2.0 * c.shear_modulus);
+}
+
+}  // namespace
+
+std::vector<CrackTip> interior_tips(const Model<2>& m, const CrackSet& cracks) {
+  std::vector<CrackTip> tips;
+  const double h = m.grid.cell_size;
+  for (std::size_t c = 0; c < cracks.cracks().size(); ++c)
+    for (TipEnd e : {TipEnd::start, TipEnd::end}) {
+      const auto g = tip_geometry(cracks, {c, e});
+      const Vec<2> dir = (1.0 / norm<2>(g.tip - g.behind)) * (g.tip - g.behind);
+      const Vec<2> ahead = g.tip + (0.5 * h) * dir;
+      bool inside = false;
+      for (std::size_t p = 0; p < m.particles.size() && !inside; ++p) inside = norm<2>(m.particles.position[p] - ahead) < h;
+      if (inside) tips.push_back({c, e});
+    }
+  return tips;
+}
+
+CrackTipParameters crack_tip_parameters(const Model<2>& m, const Solver<2>& solver, const CrackTip& t, const JContour& contour) {
   const auto& g = m.grid;
   const auto& ps = m.particles;
+  const auto& cracks = solver.cracks();
   const std::size_t fields = static_cast<std::size_t>(g.fields);
-  const auto& crack = cracks.cracks()[c];
-  const std::size_t tip_index = crack.points.size() - 1;
-  const Vec<2> tip = crack.points[tip_index];
-  const Vec<2> behind = crack.points[tip_index - 1];
+  const int cells = contour.cells;
+  const auto geo = tip_geometry(cracks, t);
+  const Vec<2> tip = geo.tip;
   CrackTipParameters out;
-  out.angle = std::atan2(tip[1] - behind[1], tip[0] - behind[0]);
+  out.position = tip;
+  out.angle = std::atan2(tip[1] - geo.behind[1], tip[0] - geo.behind[0]);
   // 1. extrapolate to the nodes of the contour's neighbourhood, per field
   const double h = g.cell_size;
   const long ci = std::lround((tip[0] - g.origin[0]) / h), cj = std::lround((tip[1] - g.origin[1]) / h);
@@ -59,6 +96,7 @@ CrackTipParameters crack_tip_parameters(const Model<2>& m, const CrackSet& crack
     if (n.mass > 0.0)
       for (auto& v : n.value) v /= n.mass;
   // 2. the contour: grid nodes around (ci, cj), counter-clockwise, as positions
+  if (ci - cells < 0 || cj - cells < 0 || ci + cells >= g.nodes[0] || cj + cells >= g.nodes[1]) return out;
   std::vector<std::array<long, 2>> ring;
   for (long i = ci + cells; i >= ci - cells; --i) ring.push_back({i, cj + cells});   // top, right to left
   for (long j = cj + cells - 1; j >= cj - cells; --j) ring.push_back({ci - cells, j});  // left, down
@@ -76,6 +114,7 @@ CrackTipParameters crack_tip_parameters(const Model<2>& m, const CrackSet& crack
     }
   }
   if (cut == count) return out;  // the contour misses the crack (tip too near an edge)
+  out.valid = true;
   // 3. integrate from the far end of the cut segment around to its near end: each face of the
   // crack uses the field of the material on its side
   const Vec<2> a0 = position(ring[cut]), b0 = position(ring[(cut + 1) % count]);
@@ -138,22 +177,54 @@ CrackTipParameters crack_tip_parameters(const Model<2>& m, const CrackSet& crack
     jx += 0.5 * (fa[0] + fb[0]) * length;
     jy += 0.5 * (fa[1] + fb[1]) * length;
   }
-  // per unit thickness (the stresses are per area already)
+  // 4. area term (eq. 8): material points inside the contour
+  double area_x = 0.0, area_y = 0.0;
+  const auto& acceleration = solver.accelerations();
+  const auto& velocity_gradient = solver.velocity_gradients();
+  std::size_t nearest = ps.size();
+  double nearest_distance = 1e300;
+  for (std::size_t p = 0; p < ps.size(); ++p) {
+    const auto& x = ps.position[p];
+    const double d = norm<2>(x - tip);
+    if (d < nearest_distance) nearest_distance = d, nearest = p;
+    if (!contour.area_term || acceleration.size() != ps.size()) continue;
+    const double u = (x[0] - g.origin[0]) / h - double(ci), w = (x[1] - g.origin[1]) / h - double(cj);
+    if (std::abs(u) >= cells || std::abs(w) >= cells) continue;
+    const Tensor<2> H = ps.deformation_gradient[p] - Tensor<2>::Identity();  // du_i/dx_m (small strain)
+    const Tensor<2>& L = velocity_gradient[p];                                // dv_i/dx_m
+    const Vec<2>& a = acceleration[p];
+    const Vec<2>& v = ps.velocity[p];
+    area_x += ps.mass[p] * (a[0] * H(0, 0) + a[1] * H(1, 0) - v[0] * L(0, 0) - v[1] * L(1, 0));
+    area_y += ps.mass[p] * (a[0] * H(0, 1) + a[1] * H(1, 1) - v[0] * L(0, 1) - v[1] * L(1, 1));
+  }
+  // the particle masses carry the thickness; J is per unit thickness like the contour term
+  const double thickness = m.thickness;
+  area_x /= thickness, area_y /= thickness;
+  out.J1_area = area_x * c1 + area_y * s1;
+  jx += area_x, jy += area_y;
   out.J1 = jx * c1 + jy * s1;
   out.J2 = -jx * s1 + jy * c1;
   out.G = out.J1;  // eq. 10 with the crack growing straight ahead
-  // 4. K_I, K_II by the opening/sliding partition at the crack point next to the tip
-  const auto cod = cracks.opening(c, tip_index - 1);
-  // opening() measures along the crack's left normal; with the tip at the end of the list the left
-  // normal of the growth direction is the "above" side, so d_n > 0 when the crack opens
+  // 5. K_I, K_II by the opening/sliding partition at the crack point next to the tip. opening()
+  // measures (above - below) along the crack's left normal and tangent; in crack-tip axes of either
+  // end the opening and the sliding keep their signs, so d_n > 0 when the crack opens and d_t > 0
+  // when the upper face moves along x_1
+  const auto cod = cracks.opening(t.crack, geo.next_point);
   out.opening = cod[0];
   out.sliding = cod[1];
-  const double E_prime = plane == scene::PlaneCondition::strain ? youngs_modulus / (1 - poisson_ratio * poisson_ratio) : youngs_modulus;
+  const double E_prime = nearest < ps.size() ? plane_modulus(m.bodies[ps.body[nearest]].constants) : 0.0;
   const double magnitude = std::hypot(out.opening, out.sliding);
   if (magnitude > 0.0 && out.G > 0.0) {
     const double k = std::sqrt(out.G * E_prime);
-    out.KI = out.opening / magnitude * k;
-    out.KII = out.sliding / magnitude * k;
+    if (solver.faces_closed(m, t.crack, geo.next_point)) {
+      // faces in contact behind the tip: no opening mode, all of G is sliding (the surfaces' few-um
+      // gap or overlap there is contact noise, not K_I)
+      out.KI = 0.0;
+      out.KII = (out.sliding < 0.0 ? -1.0 : 1.0) * k;
+    } else {
+      out.KI = out.opening / magnitude * k;
+      out.KII = out.sliding / magnitude * k;
+    }
   }
   return out;
 }

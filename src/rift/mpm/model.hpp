@@ -39,6 +39,7 @@ struct Grid {
   std::vector<Vec<D>> momentum, force, velocity, velocity_start;  // velocity_start: before the force update
   std::vector<Vec<D>> mass_gradient;  // sum m_p grad S_ip per field (contact normals; empty with one field)
   std::vector<double> volume;         // sum V_p S_ip per field (contact detection; empty with one field)
+  std::vector<Vec<D>> displacement;   // sum m_p u_p S_ip per field (crack contact detection; empty with one field)
 
   std::size_t size() const { return static_cast<std::size_t>(nodes[0] * nodes[1] * nodes[2]); }
   std::size_t slots() const { return size() * static_cast<std::size_t>(fields); }
@@ -63,6 +64,7 @@ struct Grid {
     velocity_start.assign(n, Vec<D>{});
     mass_gradient.assign(fields > 1 ? n : 0, Vec<D>{});
     volume.assign(fields > 1 ? n : 0, 0.0);
+    displacement.assign(fields > 1 ? n : 0, Vec<D>{});
   }
 };
 
@@ -79,6 +81,7 @@ struct Model {
   std::vector<BodyInfo> bodies;
   ShapeKind shape = ShapeKind::bspline2;
   double particle_half_width = 0.0;  // uGIMP l (half the particle spacing)
+  double thickness = 1.0;            // 2D: out-of-plane thickness in the particle volumes and masses, m
   double time = 0.0;
 };
 

@@ -104,6 +104,7 @@ void Solver<D>::scatter(Model<D>& m, bool momentum_only, bool internal_force) {
     std::fill(tg.force.begin(), tg.force.end(), Vec<D>{});
     std::fill(tg.mass_gradient.begin(), tg.mass_gradient.end(), Vec<D>{});
     std::fill(tg.volume.begin(), tg.volume.end(), 0.0);
+    std::fill(tg.displacement.begin(), tg.displacement.end(), Vec<D>{});
   }
   const std::size_t fields = static_cast<std::size_t>(m.grid.fields);
   const bool normals = fields > 1 && !momentum_only;
@@ -136,6 +137,7 @@ void Solver<D>::scatter(Model<D>& m, bool momentum_only, bool internal_force) {
         if (normals) {
           for (int a = 0; a < D; ++a) tg.mass_gradient[n][a] += mp * st.gradient[static_cast<std::size_t>(q)][a];
           tg.volume[n] += w * ps.volume[p];
+          for (int a = 0; a < D; ++a) tg.displacement[n][a] += w * mp * (start_position_[p][a] - ps.reference_position[p][a]);
         }
         if (momentum_only) continue;
         for (int a = 0; a < D; ++a) tg.force[n][a] += w * ps.external_force[p][a];
@@ -157,20 +159,20 @@ void Solver<D>::scatter(Model<D>& m, bool momentum_only, bool internal_force) {
 #pragma omp parallel for schedule(static)
   for (std::size_t n = 0; n < g.slots(); ++n) {
     double mass = 0.0;
-    Vec<D> mom{}, f{}, grad{};
+    Vec<D> mom{}, f{}, grad{}, u{};
     double volume = 0.0;
     for (const auto& tg : thread_grids_) {
       mass += tg.mass[n];
       for (int a = 0; a < D; ++a) mom[a] += tg.momentum[n][a], f[a] += tg.force[n][a];
       if (normals) {
-        for (int a = 0; a < D; ++a) grad[a] += tg.mass_gradient[n][a];
+        for (int a = 0; a < D; ++a) grad[a] += tg.mass_gradient[n][a], u[a] += tg.displacement[n][a];
         volume += tg.volume[n];
       }
     }
     g.mass[n] = mass;
     g.momentum[n] = mom;
     if (!momentum_only) g.force[n] = f;
-    if (normals) g.mass_gradient[n] = grad, g.volume[n] = volume;
+    if (normals) g.mass_gradient[n] = grad, g.volume[n] = volume, g.displacement[n] = u;
   }
 }
 
@@ -231,13 +233,21 @@ void Solver<D>::apply_contact(Model<D>& m) {
     bool node_above = false;
     if constexpr (D == 2) {
       if (!cracks_.empty()) {
-        // crack faces: in contact only where the crack is closed (no positive opening nearby)
         kind = crack_contact_;
         if (kind == C::none) continue;
         const auto near = cracks_.nearest(g.node_position(node));
-        if (cracks_.opening(near.crack, near.particle)[0] > 1e-6 * g.cell_size) continue;
         crack_normal = cracks_.normal(near.crack, near.particle);
         node_above = dot<D>(g.node_position(node) - cracks_.cracks()[near.crack].points[near.particle], crack_normal) >= 0.0;
+        // the faces touch only where the crack is closed: the displacements of the material above
+        // and below, extrapolated to this node, must not have opened it (the displacement check of
+        // Guo and Nairn 2006, sec. 2; the crack starts closed). Field 1 is above material, field 2
+        // below, field 0 the node's own side.
+        const std::size_t above = g.mass[base + 1] > tiny ? 1 : node_above ? 0 : fields;
+        const std::size_t below = g.mass[base + 2] > tiny ? 2 : !node_above ? 0 : fields;
+        if (above == fields || below == fields) continue;
+        const Vec<D> u_above = (1.0 / g.mass[base + above]) * g.displacement[base + above];
+        const Vec<D> u_below = (1.0 / g.mass[base + below]) * g.displacement[base + below];
+        if (dot<D>(u_above - u_below, crack_normal) > 0.0) continue;
       }
     }
     // bodies touch at this node only when together they fill its cell (their stencils already
@@ -280,7 +290,7 @@ void Solver<D>::apply_contact(Model<D>& m) {
 }
 
 template <int D>
-void Solver<D>::grid_velocities(Model<D>& m, double t, bool record_start) {
+void Solver<D>::grid_velocities(Model<D>& m, double t, bool record_start, bool contact) {
   auto& g = m.grid;
   const double tiny = 1e-12 * (m.particles.size() ? m.particles.mass[0] : 1.0);
 #pragma omp parallel for schedule(static)
@@ -290,7 +300,7 @@ void Solver<D>::grid_velocities(Model<D>& m, double t, bool record_start) {
     // corrections reach the particles too
     if (record_start) g.velocity_start[n] = g.velocity[n];
   }
-  if (g.fields > 1) apply_contact(m);
+  if (g.fields > 1 && contact) apply_contact(m);
   apply_grid_conditions(m, t, true);
 }
 
@@ -316,6 +326,7 @@ void Solver<D>::update_stress(Model<D>& m, double dt) {
         for (int a = 0; a < D; ++a)
           for (int b = 0; b < D; ++b) L(a, b) += v[a] * grad[b];
       }
+      if (!velocity_gradient_.empty()) velocity_gradient_[p] = L;
       Tensor<D>& F = ps.deformation_gradient[p];
       F = (Tensor<D>::Identity() + dt * L) * F;
       ps.volume[p] = ps.reference_volume[p] * F.determinant();
@@ -336,6 +347,8 @@ void Solver<D>::step(Model<D>& m, double dt) {
       // points farther than the stencil reach (2 cells) from every crack's box see no crack
       near_crack_.resize(ps.size());
       crack_field_.resize(ps.size() * Stencil<D>::capacity);
+      acceleration_.resize(ps.size());
+      velocity_gradient_.resize(ps.size());
       const double reach = 2.0 * g.cell_size;
 #pragma omp parallel
       {
@@ -396,7 +409,7 @@ void Solver<D>::step(Model<D>& m, double dt) {
         continue;
       }
       const std::size_t fields = static_cast<std::size_t>(g.fields);
-      Vec<D> pic{}, increment{};
+      Vec<D> pic{}, increment{}, start{};
       Tensor<D> B = Tensor<D>::Zero(), Dp = Tensor<D>::Zero();
       for (int q = 0; q < st.count; ++q) {
         const std::size_t node = st.node[static_cast<std::size_t>(q)];
@@ -404,6 +417,7 @@ void Solver<D>::step(Model<D>& m, double dt) {
         const double w = st.weight[static_cast<std::size_t>(q)];
         for (int a = 0; a < D; ++a) {
           pic[a] += w * g.velocity[n][a];
+          start[a] += w * g.velocity_start[n][a];
           increment[a] += w * (g.velocity[n][a] - g.velocity_start[n][a]);
         }
         if (apic) {
@@ -416,9 +430,14 @@ void Solver<D>::step(Model<D>& m, double dt) {
         ps.velocity[p] = pic;
         ps.affine_velocity[p] = B * Dp.inverse();  // C = B D^-1 (Jiang et al. 2015)
       } else {
-        for (int a = 0; a < D; ++a) ps.velocity[p][a] = flip * (ps.velocity[p][a] + increment[a]) + (1.0 - flip) * pic[a];
+        // FLIP keeps the part of v_p the grid does not see; the grid's damping does not reach it, so
+        // it is damped here at the same rate (else a damped run settles on the grid but its
+        // particles keep their noise)
+        for (int a = 0; a < D; ++a)
+          ps.velocity[p][a] = flip * (ps.velocity[p][a] + increment[a] - dt * alpha * (ps.velocity[p][a] - start[a])) + (1.0 - flip) * pic[a];
       }
       for (int a = 0; a < D; ++a) ps.position[p][a] += dt * pic[a];
+      if (!acceleration_.empty()) acceleration_[p] = (1.0 / dt) * increment;
     }
   }
   lost.raise(m.time);
@@ -433,11 +452,54 @@ void Solver<D>::step(Model<D>& m, double dt) {
   if (settings_.scheme == S::usl) {
     update_stress(m, dt);
   } else if (settings_.scheme == S::musl) {
+    if (g.fields > 1) stage_velocity_ = g.velocity;
     scatter(m, true, false);  // the new particle momenta back to the grid (Sulsky et al. 1995)
-    grid_velocities(m, t + dt, false);
+    grid_velocities(m, t + dt, false, g.fields == 1);
+    if (g.fields > 1) {
+      // at nodes where fields meet, the strain rate must come from the velocities the points moved
+      // with (contact-corrected); the remapped ones there would ratchet stress across the interface
+      const std::size_t fields = static_cast<std::size_t>(g.fields);
+      const double tiny = 1e-12 * (ps.size() ? ps.mass[0] : 1.0);
+#pragma omp parallel for schedule(static)
+      for (std::size_t node = 0; node < g.size(); ++node) {
+        int present = 0;
+        for (std::size_t f = 0; f < fields; ++f) present += g.mass[node * fields + f] > tiny;
+        if (present > 1)
+          for (std::size_t f = 0; f < fields; ++f) g.velocity[node * fields + f] = stage_velocity_[node * fields + f];
+      }
+    }
     update_stress(m, dt);
   }
   m.time = t + dt;
+}
+
+template <int D>
+bool Solver<D>::faces_closed(const Model<D>& m, std::size_t c, std::size_t k) const {
+  if constexpr (D == 2) {
+    if (crack_contact_ == scene::Mpm::Contact::none || m.grid.displacement.empty()) return false;
+    // the contact test at a point: displacements of the material on each side, extrapolated to
+    // the crack particle through the nodes of its stencil
+    const auto& g = m.grid;
+    const std::size_t fields = static_cast<std::size_t>(g.fields);
+    const Vec<2> x = cracks_.cracks()[c].points[k];
+    Stencil<2> st;
+    if (!make_stencil<2>(m, x, st)) return false;
+    Vec<2> u[2] = {{}, {}};
+    for (int side : {1, 2}) {
+      const Vec<2> probe = cracks_.side_point(c, k, x, side, 1e-6 * g.cell_size);
+      double mass = 0.0;
+      for (int q = 0; q < st.count; ++q) {
+        const std::size_t node = st.node[static_cast<std::size_t>(q)];
+        const std::size_t n = node * fields + static_cast<std::size_t>(cracks_.field(probe, g.node_position(node)));
+        mass += st.weight[static_cast<std::size_t>(q)] * g.mass[n];
+        u[side - 1] = u[side - 1] + st.weight[static_cast<std::size_t>(q)] * g.displacement[n];
+      }
+      if (mass <= 0.0) return false;
+      u[side - 1] = (1.0 / mass) * u[side - 1];
+    }
+    return dot<2>(u[0] - u[1], cracks_.normal(c, k)) <= 0.0;
+  }
+  return false;
 }
 
 template <int D>
@@ -447,38 +509,42 @@ void Solver<D>::move_cracks(const Model<D>& m, double dt) {
     // field it belongs to: the field a point just above (below) the crack would use
     const auto& g = m.grid;
     const std::size_t fields = static_cast<std::size_t>(g.fields);
+    // velocity at x: the momenta of the stencil's nodes over their masses, both weighted by the
+    // shape functions (v = sum S_i p_i / sum S_i m_i). Nodes where the chosen field has little mass
+    // (across the crack, where only the edge of a few points' support reaches) have erratic
+    // velocities; mass weighting keeps them from steering the surfaces
     auto velocity = [&](const Vec<2>& x, int side, const Vec<2>& probe) {
       Stencil<2> st;
-      Vec<2> v{};
-      if (!make_stencil<2>(m, x, st)) return v;
+      Vec<2> momentum{};
+      double mass = 0.0;
+      if (!make_stencil<2>(m, x, st)) return momentum;
       for (int q = 0; q < st.count; ++q) {
         const std::size_t node = st.node[static_cast<std::size_t>(q)];
         const double w = st.weight[static_cast<std::size_t>(q)];
-        Vec<2> vn{};
         if (side == 0) {
-          double mass = 0.0;
-          Vec<2> mom{};
-          for (std::size_t f = 0; f < fields; ++f) mass += g.mass[node * fields + f], mom = mom + g.momentum[node * fields + f];
-          if (mass > 0.0) vn = (1.0 / mass) * mom;
+          for (std::size_t f = 0; f < fields; ++f) {
+            const std::size_t n = node * fields + f;
+            mass += w * g.mass[n];
+            momentum = momentum + (w * g.mass[n]) * g.velocity[n];
+          }
         } else {
-          const int field = cracks_.field(probe, g.node_position(node));
-          vn = g.velocity[node * fields + static_cast<std::size_t>(field)];
+          const std::size_t n = node * fields + static_cast<std::size_t>(cracks_.field(probe, g.node_position(node)));
+          mass += w * g.mass[n];
+          momentum = momentum + (w * g.mass[n]) * g.velocity[n];
         }
-        v = v + w * vn;
       }
-      return v;
+      return mass > 0.0 ? (1.0 / mass) * momentum : momentum;
     };
     auto& cracks = cracks_.cracks();
     for (std::size_t c = 0; c < cracks.size(); ++c) {
       auto& crack = cracks[c];
       const std::size_t n = crack.points.size();
       std::vector<Vec<2>> v_mid(n), v_up(n), v_down(n);
+      const double eps = 1e-6 * g.cell_size;
       for (std::size_t k = 0; k < n; ++k) {
-        const Vec<2> nrm = cracks_.normal(c, k);
-        const double eps = 1e-6 * g.cell_size;
         v_mid[k] = velocity(crack.points[k], 0, crack.points[k]);
-        v_up[k] = velocity(crack.above[k], 1, crack.points[k] + eps * nrm);
-        v_down[k] = velocity(crack.below[k], 2, crack.points[k] - eps * nrm);
+        v_up[k] = velocity(crack.above[k], 1, cracks_.side_point(c, k, crack.above[k], 1, eps));
+        v_down[k] = velocity(crack.below[k], 2, cracks_.side_point(c, k, crack.below[k], 2, eps));
       }
       for (std::size_t k = 0; k < n; ++k) {
         crack.points[k] = crack.points[k] + dt * v_mid[k];

@@ -37,6 +37,13 @@ class Solver {
   const Energy& measured_energy() const { return energy_; }
   /// Explicit cracks (2D), with their crack particles and surfaces moved every step.
   const CrackSet& cracks() const { return cracks_; }
+  /// With cracks: each material point's acceleration and velocity gradient in the last step (for
+  /// the dynamic J-integral's area term); empty otherwise.
+  const std::vector<Vec<D>>& accelerations() const { return acceleration_; }
+  /// True when crack-face contact is on and the faces of crack c are closed at crack particle k by
+  /// the contact test (the displacements of the two sides, extrapolated through the grid).
+  bool faces_closed(const Model<D>& m, std::size_t c, std::size_t k) const;
+  const std::vector<Tensor<D>>& velocity_gradients() const { return velocity_gradient_; }
 
  private:
   struct GridCondition {
@@ -50,7 +57,7 @@ class Solver {
     scene::TimeFunction time;
   };
   void scatter(Model<D>& m, bool momentum_only, bool internal_force);
-  void grid_velocities(Model<D>& m, double t, bool record_start);
+  void grid_velocities(Model<D>& m, double t, bool record_start, bool contact = true);
   void update_stress(Model<D>& m, double dt);
   void apply_grid_conditions(Model<D>& m, double t, bool on_momentum);
   void apply_contact(Model<D>& m);
@@ -69,6 +76,9 @@ class Solver {
   CrackSet cracks_;
   std::vector<std::uint8_t> near_crack_;  // material points whose stencil may reach across a crack
   std::vector<std::uint8_t> crack_field_; // per point and stencil node: CRAMP field of the step
+  std::vector<Vec<D>> stage_velocity_;  // MUSL with several fields: grid velocities the points moved with
+  std::vector<Vec<D>> acceleration_;
+  std::vector<Tensor<D>> velocity_gradient_;
   scene::Mpm::Contact crack_contact_ = scene::Mpm::Contact::frictionless;
   bool measure_ = false;
   double cell_volume_ = 0.0, contact_volume_ = 0.9;

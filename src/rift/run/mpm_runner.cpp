@@ -3,13 +3,19 @@
 #include <chrono>
 #include <cmath>
 #include <filesystem>
+#include <optional>
 #include <ostream>
+
+#include <fstream>
 
 #include "rift/core/progress.hpp"
 #include "rift/io/field_writer.hpp"
 #include "rift/io/history.hpp"
+#include "rift/io/plot_crack_tips_script.hpp"  // generated from share/plot_crack_tips.py
+#include "rift/io/python_plot.hpp"
 #include "rift/mpm/discretize.hpp"
 #include "rift/mpm/energy.hpp"
+#include "rift/mpm/j_integral.hpp"
 #include "rift/mpm/solver.hpp"
 #include "rift/run/time_step.hpp"
 
@@ -58,6 +64,14 @@ Plan check_dim(const scene::Scene& s, std::ostream& out) {
   for (const auto& f : s.output.fields) fields += " " + f;
   out << "output       " << s.output.count << " snapshots (position" << fields << ") -> fields.h5 + fields.xdmf\n";
   out << "             " << s.output.history_count << " history rows -> history.csv\n";
+  if constexpr (D == 2) {
+    if (!s.cracks.empty()) {
+      const auto tips = mpm::interior_tips(r.model, r.solver.cracks());
+      std::snprintf(line, sizeof line, "crack tips   %zu inside material: J (contour %d cells from the tip node, area term %s), G, K_I, K_II\n",
+                    tips.size(), s.mpm.j_contour, s.mpm.j_area_term ? "on" : "off");
+      out << line << "             at every history row -> crack_tips.csv" << (s.output.crack_tip_plot ? " + crack_tips.png" : "") << "\n";
+    }
+  }
   return plan;
 }
 
@@ -100,6 +114,37 @@ void write_snapshot(io::FieldWriter& w, const mpm::Model<D>& m, const scene::Sce
   w.end_snapshot();
 }
 
+/// Per-tip fracture parameters at the history rows of a cracked 2D run (crack_tips.csv).
+class CrackTipHistory {
+ public:
+  CrackTipHistory(const std::string& path, const mpm::Model<2>& m, const mpm::Solver<2>& solver, const scene::Mpm& settings)
+      : path_(path), out_(path), contour_{settings.j_contour, settings.j_area_term} {
+    tips_ = mpm::interior_tips(m, solver.cracks());
+    out_ << "time,step,crack,tip,x,y,angle_deg,J_1,J_2,J_1_area,G,K_I,K_II,opening,sliding\n";
+  }
+  const std::string& path() const { return path_; }
+  bool empty() const { return tips_.empty(); }
+  void row(const mpm::Model<2>& m, const mpm::Solver<2>& solver, long step) {
+    for (const auto& t : tips_) {
+      const auto k = mpm::crack_tip_parameters(m, solver, t, contour_);
+      if (!std::isfinite(k.J1) || !std::isfinite(k.KI) || !std::isfinite(k.KII))
+        throw PhysicsError("step " + std::to_string(step) + ": the J-integral at crack " + std::to_string(t.crack) + " is not finite");
+      char line[512];
+      std::snprintf(line, sizeof line, "%.9g,%ld,%zu,%s,%.9g,%.9g,%.6g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g\n", m.time, step, t.crack,
+                    t.end == mpm::TipEnd::end ? "end" : "start", k.position[0], k.position[1], k.angle * 180.0 / M_PI, k.J1, k.J2,
+                    k.J1_area, k.G, k.KI, k.KII, k.opening, k.sliding);
+      out_ << line;
+    }
+    out_.flush();
+  }
+
+ private:
+  std::string path_;
+  std::ofstream out_;
+  mpm::JContour contour_;
+  std::vector<mpm::CrackTip> tips_;
+};
+
 template <int D>
 Result run_dim(const scene::Scene& s, const Options& o) {
   MpmRun<D> r(s);  // every scene error is raised here, before anything is written
@@ -122,6 +167,13 @@ Result run_dim(const scene::Scene& s, const Options& o) {
     for (const auto& q : s.output.history) row.push_back(q == "kinetic_energy" ? kinetic : q == "strain_energy" ? strain : kinetic + strain);
     history.row(row);
   };
+  std::optional<CrackTipHistory> tips;
+  if constexpr (D == 2) {
+    if (!s.cracks.empty()) {
+      tips.emplace(res.output_dir + "/crack_tips.csv", m, r.solver, s.mpm);
+      res.files.push_back({"cracks", tips->path()});
+    }
+  }
   const auto start = std::chrono::steady_clock::now();
   Progress progress(r.steps, s.solver.end_time, o.quiet);
   write_snapshot<D>(fields, m, s);
@@ -134,6 +186,8 @@ Result run_dim(const scene::Scene& s, const Options& o) {
     if (sample) {
       const auto& e = r.solver.measured_energy();
       history_row(step - 1, e.time, e.kinetic, e.strain);
+      if constexpr (D == 2)
+        if (tips) tips->row(m, r.solver, step);
       progress.update(step, m.time, 0.0);
       while (next_history * r.steps <= (step - 1) * s.output.history_count) ++next_history;
     }
@@ -144,6 +198,14 @@ Result run_dim(const scene::Scene& s, const Options& o) {
   }
   res.loop_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   progress.finish(r.steps, m.time, 0.0);
+  if (tips && s.output.crack_tip_plot && !tips->empty()) {
+    const std::string png = res.output_dir + "/crack_tips.png";
+    std::string reason;
+    if (io::run_python_script(io::plot_crack_tips_script, {tips->path(), png, s.name + ": stress intensity factors"}, reason))
+      res.files.push_back({"K(t)", png});
+    else
+      res.notes.push_back("crack tip plot not written: " + reason);
+  }
   auto e = mpm::summarize<D>(m);
   res.final_energy.kinetic = e.kinetic;
   res.final_energy.strain = e.strain;

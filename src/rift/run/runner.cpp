@@ -211,9 +211,9 @@ Result run_dim(const scene::Scene& s, const Options& o) {
     for (std::size_t i = 0; i < m.size(); ++i) x[i] = m.position[i][0], y[i] = m.position[i][1];
     std::string png = res.output_dir + "/damage.png", reason;
     if (io::write_damage_image(res.output_dir, png, x, y, m.damage, s.name + ": damage at t = " + std::to_string(m.time) + " s", reason))
-      res.damage_png = png;
+      res.files.push_back({"damage", png});
     else
-      res.damage_png_note = reason;
+      res.notes.push_back("damage image not written: " + reason);
   }
   return res;
 }

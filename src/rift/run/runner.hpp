@@ -3,6 +3,8 @@
 #pragma once
 #include <iosfwd>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "rift/pd/forces.hpp"
 #include "rift/scene/scene.hpp"
@@ -24,7 +26,9 @@ struct Plan {
 };
 
 struct Result {
-  std::string output_dir, fields_h5, fields_xdmf, history_csv, damage_png, damage_png_note;
+  std::string output_dir, fields_h5, fields_xdmf, history_csv;
+  std::vector<std::pair<std::string, std::string>> files;  // further outputs: (what, path)
+  std::vector<std::string> notes;                          // outputs not written, and why
   long steps = 0;
   double time = 0.0;
   double loop_seconds = 0.0;  // wall time of the step loop (with outputs)

@@ -442,8 +442,13 @@ void parse_mpm(R& root, Scene& s) {
   if (r.has("grid_min")) m.grid_min = point(r, "grid_min", s.dimension, true);
   if (r.has("grid_max")) m.grid_max = point(r, "grid_max", s.dimension, true);
   if (m.grid_min.has_value() != m.grid_max.has_value()) r.fail(m.grid_min ? "grid_min" : "grid_max", "give both grid_min and grid_max");
+  if (auto n = r.integer("j_contour")) {
+    if (*n < 1 || *n > 50) r.fail("j_contour", "must be an integer in [1, 50] (cells from the node nearest the crack tip)");
+    m.j_contour = static_cast<int>(*n);
+  }
+  if (auto b = r.boolean("j_area_term")) m.j_area_term = *b;
   r.finish({"cell_size", "shape", "scheme", "transfer", "flip_fraction", "damping", "contact", "crack_contact", "friction", "grid_min",
-             "grid_max"});
+             "grid_max", "j_contour", "j_area_term"});
 }
 
 void parse_contact(R& root, Scene& s) {
@@ -508,7 +513,11 @@ void parse_output(R& root, Scene& s) {
     o.reactions = *rx;
   }
   if (auto d = r.boolean("damage_image")) o.damage_image = *d;
-  r.finish({"snapshots", "history_rows", "fields", "history", "reactions", "damage_image"});
+  if (auto d = r.boolean("crack_tip_plot")) {
+    if (s.method != Method::mpm) r.fail("crack_tip_plot", "only for [scene] method = \"mpm\" (explicit cracks)");
+    o.crack_tip_plot = *d;
+  }
+  r.finish({"snapshots", "history_rows", "fields", "history", "reactions", "damage_image", "crack_tip_plot"});
 }
 
 Scene parse_table(const toml::table& tbl, const std::string& file) {

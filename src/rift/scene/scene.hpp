@@ -131,6 +131,10 @@ struct Mpm {
   double flip_fraction = 1.0;  // velocity update: flip_fraction * FLIP + (1 - flip_fraction) * PIC
   double damping = 0.0;        // mass-proportional (external) damping coefficient, 1/s
   std::optional<Point3> grid_min, grid_max;  // default: bodies' bounds grown by 3 cells
+  /// J-integral at explicit-crack tips (Guo and Nairn 2006): contour `j_contour` cells from the
+  /// node nearest the tip; the area term of the dynamic J (their eq. 8).
+  int j_contour = 2;
+  bool j_area_term = true;
 };
 
 struct Output {
@@ -140,6 +144,7 @@ struct Output {
   std::vector<std::string> history; // history columns after time and step (default: all)
   std::vector<std::string> reactions;  // region names whose reaction force is recorded
   bool damage_image = true;         // 2D: PNG of the final damage field
+  bool crack_tip_plot = true;       // MPM with cracks: PNG of K_I, K_II against time per crack tip
 };
 
 struct Scene {
