@@ -78,6 +78,7 @@ TEST(Constitutive, J2ReturnAndNeoHookean) {
 }  // namespace
 
 #include "rift/mpm/crack.hpp"
+#include "rift/mpm/crack_growth.hpp"
 #include "rift/mpm/discretize.hpp"
 #include "rift/mpm/j_integral.hpp"
 #include "rift/mpm/solver.hpp"
@@ -179,6 +180,26 @@ end_time = 0.006
     // the rows 1 mm apart across the crack close by the strain of 1 mm of material, ~4.3 um
     EXPECT_NEAR(cracked[1], solid[1], 1e-5) << scheme;
   }
+}
+
+// Maximum hoop stress criterion (Erdogan and Sih 1963): straight ahead in pure mode I with K_eq = K_I;
+// in pure mode II the kink is -sign(K_II) 2 arctan(1 / sqrt(2)) = -+70.53 degrees with
+// K_eq = (2 / sqrt(3)) |K_II|; at any mixity the angle is where the hoop stress peaks.
+TEST(CrackGrowth, MaximumHoopStressDirection) {
+  EXPECT_DOUBLE_EQ(rift::mpm::hoop_stress_angle(1.0, 0.0), 0.0);
+  EXPECT_DOUBLE_EQ(rift::mpm::equivalent_mode_one(2.0, 0.0, 0.0), 2.0);
+  const double mode2 = rift::mpm::hoop_stress_angle(0.0, 1.0);
+  EXPECT_NEAR(mode2 * 180.0 / M_PI, -70.5288, 1e-3);
+  EXPECT_NEAR(rift::mpm::hoop_stress_angle(0.0, -1.0), -mode2, 1e-14);
+  // the angle maximises the hoop stress: K_eq is stationary there
+  for (double ratio : {0.3, 0.762, 2.0}) {
+    const double t = rift::mpm::hoop_stress_angle(1.0, ratio);
+    const double k = rift::mpm::equivalent_mode_one(1.0, ratio, t);
+    EXPECT_GT(k, rift::mpm::equivalent_mode_one(1.0, ratio, t + 1e-3));
+    EXPECT_GT(k, rift::mpm::equivalent_mode_one(1.0, ratio, t - 1e-3));
+  }
+  // pure mode II: K_eq = (2 / sqrt(3)) K_II (the well-known 1.155 factor)
+  EXPECT_NEAR(rift::mpm::equivalent_mode_one(0.0, 1.0, mode2), 2.0 / std::sqrt(3.0), 1e-12);
 }
 
 // A few steps of a cracked beam pulled open: the crack surfaces separate (positive opening behind

@@ -208,6 +208,10 @@ const MpmCase mpm_cases[] = {
     {"fixed region without grid nodes", "max = [0.0, 0.02]", "max = [-0.0095, -0.0095]", "boundaries[0].region"},
     {"mpm table in a peridynamic scene", "method = \"mpm\"", "method = \"peridynamics\"", ""},
     {"J contour of zero cells", "cell_size = 0.001", "cell_size = 0.001\nj_contour = 0", "mpm.j_contour"},
+    {"crack growth without cracks", "[solver]", "[crack_growth]\ntoughness = 1e6\n[solver]", "crack_growth"},
+    {"crack growth without toughness", "[solver]",
+     "[[cracks]]\npoints = [[0.0205, 0.0025], [0.01, 0.0025]]\n[crack_growth]\ncriterion = \"max_hoop_stress\"\n[solver]",
+     "crack_growth.toughness"},
     {"J area term not a boolean", "cell_size = 0.001", "cell_size = 0.001\nj_area_term = \"yes\"", "mpm.j_area_term"},
 };
 

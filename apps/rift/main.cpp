@@ -44,8 +44,8 @@ int main(int argc, char** argv) {
     rift::run::Options options{output_dir, threads, quiet};
     auto r = rift::run::run(scene, options);
     if (scene.method == rift::scene::Method::mpm)
-      std::printf("rift: %ld steps, t = %.6g s, kinetic energy %.6g J, strain energy %.6g J\n", r.steps, r.time, r.final_energy.kinetic,
-                  r.final_energy.strain);
+      std::printf("rift: %ld steps, t = %.6g s, kinetic energy %.6g J, strain energy %.6g J, crack growth %ld increments\n", r.steps,
+                  r.time, r.final_energy.kinetic, r.final_energy.strain, r.crack_growth_events);
     else
       std::printf("rift: %ld steps, t = %.6g s, kinetic energy %.6g J, strain energy %.6g J, broken bonds %lld, max damage %.3f\n",
                   r.steps, r.time, r.final_energy.kinetic, r.final_energy.strain, static_cast<long long>(r.final_energy.broken_bonds),

@@ -44,6 +44,7 @@ Result mpm_mixed_mode(const Settings&);
 Result mpm_cct(const Settings&);
 Result mpm_sent(const Settings&);
 Result mpm_denp(const Settings&);
+Result mpm_crack_growth(const Settings&);
 
 struct Entry {
   const char* name;

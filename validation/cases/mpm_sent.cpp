@@ -71,15 +71,18 @@ Result mpm_sent(const Settings& settings) {
   double peak = 0.0, t_peak = 0.0;
   for (const auto& p : ref)
     if (p[1] > peak) peak = p[1], t_peak = p[0];
-  std::vector<double> deviation(cells.size(), 0.0);
+  std::vector<double> deviation(cells.size(), 0.0), when(cells.size(), 0.0);
   for (std::size_t k = 1; k < cells.size(); ++k)
-    for (const auto& p : ref) deviation[k] = std::max(deviation[k], std::abs(at(curves[k], p[0]) - p[1]) / peak);
+    for (const auto& p : ref) {
+      const double d = std::abs(at(curves[k], p[0]) - p[1]) / peak;
+      if (d > deviation[k]) deviation[k] = d, when[k] = p[0];
+    }
   double worst = 0.0;
   std::string series;
   for (std::size_t k = 1; k < cells.size(); ++k) {
     if (cells[k] <= 0.001 + 1e-12) worst = std::max(worst, deviation[k]);
     char b[64];
-    std::snprintf(b, sizeof b, "%s%g mm %.3f", series.empty() ? "" : ", ", cells[k] * 1e3, deviation[k]);
+    std::snprintf(b, sizeof b, "%s%g mm %.3f (at %.1f us)", series.empty() ? "" : ", ", cells[k] * 1e3, deviation[k], when[k] * 1e6);
     series += b;
   }
   std::string curve;

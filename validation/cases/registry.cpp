@@ -19,6 +19,7 @@ const std::vector<Entry>& all_cases() {
       {"mpm_cct", mpm_cct},
       {"mpm_sent", mpm_sent},
       {"mpm_denp", mpm_denp},
+      {"mpm_crack_growth", mpm_crack_growth},
   };
   return cases;
 }

@@ -32,6 +32,15 @@ void CrackSet::update_bounds() {
   }
 }
 
+void CrackSet::extend(const CrackTip& tip, const Vec<2>& x) {
+  auto& c = cracks_[tip.crack];
+  for (auto* set : {&c.points, &c.above, &c.below}) {
+    if (tip.end == TipEnd::end) set->push_back(x);
+    else set->insert(set->begin(), x);
+  }
+  update_bounds();
+}
+
 bool CrackSet::near(const Vec<2>& x, double reach) const {
   for (const auto& c : cracks_)
     if (x[0] >= c.lo[0] - reach && x[0] <= c.hi[0] + reach && x[1] >= c.lo[1] - reach && x[1] <= c.hi[1] + reach) return true;

@@ -15,6 +15,14 @@
 
 namespace rift::mpm {
 
+/// Which end of a crack polyline a tip is.
+enum class TipEnd { start, end };
+
+struct CrackTip {
+  std::size_t crack = 0;
+  TipEnd end = TipEnd::end;
+};
+
 class CrackSet {
  public:
   struct Crack {
@@ -50,6 +58,8 @@ class CrackSet {
   /// surfaces slide away from their crack particle, so the particle itself is not a safe probe).
   Vec<2> side_point(std::size_t c, std::size_t k, const Vec<2>& x, int side, double offset, std::size_t window = 16) const;
   void update_bounds();
+  /// Grows crack c at one end by a new crack particle at x (its surfaces start closed there).
+  void extend(const CrackTip& tip, const Vec<2>& x);
 
  private:
   std::vector<Crack> cracks_;

@@ -20,14 +20,6 @@
 
 namespace rift::mpm {
 
-/// Which end of a crack polyline the tip is.
-enum class TipEnd { start, end };
-
-struct CrackTip {
-  std::size_t crack = 0;
-  TipEnd end = TipEnd::end;
-};
-
 struct JContour {
   int cells = 2;          // the contour runs `cells` cells from the node nearest the tip
   bool area_term = true;  // eq. 8 (vanishes in static problems)

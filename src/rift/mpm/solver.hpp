@@ -37,6 +37,8 @@ class Solver {
   const Energy& measured_energy() const { return energy_; }
   /// Explicit cracks (2D), with their crack particles and surfaces moved every step.
   const CrackSet& cracks() const { return cracks_; }
+  /// Crack propagation: a new crack particle at x beyond the given tip.
+  void extend_crack(const CrackTip& tip, const Vec<2>& x) { cracks_.extend(tip, x); }
   /// With cracks: each material point's acceleration and velocity gradient in the last step (for
   /// the dynamic J-integral's area term); empty otherwise.
   const std::vector<Vec<D>>& accelerations() const { return acceleration_; }

@@ -13,6 +13,7 @@
 #include "rift/io/history.hpp"
 #include "rift/io/plot_crack_tips_script.hpp"  // generated from share/plot_crack_tips.py
 #include "rift/io/python_plot.hpp"
+#include "rift/mpm/crack_growth.hpp"
 #include "rift/mpm/discretize.hpp"
 #include "rift/mpm/energy.hpp"
 #include "rift/mpm/j_integral.hpp"
@@ -70,6 +71,14 @@ Plan check_dim(const scene::Scene& s, std::ostream& out) {
       std::snprintf(line, sizeof line, "crack tips   %zu inside material: J (contour %d cells from the tip node, area term %s), G, K_I, K_II\n",
                     tips.size(), s.mpm.j_contour, s.mpm.j_area_term ? "on" : "off");
       out << line << "             at every history row -> crack_tips.csv" << (s.output.crack_tip_plot ? " + crack_tips.png" : "") << "\n";
+      if (s.crack_growth.enabled) {
+        const auto& gr = s.crack_growth;
+        const bool hoop = gr.criterion == scene::CrackGrowth::Criterion::max_hoop_stress;
+        std::snprintf(line, sizeof line, "crack growth %s >= %g %s, direction of maximum hoop stress, %g m per event, checked every %d steps\n",
+                      hoop ? "K_eq" : "G", hoop ? gr.toughness : gr.critical_energy_release_rate, hoop ? "Pa m^0.5" : "J/m^2",
+                      gr.increment > 0.0 ? gr.increment : 0.5 * s.mpm.cell_size, gr.check_every);
+        out << line;
+      }
     }
   }
   return plan;
@@ -168,10 +177,12 @@ Result run_dim(const scene::Scene& s, const Options& o) {
     history.row(row);
   };
   std::optional<CrackTipHistory> tips;
+  std::optional<mpm::CrackPropagation> propagation;
   if constexpr (D == 2) {
     if (!s.cracks.empty()) {
       tips.emplace(res.output_dir + "/crack_tips.csv", m, r.solver, s.mpm);
       res.files.push_back({"cracks", tips->path()});
+      if (s.crack_growth.enabled) propagation.emplace(s, m, r.solver);
     }
   }
   const auto start = std::chrono::steady_clock::now();
@@ -183,6 +194,8 @@ Result run_dim(const scene::Scene& s, const Options& o) {
     const bool sample = (step - 1) * s.output.history_count >= next_history * r.steps;
     if (sample) r.solver.measure_energy();
     r.solver.step(m, r.dt);
+    if constexpr (D == 2)
+      if (propagation) res.crack_growth_events += propagation->check(m, r.solver, step);
     if (sample) {
       const auto& e = r.solver.measured_energy();
       history_row(step - 1, e.time, e.kinetic, e.strain);

@@ -34,6 +34,7 @@ struct Result {
   double loop_seconds = 0.0;  // wall time of the step loop (with outputs)
   pd::EnergySummary final_energy;
   double max_damage = 0.0;
+  long crack_growth_events = 0;  // MPM: crack particles added by propagation
 };
 
 /// Discretize and print what a run would do (particles, bonds, memory, time step, outputs).

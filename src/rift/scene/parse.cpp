@@ -451,6 +451,33 @@ void parse_mpm(R& root, Scene& s) {
              "grid_max", "j_contour", "j_area_term"});
 }
 
+void parse_crack_growth(R& root, Scene& s) {
+  const toml::table* t = root.table("crack_growth");
+  if (!t) return;
+  if (s.method != Method::mpm || s.dimension != 2 || s.cracks.empty())
+    root.fail("crack_growth", "only for 2D method = \"mpm\" scenes with [[cracks]] (explicit crack propagation)");
+  R r(*t, "crack_growth", s.file);
+  CrackGrowth& g = s.crack_growth;
+  g.enabled = true;
+  using C = CrackGrowth::Criterion;
+  if (auto v = r.choice("criterion", {"max_hoop_stress", "energy_release_rate"}))
+    g.criterion = *v == "max_hoop_stress" ? C::max_hoop_stress : C::energy_release_rate;
+  if (g.criterion == C::max_hoop_stress) {
+    g.toughness = r.positive("toughness", r.required_number("toughness", "fracture toughness K_Ic, Pa m^0.5"));
+    if (r.has("critical_energy_release_rate")) r.fail("critical_energy_release_rate", "only with criterion = \"energy_release_rate\"");
+  } else {
+    g.critical_energy_release_rate =
+        r.positive("critical_energy_release_rate", r.required_number("critical_energy_release_rate", "critical energy release rate G_c, J/m^2"));
+    if (r.has("toughness")) r.fail("toughness", "only with criterion = \"max_hoop_stress\"");
+  }
+  if (auto v = r.number("increment")) g.increment = r.positive("increment", *v);
+  if (auto n = r.integer("check_every")) {
+    if (*n < 1) r.fail("check_every", "must be an integer >= 1 (steps between growth checks)");
+    g.check_every = static_cast<int>(*n);
+  }
+  r.finish({"criterion", "toughness", "critical_energy_release_rate", "increment", "check_every"});
+}
+
 void parse_contact(R& root, Scene& s) {
   const toml::table* t = root.table("contact");
   if (!t) return;
@@ -539,9 +566,10 @@ Scene parse_table(const toml::table& tbl, const std::string& file) {
   parse_solver(root, s);
   parse_contact(root, s);
   parse_mpm(root, s);
+  parse_crack_growth(root, s);
   parse_output(root, s);
   root.finish({"scene", "materials", "regions", "bodies", "cracks", "boundaries", "initial_velocity", "solver",
-               "contact", "mpm", "output"});
+               "contact", "mpm", "crack_growth", "output"});
   return s;
 }
 

@@ -137,6 +137,17 @@ struct Mpm {
   bool j_area_term = true;
 };
 
+/// Propagation of explicit MPM cracks ([crack_growth]): the direction of maximum hoop stress
+/// (Erdogan and Sih 1963), growth when K_eq >= K_Ic or G >= G_c.
+struct CrackGrowth {
+  bool enabled = false;
+  enum class Criterion { max_hoop_stress, energy_release_rate } criterion = Criterion::max_hoop_stress;
+  double toughness = 0.0;                     // K_Ic, Pa m^0.5
+  double critical_energy_release_rate = 0.0;  // G_c, J/m^2
+  double increment = 0.0;                     // growth per event, m (0: half a cell)
+  int check_every = 10;                       // steps between checks
+};
+
 struct Output {
   int count = 10;                   // number of field snapshots (plus the initial state)
   std::vector<std::string> fields;  // position, displacement, velocity, damage, dilatation, ...
@@ -163,6 +174,7 @@ struct Scene {
   Solver solver;
   Contact contact;
   Mpm mpm;
+  CrackGrowth crack_growth;
   Output output;
 
   const RegionDef* find_region(const std::string& n) const {
