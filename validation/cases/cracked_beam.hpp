@@ -20,16 +20,22 @@ struct CrackedBeam {
   long steps = 0;
 };
 
+/// Cells of `cell` for the beam scenes: the crack (y = h) midway between grid lines, room for the
+/// arms' deflection (ENF: several mm) and its overshoot.
+inline void place_beam_grid(scene::Scene& s, double cell) {
+  const double h = 0.012, margin = 0.015;
+  s.mpm.cell_size = cell;
+  const double below = std::ceil((h + margin) / cell);
+  s.mpm.grid_min = Point3{-3.0 * cell, h - (below + 0.5) * cell, 0.0};
+  s.mpm.grid_max = Point3{0.1 + 4.0 * cell, 2.0 * h + margin, 0.0};
+}
+
 /// Runs `scene_file` (examples/mpm_dcb.toml or a variant) with `cell` cells and the crack tip at
 /// x = tip_x for `settle` seconds. The crack stays midway between grid lines.
 inline CrackedBeam run_cracked_beam(const std::string& scene_file, double cell, double tip_x, double settle) {
   auto s = scene::parse_file(source_path(scene_file));
   const double h = 0.012;
-  s.mpm.cell_size = cell;
-  const double margin = 0.015;  // room for the arms' deflection (ENF: several mm) and its overshoot
-  const double below = std::ceil((h + margin) / cell);
-  s.mpm.grid_min = Point3{-3.0 * cell, h - (below + 0.5) * cell, 0.0};
-  s.mpm.grid_max = Point3{0.1 + 4.0 * cell, 2.0 * h + margin, 0.0};
+  place_beam_grid(s, cell);
   s.cracks[0].points.back()[0] = tip_x;
   auto m = mpm::discretize<2>(s);
   mpm::Solver<2> solver(s, m);

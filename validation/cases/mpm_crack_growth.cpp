@@ -8,6 +8,7 @@
 #include <cstdio>
 
 #include "case.hpp"
+#include "cracked_beam.hpp"
 #include "rift/mpm/crack_growth.hpp"
 #include "rift/mpm/discretize.hpp"
 #include "rift/scene/parse.hpp"
@@ -19,11 +20,7 @@ namespace {
 /// Runs until `increments` crack particles were added at the tip (or the end); returns the angles,
 /// degrees, of the new segments relative to the original crack direction.
 std::vector<double> grow(scene::Scene s, double cell, int increments) {
-  const double h = 0.012, margin = 0.015;
-  s.mpm.cell_size = cell;
-  const double below = std::ceil((h + margin) / cell);
-  s.mpm.grid_min = Point3{-3.0 * cell, h - (below + 0.5) * cell, 0.0};
-  s.mpm.grid_max = Point3{0.1 + 4.0 * cell, 2.0 * h + margin, 0.0};
+  place_beam_grid(s, cell);
   s.crack_growth.increment = 0.5 * cell;
   auto m = mpm::discretize<2>(s);
   mpm::Solver<2> solver(s, m);

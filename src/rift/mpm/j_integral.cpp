@@ -20,7 +20,7 @@ struct NodalField {
 
 namespace {
 
-/// The polyline's points ordered from the far end to the tip.
+/// A tip, the crack particle behind it (its direction) and the index of that particle.
 struct TipGeometry {
   Vec<2> tip, behind;
   std::size_t next_point;  // crack particle next to the tip
