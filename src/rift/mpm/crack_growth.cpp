@@ -39,9 +39,7 @@ int CrackPropagation::check(const Model<2>& m, Solver<2>& solver, long step) {
     const auto k = crack_tip_parameters(m, solver, t.tip, contour_);
     const auto next = growth_point(settings_, k, m.grid.cell_size);
     if (!next) continue;
-    bool inside = false;  // a material point within a cell of the new tip
-    for (std::size_t p = 0; p < m.particles.size() && !inside; ++p) inside = norm<2>(m.particles.position[p] - *next) < m.grid.cell_size;
-    if (!inside) {
+    if (!material_near(m, *next, m.grid.cell_size)) {  // the new tip would leave the material
       t.stopped = true;
       continue;
     }

@@ -40,6 +40,12 @@ double plane_modulus(const material::Constants& c) {
 
 }  // namespace
 
+bool material_near(const Model<2>& m, const Vec<2>& x, double radius) {
+  for (const auto& xp : m.particles.position)
+    if (norm<2>(xp - x) < radius) return true;
+  return false;
+}
+
 std::vector<CrackTip> interior_tips(const Model<2>& m, const CrackSet& cracks) {
   std::vector<CrackTip> tips;
   const double h = m.grid.cell_size;
@@ -47,10 +53,7 @@ std::vector<CrackTip> interior_tips(const Model<2>& m, const CrackSet& cracks) {
     for (TipEnd e : {TipEnd::start, TipEnd::end}) {
       const auto g = tip_geometry(cracks, {c, e});
       const Vec<2> dir = (1.0 / norm<2>(g.tip - g.behind)) * (g.tip - g.behind);
-      const Vec<2> ahead = g.tip + (0.5 * h) * dir;
-      bool inside = false;
-      for (std::size_t p = 0; p < m.particles.size() && !inside; ++p) inside = norm<2>(m.particles.position[p] - ahead) < h;
-      if (inside) tips.push_back({c, e});
+      if (material_near(m, g.tip + (0.5 * h) * dir, h)) tips.push_back({c, e});
     }
   return tips;
 }

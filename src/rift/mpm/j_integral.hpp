@@ -36,6 +36,9 @@ struct CrackTipParameters {
   bool valid = false;                   // false: the contour misses the crack (tip too near an edge)
 };
 
+/// True when some material point lies within `radius` of x.
+bool material_near(const Model<2>& m, const Vec<2>& x, double radius);
+
 /// Crack tips inside material: those with a material point within one cell ahead of them. A crack
 /// drawn from outside a body into it has one; a crack inside a body has two.
 std::vector<CrackTip> interior_tips(const Model<2>& m, const CrackSet& cracks);

@@ -109,51 +109,40 @@ void Solver<D>::scatter(Model<D>& m, bool momentum_only, bool internal_force) {
   const std::size_t fields = static_cast<std::size_t>(m.grid.fields);
   const bool normals = fields > 1 && !momentum_only;
   const bool apic = settings_.transfer == scene::Mpm::Transfer::apic;
-  LostParticle lost;
-#pragma omp parallel num_threads(threads)
-  {
+  for_each_stencil<D>(m, start_position_, threads, [&](std::size_t p, const Stencil<D>& st) {
     auto& tg = thread_grids_[static_cast<std::size_t>(omp_get_thread_num())];
-    Stencil<D> st;
-#pragma omp for schedule(static)
-    for (std::size_t p = 0; p < ps.size(); ++p) {
-      if (!make_stencil<D>(m, start_position_[p], st)) {
-        lost.record(p);
-        continue;
+    const double mp = ps.mass[p];
+    for (int q = 0; q < st.count; ++q) {
+      const std::size_t node = st.node[static_cast<std::size_t>(q)];
+      const std::size_t n = node * fields + field_of(m, p, q);
+      const double w = st.weight[static_cast<std::size_t>(q)];
+      if (w == 0.0) continue;
+      Vec<D> v = ps.velocity[p];
+      if (apic) {
+        const Vec<D> dx = m.grid.node_position(node) - start_position_[p];
+        for (int a = 0; a < D; ++a)
+          for (int b = 0; b < D; ++b) v[a] += ps.affine_velocity[p](a, b) * dx[b];
       }
-      const double mp = ps.mass[p];
-      for (int q = 0; q < st.count; ++q) {
-        const std::size_t node = st.node[static_cast<std::size_t>(q)];
-        const std::size_t n = node * fields + field_of(m, p, q);
-        const double w = st.weight[static_cast<std::size_t>(q)];
-        if (w == 0.0) continue;
-        Vec<D> v = ps.velocity[p];
-        if (apic) {
-          const Vec<D> dx = m.grid.node_position(node) - start_position_[p];
-          for (int a = 0; a < D; ++a)
-            for (int b = 0; b < D; ++b) v[a] += ps.affine_velocity[p](a, b) * dx[b];
-        }
-        tg.mass[n] += w * mp;
-        for (int a = 0; a < D; ++a) tg.momentum[n][a] += w * mp * v[a];
-        if (normals) {
-          for (int a = 0; a < D; ++a) tg.mass_gradient[n][a] += mp * st.gradient[static_cast<std::size_t>(q)][a];
-          tg.volume[n] += w * ps.volume[p];
-          for (int a = 0; a < D; ++a) tg.displacement[n][a] += w * mp * (start_position_[p][a] - ps.reference_position[p][a]);
-        }
-        if (momentum_only) continue;
-        for (int a = 0; a < D; ++a) tg.force[n][a] += w * ps.external_force[p][a];
-        if (internal_force) {
-          const auto& sigma = ps.state[p].stress;
-          const auto& grad = st.gradient[static_cast<std::size_t>(q)];
-          for (int a = 0; a < D; ++a) {
-            double f = 0.0;
-            for (int b = 0; b < D; ++b) f += sigma(a, b) * grad[b];
-            tg.force[n][a] -= ps.volume[p] * f;
-          }
+      tg.mass[n] += w * mp;
+      for (int a = 0; a < D; ++a) tg.momentum[n][a] += w * mp * v[a];
+      if (normals) {
+        for (int a = 0; a < D; ++a) tg.mass_gradient[n][a] += mp * st.gradient[static_cast<std::size_t>(q)][a];
+        tg.volume[n] += w * ps.volume[p];
+        for (int a = 0; a < D; ++a) tg.displacement[n][a] += w * mp * (start_position_[p][a] - ps.reference_position[p][a]);
+      }
+      if (momentum_only) continue;
+      for (int a = 0; a < D; ++a) tg.force[n][a] += w * ps.external_force[p][a];
+      if (internal_force) {
+        const auto& sigma = ps.state[p].stress;
+        const auto& grad = st.gradient[static_cast<std::size_t>(q)];
+        for (int a = 0; a < D; ++a) {
+          double f = 0.0;
+          for (int b = 0; b < D; ++b) f += sigma(a, b) * grad[b];
+          tg.force[n][a] -= ps.volume[p] * f;
         }
       }
     }
-  }
-  lost.raise(m.time);
+  });
   // sum the thread buffers in thread order (reproducible)
   auto& g = m.grid;
 #pragma omp parallel for schedule(static)
@@ -212,7 +201,7 @@ void Solver<D>::apply_contact(Model<D>& m) {
   // corrections conserve momentum.
   auto& g = m.grid;
   const std::size_t fields = static_cast<std::size_t>(g.fields);
-  const double tiny = 1e-12 * (m.particles.size() ? m.particles.mass[0] : 1.0);
+  const double tiny = tiny_mass(m);
   using C = scene::Mpm::Contact;
 #pragma omp parallel for schedule(static)
   for (std::size_t node = 0; node < g.size(); ++node) {
@@ -292,7 +281,7 @@ void Solver<D>::apply_contact(Model<D>& m) {
 template <int D>
 void Solver<D>::grid_velocities(Model<D>& m, double t, bool record_start, bool contact) {
   auto& g = m.grid;
-  const double tiny = 1e-12 * (m.particles.size() ? m.particles.mass[0] : 1.0);
+  const double tiny = tiny_mass(m);
 #pragma omp parallel for schedule(static)
   for (std::size_t n = 0; n < g.slots(); ++n) {
     for (int a = 0; a < D; ++a) g.velocity[n][a] = g.mass[n] > tiny ? g.momentum[n][a] / g.mass[n] : 0.0;
@@ -307,33 +296,22 @@ void Solver<D>::grid_velocities(Model<D>& m, double t, bool record_start, bool c
 template <int D>
 void Solver<D>::update_stress(Model<D>& m, double dt) {
   auto& ps = m.particles;
-  LostParticle lost;
-#pragma omp parallel
-  {
-    Stencil<D> st;
-#pragma omp for schedule(static)
-    for (std::size_t p = 0; p < ps.size(); ++p) {
-      if (!make_stencil<D>(m, start_position_[p], st)) {
-        lost.record(p);
-        continue;
-      }
-      const std::size_t fields = static_cast<std::size_t>(m.grid.fields);
-      Tensor<D> L = Tensor<D>::Zero();  // velocity gradient L_ab = sum v_a dS/dx_b
-      for (int q = 0; q < st.count; ++q) {
-        const std::size_t node = st.node[static_cast<std::size_t>(q)];
-        const auto& v = m.grid.velocity[node * fields + field_of(m, p, q)];
-        const auto& grad = st.gradient[static_cast<std::size_t>(q)];
-        for (int a = 0; a < D; ++a)
-          for (int b = 0; b < D; ++b) L(a, b) += v[a] * grad[b];
-      }
-      if (!velocity_gradient_.empty()) velocity_gradient_[p] = L;
-      Tensor<D>& F = ps.deformation_gradient[p];
-      F = (Tensor<D>::Identity() + dt * L) * F;
-      ps.volume[p] = ps.reference_volume[p] * F.determinant();
-      material::update_stress<D>(m.bodies[ps.body[p]].constants, ps.state[p], L, F, dt);
+  for_each_stencil<D>(m, start_position_, omp_get_max_threads(), [&](std::size_t p, const Stencil<D>& st) {
+    const std::size_t fields = static_cast<std::size_t>(m.grid.fields);
+    Tensor<D> L = Tensor<D>::Zero();  // velocity gradient L_ab = sum v_a dS/dx_b
+    for (int q = 0; q < st.count; ++q) {
+      const std::size_t node = st.node[static_cast<std::size_t>(q)];
+      const auto& v = m.grid.velocity[node * fields + field_of(m, p, q)];
+      const auto& grad = st.gradient[static_cast<std::size_t>(q)];
+      for (int a = 0; a < D; ++a)
+        for (int b = 0; b < D; ++b) L(a, b) += v[a] * grad[b];
     }
-  }
-  lost.raise(m.time);
+    if (!velocity_gradient_.empty()) velocity_gradient_[p] = L;
+    Tensor<D>& F = ps.deformation_gradient[p];
+    F = (Tensor<D>::Identity() + dt * L) * F;
+    ps.volume[p] = ps.reference_volume[p] * F.determinant();
+    material::update_stress<D>(m.bodies[ps.body[p]].constants, ps.state[p], L, F, dt);
+  });
 }
 
 template <int D>
@@ -398,49 +376,38 @@ void Solver<D>::step(Model<D>& m, double dt) {
   // grid to particles
   const bool apic = settings_.transfer == scene::Mpm::Transfer::apic;
   const double flip = settings_.flip_fraction;
-  LostParticle lost;
-#pragma omp parallel
-  {
-    Stencil<D> st;
-#pragma omp for schedule(static)
-    for (std::size_t p = 0; p < ps.size(); ++p) {
-      if (!make_stencil<D>(m, start_position_[p], st)) {
-        lost.record(p);
-        continue;
-      }
-      const std::size_t fields = static_cast<std::size_t>(g.fields);
-      Vec<D> pic{}, increment{}, start{};
-      Tensor<D> B = Tensor<D>::Zero(), Dp = Tensor<D>::Zero();
-      for (int q = 0; q < st.count; ++q) {
-        const std::size_t node = st.node[static_cast<std::size_t>(q)];
-        const std::size_t n = node * fields + field_of(m, p, q);
-        const double w = st.weight[static_cast<std::size_t>(q)];
-        for (int a = 0; a < D; ++a) {
-          pic[a] += w * g.velocity[n][a];
-          start[a] += w * g.velocity_start[n][a];
-          increment[a] += w * (g.velocity[n][a] - g.velocity_start[n][a]);
-        }
-        if (apic) {
-          const Vec<D> dx = g.node_position(node) - start_position_[p];
-          for (int a = 0; a < D; ++a)
-            for (int b = 0; b < D; ++b) B(a, b) += w * g.velocity[n][a] * dx[b], Dp(a, b) += w * dx[a] * dx[b];
-        }
+  for_each_stencil<D>(m, start_position_, omp_get_max_threads(), [&](std::size_t p, const Stencil<D>& st) {
+    const std::size_t fields = static_cast<std::size_t>(g.fields);
+    Vec<D> pic{}, increment{}, start{};
+    Tensor<D> B = Tensor<D>::Zero(), Dp = Tensor<D>::Zero();
+    for (int q = 0; q < st.count; ++q) {
+      const std::size_t node = st.node[static_cast<std::size_t>(q)];
+      const std::size_t n = node * fields + field_of(m, p, q);
+      const double w = st.weight[static_cast<std::size_t>(q)];
+      for (int a = 0; a < D; ++a) {
+        pic[a] += w * g.velocity[n][a];
+        start[a] += w * g.velocity_start[n][a];
+        increment[a] += w * (g.velocity[n][a] - g.velocity_start[n][a]);
       }
       if (apic) {
-        ps.velocity[p] = pic;
-        ps.affine_velocity[p] = B * Dp.inverse();  // C = B D^-1 (Jiang et al. 2015)
-      } else {
-        // FLIP keeps the part of v_p the grid does not see; the grid's damping does not reach it, so
-        // it is damped here at the same rate (else a damped run settles on the grid but its
-        // particles keep their noise)
+        const Vec<D> dx = g.node_position(node) - start_position_[p];
         for (int a = 0; a < D; ++a)
-          ps.velocity[p][a] = flip * (ps.velocity[p][a] + increment[a] - dt * alpha * (ps.velocity[p][a] - start[a])) + (1.0 - flip) * pic[a];
+          for (int b = 0; b < D; ++b) B(a, b) += w * g.velocity[n][a] * dx[b], Dp(a, b) += w * dx[a] * dx[b];
       }
-      for (int a = 0; a < D; ++a) ps.position[p][a] += dt * pic[a];
-      if (!acceleration_.empty()) acceleration_[p] = (1.0 / dt) * increment;
     }
-  }
-  lost.raise(m.time);
+    if (apic) {
+      ps.velocity[p] = pic;
+      ps.affine_velocity[p] = B * Dp.inverse();  // C = B D^-1 (Jiang et al. 2015)
+    } else {
+      // FLIP keeps the part of v_p the grid does not see; the grid's damping does not reach it, so
+      // it is damped here at the same rate (else a damped run settles on the grid but its
+      // particles keep their noise)
+      for (int a = 0; a < D; ++a)
+        ps.velocity[p][a] = flip * (ps.velocity[p][a] + increment[a] - dt * alpha * (ps.velocity[p][a] - start[a])) + (1.0 - flip) * pic[a];
+    }
+    for (int a = 0; a < D; ++a) ps.position[p][a] += dt * pic[a];
+    if (!acceleration_.empty()) acceleration_[p] = (1.0 / dt) * increment;
+  });
   if constexpr (D == 2) {
     if (!cracks_.empty()) move_cracks(m, dt);
   }
@@ -459,7 +426,7 @@ void Solver<D>::step(Model<D>& m, double dt) {
       // at nodes where fields meet, the strain rate must come from the velocities the points moved
       // with (contact-corrected); the remapped ones there would ratchet stress across the interface
       const std::size_t fields = static_cast<std::size_t>(g.fields);
-      const double tiny = 1e-12 * (ps.size() ? ps.mass[0] : 1.0);
+      const double tiny = tiny_mass(m);
 #pragma omp parallel for schedule(static)
       for (std::size_t node = 0; node < g.size(); ++node) {
         int present = 0;
@@ -474,30 +441,49 @@ void Solver<D>::step(Model<D>& m, double dt) {
 }
 
 template <int D>
+template <class Weighted>
+std::optional<Vec<2>> Solver<D>::side_mean(const Model<D>& m, const Vec<2>& x, const Vec<2>* probe, Weighted weighted) const {
+  if constexpr (D == 2) {
+    // sum S_i q_i / sum S_i m_i over the stencil of x, q_i a mass-weighted nodal quantity: light
+    // nodes (across the crack, where only the edge of a few points' support reaches) carry erratic
+    // values and little weight
+    const auto& g = m.grid;
+    const std::size_t fields = static_cast<std::size_t>(g.fields);
+    Stencil<2> st;
+    if (!make_stencil<2>(m, x, st)) return std::nullopt;
+    Vec<2> sum{};
+    double mass = 0.0;
+    for (int q = 0; q < st.count; ++q) {
+      const std::size_t node = st.node[static_cast<std::size_t>(q)];
+      const double w = st.weight[static_cast<std::size_t>(q)];
+      const std::size_t first = probe ? static_cast<std::size_t>(cracks_.field(*probe, g.node_position(node))) : 0;
+      const std::size_t last = probe ? first + 1 : fields;
+      for (std::size_t f = first; f < last; ++f) {
+        const std::size_t n = node * fields + f;
+        mass += w * g.mass[n];
+        sum = sum + w * weighted(n);
+      }
+    }
+    if (mass <= 0.0) return std::nullopt;
+    return (1.0 / mass) * sum;
+  }
+  return std::nullopt;
+}
+
+template <int D>
 bool Solver<D>::faces_closed(const Model<D>& m, std::size_t c, std::size_t k) const {
   if constexpr (D == 2) {
     if (crack_contact_ == scene::Mpm::Contact::none || m.grid.displacement.empty()) return false;
     // the contact test at a point: displacements of the material on each side, extrapolated to
     // the crack particle through the nodes of its stencil
     const auto& g = m.grid;
-    const std::size_t fields = static_cast<std::size_t>(g.fields);
     const Vec<2> x = cracks_.cracks()[c].points[k];
-    Stencil<2> st;
-    if (!make_stencil<2>(m, x, st)) return false;
-    Vec<2> u[2] = {{}, {}};
-    for (int side : {1, 2}) {
-      const Vec<2> probe = cracks_.side_point(c, k, x, side, 1e-6 * g.cell_size);
-      double mass = 0.0;
-      for (int q = 0; q < st.count; ++q) {
-        const std::size_t node = st.node[static_cast<std::size_t>(q)];
-        const std::size_t n = node * fields + static_cast<std::size_t>(cracks_.field(probe, g.node_position(node)));
-        mass += st.weight[static_cast<std::size_t>(q)] * g.mass[n];
-        u[side - 1] = u[side - 1] + st.weight[static_cast<std::size_t>(q)] * g.displacement[n];
-      }
-      if (mass <= 0.0) return false;
-      u[side - 1] = (1.0 / mass) * u[side - 1];
-    }
-    return dot<2>(u[0] - u[1], cracks_.normal(c, k)) <= 0.0;
+    const double eps = 1e-6 * g.cell_size;
+    const Vec<2> above = cracks_.side_point(c, k, x, 1, eps), below = cracks_.side_point(c, k, x, 2, eps);
+    auto displacement = [&](std::size_t n) { return g.displacement[n]; };  // sum m_p u_p S_ip already
+    const auto u_above = side_mean(m, x, &above, displacement), u_below = side_mean(m, x, &below, displacement);
+    if (!u_above || !u_below) return false;
+    return dot<2>(*u_above - *u_below, cracks_.normal(c, k)) <= 0.0;
   }
   return false;
 }
@@ -508,32 +494,10 @@ void Solver<D>::move_cracks(const Model<D>& m, double dt) {
     // crack particles move with the centre-of-mass velocity of the nodes, each surface with the
     // field it belongs to: the field a point just above (below) the crack would use
     const auto& g = m.grid;
-    const std::size_t fields = static_cast<std::size_t>(g.fields);
-    // velocity at x: the momenta of the stencil's nodes over their masses, both weighted by the
-    // shape functions (v = sum S_i p_i / sum S_i m_i). Nodes where the chosen field has little mass
-    // (across the crack, where only the edge of a few points' support reaches) have erratic
-    // velocities; mass weighting keeps them from steering the surfaces
-    auto velocity = [&](const Vec<2>& x, int side, const Vec<2>& probe) {
-      Stencil<2> st;
-      Vec<2> momentum{};
-      double mass = 0.0;
-      if (!make_stencil<2>(m, x, st)) return momentum;
-      for (int q = 0; q < st.count; ++q) {
-        const std::size_t node = st.node[static_cast<std::size_t>(q)];
-        const double w = st.weight[static_cast<std::size_t>(q)];
-        if (side == 0) {
-          for (std::size_t f = 0; f < fields; ++f) {
-            const std::size_t n = node * fields + f;
-            mass += w * g.mass[n];
-            momentum = momentum + (w * g.mass[n]) * g.velocity[n];
-          }
-        } else {
-          const std::size_t n = node * fields + static_cast<std::size_t>(cracks_.field(probe, g.node_position(node)));
-          mass += w * g.mass[n];
-          momentum = momentum + (w * g.mass[n]) * g.velocity[n];
-        }
-      }
-      return mass > 0.0 ? (1.0 / mass) * momentum : momentum;
+    // velocity at x: the stencil's momenta over its masses (v = sum S_i p_i / sum S_i m_i), of all
+    // fields or of the side seen from `probe`
+    auto velocity = [&](const Vec<2>& x, const Vec<2>* probe) {
+      return side_mean(m, x, probe, [&](std::size_t n) { return g.mass[n] * g.velocity[n]; }).value_or(Vec<2>{});
     };
     auto& cracks = cracks_.cracks();
     for (std::size_t c = 0; c < cracks.size(); ++c) {
@@ -542,9 +506,10 @@ void Solver<D>::move_cracks(const Model<D>& m, double dt) {
       std::vector<Vec<2>> v_mid(n), v_up(n), v_down(n);
       const double eps = 1e-6 * g.cell_size;
       for (std::size_t k = 0; k < n; ++k) {
-        v_mid[k] = velocity(crack.points[k], 0, crack.points[k]);
-        v_up[k] = velocity(crack.above[k], 1, cracks_.side_point(c, k, crack.above[k], 1, eps));
-        v_down[k] = velocity(crack.below[k], 2, cracks_.side_point(c, k, crack.below[k], 2, eps));
+        const Vec<2> above = cracks_.side_point(c, k, crack.above[k], 1, eps), below = cracks_.side_point(c, k, crack.below[k], 2, eps);
+        v_mid[k] = velocity(crack.points[k], nullptr);
+        v_up[k] = velocity(crack.above[k], &above);
+        v_down[k] = velocity(crack.below[k], &below);
       }
       for (std::size_t k = 0; k < n; ++k) {
         crack.points[k] = crack.points[k] + dt * v_mid[k];

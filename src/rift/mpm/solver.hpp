@@ -68,6 +68,12 @@ class Solver {
   /// (q: the node's place in the point's stencil, for the per-step crack-field cache)
   std::size_t field_of(const Model<D>& m, std::size_t p, int q) const;
   void move_cracks(const Model<D>& m, double dt);
+  /// Mass-weighted mean at x of a nodal quantity given per slot times its mass (weighted(slot)),
+  /// over all fields (probe null) or the field of the material on the crack side of `probe`.
+  template <class Weighted>
+  std::optional<Vec<2>> side_mean(const Model<D>& m, const Vec<2>& x, const Vec<2>* probe, Weighted weighted) const;
+  /// Grid slots lighter than this carry no material (velocity 0, not a contact field).
+  static double tiny_mass(const Model<D>& m) { return 1e-12 * (m.particles.size() ? m.particles.mass[0] : 1.0); }
 
   scene::Mpm settings_;
   std::vector<GridCondition> conditions_;

@@ -4,6 +4,7 @@
 #include <array>
 #include <cmath>
 #include <string>
+#include <vector>
 
 #include "rift/core/error.hpp"
 #include "rift/mpm/model.hpp"
@@ -64,5 +65,25 @@ bool make_stencil(const Model<D>& m, const Vec<D>& x, Stencil<D>& st) {
   return true;
 }
 
+/// Runs body(p, stencil) for every material point p in parallel (static schedule, `threads`
+/// threads), the stencil taken at positions[p]; a point whose stencil leaves the grid raises a
+/// PhysicsError after the loop.
+template <int D, class Body>
+void for_each_stencil(const Model<D>& m, const std::vector<Vec<D>>& positions, int threads, Body body) {
+  LostParticle lost;
+#pragma omp parallel num_threads(threads)
+  {
+    Stencil<D> st;
+#pragma omp for schedule(static)
+    for (std::size_t p = 0; p < positions.size(); ++p) {
+      if (!make_stencil<D>(m, positions[p], st)) {
+        lost.record(p);
+        continue;
+      }
+      body(p, st);
+    }
+  }
+  lost.raise(m.time);
+}
 
 }  // namespace rift::mpm
