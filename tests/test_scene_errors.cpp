@@ -213,6 +213,7 @@ const MpmCase mpm_cases[] = {
      "[[cracks]]\npoints = [[0.0205, 0.0025], [0.01, 0.0025]]\n[crack_growth]\ncriterion = \"max_hoop_stress\"\n[solver]",
      "crack_growth.toughness"},
     {"J area term not a boolean", "cell_size = 0.001", "cell_size = 0.001\nj_area_term = \"yes\"", "mpm.j_area_term"},
+    {"unknown mode partition", "cell_size = 0.001", "cell_size = 0.001\nmode_partition = \"displacement\"", "mpm.mode_partition"},
 };
 
 class MpmSceneErrors : public ::testing::TestWithParam<MpmCase> {};

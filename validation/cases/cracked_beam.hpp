@@ -59,7 +59,7 @@ inline CrackedBeam run_cracked_beam(const std::string& scene_file, double cell, 
     if (b.region == "upper_arm_end") out.P_upper = b.value[1].value_or(0.0) * h;
     if (b.region == "lower_arm_end") out.P_lower = b.value[1].value_or(0.0) * h;
   }
-  out.tip = mpm::crack_tip_parameters(m, solver, {0, mpm::TipEnd::end}, {});
+  out.tip = mpm::crack_tip_parameters(m, solver, {0, mpm::TipEnd::end}, mpm::contour_of(s.mpm));
   out.particles = m.particles.size();
   return out;
 }

@@ -23,7 +23,7 @@ Result mpm_cct(const Settings& settings) {
   const double K0 = sigma0 * std::sqrt(M_PI * a);
   const double lambda = E * nu / ((1 + nu) * (1 - 2 * nu)), mu = E / (2 * (1 + nu));
   const double c_d = std::sqrt((lambda + 2 * mu) / rho), arrival = 0.02 / c_d;
-  const auto h = run_tip_history(s, 140, {{s.mpm.j_contour, true}});
+  const auto h = run_tip_history(s, 140, {mpm::contour_of(s.mpm)});
   double early = 0.0, peak = 0.0, t_peak = 0.0, mismatch = 0.0, mode2 = 0.0, after_min = 1e300;
   std::string curve;
   for (const auto& sample : h.samples) {

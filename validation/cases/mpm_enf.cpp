@@ -11,8 +11,10 @@
 // (1986) fitted for ENF, 0.2 (E / mu) (h / a)^2 = 2 (1 + nu) / 5 (h / a)^2 (+1.5% on K_II here). The
 // report also gives the ratio to the uncorrected 3 P a / h^(3/2) and to the crack-root-rotation
 // correction of Wang and Williams (1992), a -> a + 0.42 chi h with chi = 0.64 (+6.5%).
-// Mesh: Guo and Nairn found mode II converged only on 1 mm cells (mode I on 2 mm). The 1 mm run
-// (full case) must meet 5%; the 2 mm CI run (1.078 when written) is held to 10%.
+// Mesh: Guo and Nairn found mode II converged only on 1 mm cells (mode I on 2 mm). Both the 1 mm
+// run (full case; 1.025 when written) and the 2 mm CI run (1.021) must meet 5%.
+// Load: P = 1 kN/m keeps the beam linear (end deflection 0.4 mm). At 10 kN/m the end moved 3.9 mm,
+// two cells, and K_II read 1.05 with K_I 10% of it.
 // Crack-face contact is frictionless; where the faces are closed behind the tip, K_I = 0.
 #include <cstdio>
 
@@ -34,7 +36,7 @@ Result mpm_enf(const Settings& settings) {
   r.name = "mpm_enf";
   r.measured = KII / K_ref;
   r.reference = 1.0;
-  r.tolerance = settings.quick ? 0.10 : 0.05;
+  r.tolerance = 0.05;
   r.unit = "|K_II| / beam theory with shear correction";
   char buf[500];
   std::snprintf(buf, sizeof buf,

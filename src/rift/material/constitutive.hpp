@@ -1,5 +1,6 @@
 // Continuum constitutive models shared by the material point method (and, later, peridynamic
-// correspondence). Small-strain models integrate the rate of deformation; the neo-Hookean model
+// correspondence). Small-strain models integrate the rate of deformation objectively (stress
+// rotated with the material's spin); the neo-Hookean model
 // uses the deformation gradient. In 2D the tensors are 2 x 2: plane strain uses lambda, G;
 // plane stress uses the reduced lambda* = 2 lambda G / (lambda + 2 G) (linear elastic only).
 #pragma once
@@ -40,6 +41,16 @@ void update_stress(const Constants& c, State<D>& s, const Tensor<D>& L, const Te
     s.stress = c.shear_modulus / J * (F * F.transpose() - I) + c.lambda * std::log(J) / J * I;
     return;
   }
+  // objective update (Hughes and Winget 1980): the stress and strain of the previous step turn
+  // with the material by the incremental rotation of the spin W = (L - L^T)/2,
+  //   R = (I - W dt/2)^-1 (I + W dt/2),
+  // then the rate of deformation D = (L + L^T)/2 adds its elastic increment. Without the rotation a
+  // stressed body that turns (a bending beam's arms) gains spurious stress of order angle x stress.
+  const Tensor<D> half_spin = 0.25 * dt * (L - L.transpose());
+  const Tensor<D> R = (I - half_spin).inverse() * (I + half_spin);
+  s.stress = R * s.stress * R.transpose();
+  s.strain = R * s.strain * R.transpose();
+  s.plastic_strain = R * s.plastic_strain * R.transpose();
   const Tensor<D> de = 0.5 * dt * (L + L.transpose());
   s.strain += de;
   Tensor<D> trial = s.stress + c.lambda * de.trace() * I + 2.0 * c.shear_modulus * de;

@@ -27,7 +27,7 @@ std::optional<Vec<2>> growth_point(const scene::CrackGrowth& criterion, const Cr
 }
 
 CrackPropagation::CrackPropagation(const scene::Scene& s, const Model<2>& m, const Solver<2>& solver)
-    : settings_(s.crack_growth), contour_{s.mpm.j_contour, s.mpm.j_area_term} {
+    : settings_(s.crack_growth), contour_(contour_of(s.mpm)) {
   for (const auto& t : interior_tips(m, solver.cracks())) tips_.push_back({t, false});
 }
 

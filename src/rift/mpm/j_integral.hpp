@@ -1,8 +1,8 @@
 // J-integral and stress intensity factors at an explicit-crack tip (Guo and Nairn 2006, CMES 14;
 // seed 002, eqs. 7, 8 and 10-22). Particle stresses, displacement gradients and energy densities are
 // extrapolated to the grid per velocity field; J is integrated by the trapezoid rule along a
-// rectangular grid-line contour Gamma of (2 cells) x (2 cells) cells centred on the node nearest the
-// tip, split where it crosses the crack so that each crack face uses its own field (eq. 7):
+// rectangular grid-line contour Gamma reaching 2 cells (or `cells`) from the tip on every side,
+// split where it crosses the crack so that each crack face uses its own field (eq. 7):
 //   J_m = int_Gamma [(W + K) n_m - sigma_ij n_j du_i/dx_m] dGamma   (crack-tip axes, m = 1, 2),
 // plus, for dynamic problems, the area term over the region A inside Gamma (eq. 8), with the
 // material points inside the contour as integration points:
@@ -11,6 +11,16 @@
 // sliding (d_t) displacements at the crack point next to the tip (stationary crack, eqs. 21-22):
 //   K_I = d_n / sqrt(d_n^2 + d_t^2) sqrt(G E'),  K_II = d_t / sqrt(d_n^2 + d_t^2) sqrt(G E'),
 // E' = E (plane stress) or E / (1 - nu^2) (plane strain), taken from the cracked body's material.
+// The COD ratio depends on where behind the tip it is read (the MPM surfaces smear the first cell:
+// in the 1 mm mixed-mode beam d_t/d_n runs from 1.26 at 0.5 mm to 0.69 at 3 mm against 0.76).
+// The default partition takes the ratio from the interaction integral on the same contour (Yau,
+// Wang and Corten 1980; dynamic form of Rethore et al. 2005), with the Williams near-tip fields of
+// unit K_I or K_II as auxiliary fields u~, sigma~, eps~:
+//   I = int_Gamma [sigma_ij eps~_ij n_1 - sigma_ij n_j du~_i/dx_1 - sigma~_ij n_j du_i/dx_1] dGamma
+//       + int_A rho a_i du~_i/dx_1 dA,      K = E' I / 2,
+// and splits sqrt(E' G) in the ratio K_I : K_II so found. (The interaction integral's own
+// magnitude converges more slowly than J's on MPM fields: +14% on 2 mm cells, +4% on 1 mm in the
+// DCB; its ratio is right on both.)
 #pragma once
 #include <vector>
 
@@ -20,16 +30,26 @@
 
 namespace rift::mpm {
 
+/// How K_I and K_II split G: the ratio of the interaction integrals, or of the crack opening and
+/// sliding displacements at the crack point next to the tip (Guo and Nairn 2006).
+using ModePartition = scene::Mpm::ModePartition;
+
 struct JContour {
-  int cells = 2;          // the contour runs `cells` cells from the node nearest the tip
+  int cells = 2;          // the contour reaches at least `cells` cells from the tip on every side
   bool area_term = true;  // eq. 8 (vanishes in static problems)
+  ModePartition partition = ModePartition::interaction_integral;
 };
+
+/// The contour and partition of a scene's [mpm] table.
+inline JContour contour_of(const scene::Mpm& s) { return {s.j_contour, s.j_area_term, s.mode_partition}; }
 
 struct CrackTipParameters {
   double J1 = 0.0, J2 = 0.0;  // crack-tip axes: 1 along the crack growth direction, 2 normal
   double J1_area = 0.0;       // the area term's part of J1 (0 without it)
   double G = 0.0;
-  double KI = 0.0, KII = 0.0;
+  double KI = 0.0, KII = 0.0;          // sqrt(E' G) split by the contour's partition
+  double KI_cod = 0.0, KII_cod = 0.0;  // split by the opening/sliding displacements (eqs. 21-22)
+  double KI_interaction = 0.0, KII_interaction = 0.0;  // the interaction integrals themselves
   double opening = 0.0, sliding = 0.0;  // at the crack point next to the tip
   Vec<2> position{};                    // the tip
   double angle = 0.0;                   // crack growth direction at the tip, radians from x

@@ -68,8 +68,10 @@ Plan check_dim(const scene::Scene& s, std::ostream& out) {
   if constexpr (D == 2) {
     if (!s.cracks.empty()) {
       const auto tips = mpm::interior_tips(r.model, r.solver.cracks());
-      std::snprintf(line, sizeof line, "crack tips   %zu inside material: J (contour %d cells from the tip node, area term %s), G, K_I, K_II\n",
-                    tips.size(), s.mpm.j_contour, s.mpm.j_area_term ? "on" : "off");
+      std::snprintf(line, sizeof line,
+                    "crack tips   %zu inside material: J (contour %d cells from the tip node, area term %s), G, K_I, K_II (split by %s)\n",
+                    tips.size(), s.mpm.j_contour, s.mpm.j_area_term ? "on" : "off",
+                    s.mpm.mode_partition == scene::Mpm::ModePartition::cod ? "the crack opening/sliding" : "the interaction integral");
       out << line << "             at every history row -> crack_tips.csv" << (s.output.crack_tip_plot ? " + crack_tips.png" : "") << "\n";
       if (s.crack_growth.enabled) {
         const auto& gr = s.crack_growth;
@@ -127,9 +129,9 @@ void write_snapshot(io::FieldWriter& w, const mpm::Model<D>& m, const scene::Sce
 class CrackTipHistory {
  public:
   CrackTipHistory(const std::string& path, const mpm::Model<2>& m, const mpm::Solver<2>& solver, const scene::Mpm& settings)
-      : path_(path), out_(path), contour_{settings.j_contour, settings.j_area_term} {
+      : path_(path), out_(path), contour_(mpm::contour_of(settings)) {
     tips_ = mpm::interior_tips(m, solver.cracks());
-    out_ << "time,step,crack,tip,x,y,angle_deg,J_1,J_2,J_1_area,G,K_I,K_II,opening,sliding\n";
+    out_ << "time,step,crack,tip,x,y,angle_deg,J_1,J_2,J_1_area,G,K_I,K_II,opening,sliding,K_I_cod,K_II_cod,K_I_interaction,K_II_interaction\n";
   }
   const std::string& path() const { return path_; }
   bool empty() const { return tips_.empty(); }
@@ -139,9 +141,9 @@ class CrackTipHistory {
       if (!std::isfinite(k.J1) || !std::isfinite(k.KI) || !std::isfinite(k.KII))
         throw PhysicsError("step " + std::to_string(step) + ": the J-integral at crack " + std::to_string(t.crack) + " is not finite");
       char line[512];
-      std::snprintf(line, sizeof line, "%.9g,%ld,%zu,%s,%.9g,%.9g,%.6g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g\n", m.time, step, t.crack,
-                    t.end == mpm::TipEnd::end ? "end" : "start", k.position[0], k.position[1], k.angle * 180.0 / M_PI, k.J1, k.J2,
-                    k.J1_area, k.G, k.KI, k.KII, k.opening, k.sliding);
+      std::snprintf(line, sizeof line, "%.9g,%ld,%zu,%s,%.9g,%.9g,%.6g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g\n", m.time,
+                    step, t.crack, t.end == mpm::TipEnd::end ? "end" : "start", k.position[0], k.position[1], k.angle * 180.0 / M_PI, k.J1,
+                    k.J2, k.J1_area, k.G, k.KI, k.KII, k.opening, k.sliding, k.KI_cod, k.KII_cod, k.KI_interaction, k.KII_interaction);
       out_ << line;
     }
     out_.flush();

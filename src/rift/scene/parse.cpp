@@ -447,8 +447,10 @@ void parse_mpm(R& root, Scene& s) {
     m.j_contour = static_cast<int>(*n);
   }
   if (auto b = r.boolean("j_area_term")) m.j_area_term = *b;
+  if (auto v = r.choice("mode_partition", {"interaction_integral", "cod"}))
+    m.mode_partition = *v == "cod" ? Mpm::ModePartition::cod : Mpm::ModePartition::interaction_integral;
   r.finish({"cell_size", "shape", "scheme", "transfer", "flip_fraction", "damping", "contact", "crack_contact", "friction", "grid_min",
-             "grid_max", "j_contour", "j_area_term"});
+             "grid_max", "j_contour", "j_area_term", "mode_partition"});
 }
 
 void parse_crack_growth(R& root, Scene& s) {

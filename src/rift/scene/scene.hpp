@@ -135,6 +135,9 @@ struct Mpm {
   /// node nearest the tip; the area term of the dynamic J (their eq. 8).
   int j_contour = 2;
   bool j_area_term = true;
+  /// K_I : K_II from the interaction integral on the J contour, or from the crack opening and
+  /// sliding displacements behind the tip (Guo and Nairn 2006, eqs. 21-22).
+  enum class ModePartition { interaction_integral, cod } mode_partition = ModePartition::interaction_integral;
 };
 
 /// Propagation of explicit MPM cracks ([crack_growth]): the direction of maximum hoop stress
