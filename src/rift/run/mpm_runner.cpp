@@ -69,7 +69,7 @@ Plan check_dim(const scene::Scene& s, std::ostream& out) {
     if (!s.cracks.empty()) {
       const auto tips = mpm::interior_tips(r.model, r.solver.cracks());
       std::snprintf(line, sizeof line,
-                    "crack tips   %zu inside material: J (contour %d cells from the tip node, area term %s), G, K_I, K_II (split by %s)\n",
+                    "crack tips   %zu inside material: J (contour reaching %d cells from the tip, area term %s), G, K_I, K_II (split by %s)\n",
                     tips.size(), s.mpm.j_contour, s.mpm.j_area_term ? "on" : "off",
                     s.mpm.mode_partition == scene::Mpm::ModePartition::cod ? "the crack opening/sliding" : "the interaction integral");
       out << line << "             at every history row -> crack_tips.csv" << (s.output.crack_tip_plot ? " + crack_tips.png" : "") << "\n";
