@@ -34,8 +34,8 @@ TipGeometry tip_geometry(const CrackSet& cracks, const CrackTip& t) {
 
 /// The small-strain displacement gradient du_i/dx_j of a material point: its strain (integrated
 /// objectively, so free of rotation) plus the rotation, the skew part of F - I. F - I itself would
-/// carry (cos(theta) - 1) I of a rotation theta as strain: 4e-4 at the 0.03 rad the ENF beam turns
-/// near its tip, 10% of the strain there, and K_II 8% off. Neo-Hookean points keep no strain: F - I.
+/// count (cos(theta) - 1) I of a rotation theta as strain (4e-4 at 0.03 rad; it moved J by 0.3% in
+/// the ENF beam at 10 kN/m). Neo-Hookean points keep no strain: F - I.
 Tensor<2> displacement_gradient(const material::Constants& c, const material::State<2>& s, const Tensor<2>& F) {
   const Tensor<2> H = F - Tensor<2>::Identity();
   if (c.kind == material::Kind::neo_hookean) return H;
@@ -226,7 +226,10 @@ CrackTipParameters crack_tip_parameters(const Model<2>& m, const Solver<2>& solv
   };
   // the interaction integrand for the unit mode-1 and mode-2 auxiliary fields, in crack-tip axes
   // (Q: rows e_1, e_2); theta is continuous along the path, from the lower face to the upper one
-  if (nearest == ps.size()) return out;
+  if (nearest == ps.size()) {  // no material near the tip
+    out.valid = false;
+    return out;
+  }
   const auto& constants = m.bodies[ps.body[nearest]].constants;
   Tensor<2> Q;
   Q << c1, s1, -s1, c1;
@@ -283,6 +286,8 @@ CrackTipParameters crack_tip_parameters(const Model<2>& m, const Solver<2>& solv
     if (!contour.area_term || acceleration.size() != ps.size()) break;
     const double u = (x[0] - g.origin[0]) / h, w = (x[1] - g.origin[1]) / h;
     if (u <= double(i_lo) || u >= double(i_hi) || w <= double(j_lo) || w >= double(j_hi)) continue;
+    // (theta of a point by its side of the crack-tip axis; only points within round-off of a
+    // curved crack's faces could take the wrong branch)
     const Eigen::Vector2d y = local(x - tip), a_tip = local(acceleration[p]);
     if (const double r = y.norm(); r > 0.0) {
       const double angle = std::atan2(y[1], y[0]);
