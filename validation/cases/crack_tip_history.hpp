@@ -1,7 +1,9 @@
 // Runs a cracked MPM scene and samples J, G, K_I, K_II at every crack tip inside material.
 #pragma once
+#include <algorithm>
 #include <array>
 #include <cmath>
+#include <string>
 #include <vector>
 
 #include "case.hpp"
@@ -47,6 +49,18 @@ inline TipHistory run_tip_history(const scene::Scene& s, int samples, const std:
     }
   }
   return h;
+}
+
+/// Evenly spaced entries of a history of `count` samples for a report line, joined by spaces:
+/// label(i) for i = 0, count/parts, 2 count/parts, ...
+template <class Label>
+std::string sampled_history(std::size_t count, std::size_t parts, Label label) {
+  std::string out;
+  for (std::size_t i = 0; i < count; i += std::max<std::size_t>(1, count / parts)) {
+    if (!out.empty()) out += ' ';
+    out += label(i);
+  }
+  return out;
 }
 
 }  // namespace rift::validation

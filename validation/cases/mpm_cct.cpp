@@ -25,7 +25,6 @@ Result mpm_cct(const Settings& settings) {
   const double c_d = std::sqrt((lambda + 2 * mu) / rho), arrival = 0.02 / c_d;
   const auto h = run_tip_history(s, 140, {mpm::contour_of(s.mpm)});
   double early = 0.0, peak = 0.0, t_peak = 0.0, mismatch = 0.0, mode2 = 0.0, after_min = 1e300;
-  std::string curve;
   for (const auto& sample : h.samples) {
     const double k0 = sample.contours[0].at(0).KI / K0, k1 = sample.contours[0].at(1).KI / K0;
     const double k = 0.5 * (k0 + k1);
@@ -36,11 +35,11 @@ Result mpm_cct(const Settings& settings) {
   }
   for (const auto& sample : h.samples)
     if (sample.time > t_peak) after_min = std::min(after_min, 0.5 * (sample.contours[0][0].KI + sample.contours[0][1].KI) / K0);
-  for (std::size_t i = 0; i < h.samples.size(); i += h.samples.size() / 14) {
+  const std::string curve = sampled_history(h.samples.size(), 14, [&](std::size_t i) {
     char b[48];
-    std::snprintf(b, sizeof b, "%s%.1f:%.2f", curve.empty() ? "" : " ", h.samples[i].time * 1e6, h.samples[i].contours[0][0].KI / K0);
-    curve += b;
-  }
+    std::snprintf(b, sizeof b, "%.1f:%.2f", h.samples[i].time * 1e6, h.samples[i].contours[0][0].KI / K0);
+    return std::string(b);
+  });
   Result r;
   r.name = "mpm_cct";
   r.measured = peak;

@@ -28,7 +28,6 @@ Result mpm_denp(const Settings& settings) {
   double diff_area = 0, diff_plain = 0, norm = 0, KI_max = 0, KII_max = 0;
   int n = 0;
   bool mode2 = true;
-  std::string curve;
   for (const auto& sample : h.samples) {
     if (sample.time < passed) continue;
     const auto& small = sample.contours[0][0];
@@ -40,12 +39,12 @@ Result mpm_denp(const Settings& settings) {
     KI_max = std::max(KI_max, std::abs(small.KI));
     KII_max = std::max(KII_max, std::abs(small.KII));
   }
-  for (std::size_t i = 0; i < h.samples.size(); i += h.samples.size() / 10) {
+  const std::string curve = sampled_history(h.samples.size(), 10, [&](std::size_t i) {
     const auto& p = h.samples[i].contours[0][0];
     char b[64];
-    std::snprintf(b, sizeof b, "%s%.0f:%.1f/%.1f", curve.empty() ? "" : " ", h.samples[i].time * 1e6, p.KI / 1e6, p.KII / 1e6);
-    curve += b;
-  }
+    std::snprintf(b, sizeof b, "%.0f:%.1f/%.1f", h.samples[i].time * 1e6, p.KI / 1e6, p.KII / 1e6);
+    return std::string(b);
+  });
   mode2 = KII_max > KI_max;
   const double with_area = n ? std::sqrt(diff_area / norm) : 1.0, without_area = n ? std::sqrt(diff_plain / norm) : 0.0;
   Result r;

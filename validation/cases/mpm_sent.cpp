@@ -27,7 +27,7 @@ std::vector<std::array<double, 2>> sent_history(double cell, std::size_t& partic
   (*s.mpm.grid_max)[0] = 0.01 + 3 * cell;
   (*s.mpm.grid_max)[1] = 0.02 + 3 * cell;
   const double K0 = 4.0e8 * std::sqrt(M_PI * 0.005);
-  const auto h = run_tip_history(s, 140, {{2, true}});
+  const auto h = run_tip_history(s, 140, {mpm::contour_of(s.mpm)});
   particles = h.particles;
   std::vector<std::array<double, 2>> out{{0.0, 0.0}};
   for (const auto& sample : h.samples) out.push_back({sample.time, sample.contours[0].at(0).KI / K0});
@@ -87,12 +87,11 @@ Result mpm_sent(const Settings& settings) {
     std::snprintf(b, sizeof b, "%s%g mm %.3f (at %.1f us)", series.empty() ? "" : ", ", cells[k] * 1e3, deviation[k], when[k] * 1e6);
     series += b;
   }
-  std::string curve;
-  for (std::size_t i = 0; i < ref.size(); i += ref.size() / 14) {
+  const std::string curve = sampled_history(ref.size(), 14, [&](std::size_t i) {
     char b[48];
-    std::snprintf(b, sizeof b, "%s%.1f:%.2f", curve.empty() ? "" : " ", ref[i][0] * 1e6, ref[i][1]);
-    curve += b;
-  }
+    std::snprintf(b, sizeof b, "%.1f:%.2f", ref[i][0] * 1e6, ref[i][1]);
+    return std::string(b);
+  });
   Result r;
   r.name = "mpm_sent";
   r.measured = worst;
