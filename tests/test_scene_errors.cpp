@@ -97,6 +97,8 @@ const Case cases[] = {
     {"crack with one point", "", "\n[[cracks]]\npoints = [[0.0, 0.0]]\n", "cracks[0].points", ""},
     {"initial velocity region empty", "", "\n[regions.far]\nshape = \"sphere\"\ncenter = [1.0, 1.0]\nradius = 0.001\n[[initial_velocity]]\nregion = \"far\"\nvelocity = [1.0, 0.0]\n", "initial_velocity.region", ""},
     {"safety factor above 1", "end_time = 1e-6", "end_time = 1e-6\nsafety_factor = 1.5", "solver.safety_factor", "safety_factor"},
+    {"traction layer thinner than a row", "x = 1.0\n", "x = 1.0\n[[boundaries]]\nregion = \"left\"\ntype = \"traction\"\nx = 1e6\nlayer_depth = 0.0005\n",
+     "boundaries[1].layer_depth", "[[boundaries]]\nregion = \"left\"\ntype = \"traction\""},
 };
 
 class SceneErrors : public ::testing::TestWithParam<Case> {};
@@ -214,6 +216,8 @@ const MpmCase mpm_cases[] = {
      "crack_growth.toughness"},
     {"J area term not a boolean", "cell_size = 0.001", "cell_size = 0.001\nj_area_term = \"yes\"", "mpm.j_area_term"},
     {"unknown mode partition", "cell_size = 0.001", "cell_size = 0.001\nmode_partition = \"displacement\"", "mpm.mode_partition"},
+    {"traction layer thinner than a row of points", "type = \"fixed\"",
+     "type = \"fixed\"\n[[boundaries]]\nregion = \"beam\"\ntype = \"traction\"\ny = 1e6\nlayer_depth = 0.0002", "boundaries[1].layer_depth"},
 };
 
 class MpmSceneErrors : public ::testing::TestWithParam<MpmCase> {};

@@ -2,6 +2,7 @@
 
 #include "rift/geometry/region.hpp"
 #include "rift/load/time_function.hpp"
+#include "rift/load/traction_layer.hpp"
 
 namespace rift::load {
 
@@ -21,6 +22,11 @@ Boundaries<D>::Boundaries(const scene::Scene& s, pd::Model<D>& m) {
     Applied a{b, select<D>(s, m, b.region)};
     if (a.particles.empty())
       throw SceneError(b.where, "boundaries[" + std::to_string(bi) + "].region", "region \"" + b.region + "\" selects no particle");
+    if (b.kind == K::traction && b.layer_depth > 0)
+      for (auto i : a.particles)
+        if (b.layer_depth < (1.0 - 1e-9) * m.constants_of(i).spacing)
+          throw SceneError(b.where, "boundaries[" + std::to_string(bi) + "].layer_depth",
+                           thinner_than_a_row(b.layer_depth, m.constants_of(i).spacing));
     if (b.kind == K::fixed || b.kind == K::velocity || b.kind == K::displacement) {
       any_kinematic_ = true;
       for (auto i : a.particles)

@@ -9,6 +9,7 @@
 #include "rift/core/error.hpp"
 #include "rift/geometry/region.hpp"
 #include "rift/load/time_function.hpp"
+#include "rift/load/traction_layer.hpp"
 #include "rift/mpm/energy.hpp"
 #include "rift/mpm/stencil.hpp"
 
@@ -50,6 +51,11 @@ Solver<D>::Solver(const scene::Scene& s, Model<D>& m) : settings_(s.mpm) {
       l.particles = particles_in<D>(s, m.particles, b.region);
       if (l.particles.empty()) throw SceneError(b.where, key + ".region", "region \"" + b.region + "\" selects no material point");
       const double depth = b.layer_depth > 0 ? b.layer_depth : s.mpm.cell_size;
+      if (b.kind == K::traction)
+        for (auto p : l.particles) {
+          const double spacing = s.mpm.cell_size / s.bodies[m.particles.body[p]].particles_per_cell;
+          if (depth < (1.0 - 1e-9) * spacing) throw SceneError(b.where, key + ".layer_depth", load::thinner_than_a_row(depth, spacing));
+        }
       for (int a = 0; a < D; ++a) l.density[a] = b.value[a].value_or(0.0) / (b.kind == K::traction ? depth : 1.0);
       l.time = b.time;
       loads_.push_back(std::move(l));
@@ -203,6 +209,7 @@ void Solver<D>::apply_contact(Model<D>& m) {
   const std::size_t fields = static_cast<std::size_t>(g.fields);
   const double tiny = tiny_mass(m);
   using C = scene::Mpm::Contact;
+  touching_.assign(g.size(), 0);
 #pragma omp parallel for schedule(static)
   for (std::size_t node = 0; node < g.size(); ++node) {
     const std::size_t base = node * fields;
@@ -242,6 +249,7 @@ void Solver<D>::apply_contact(Model<D>& m) {
     // bodies touch at this node only when together they fill its cell (their stencils already
     // overlap a couple of cells before they meet)
     if (cracks_.empty() && volume < contact_volume_ * cell_volume_) continue;
+    touching_[node] = 1;
     const Vec<D> v_cm = (1.0 / mass) * momentum;
     for (std::size_t f = 0; f < fields; ++f) {
       const std::size_t n = base + f;
@@ -421,19 +429,19 @@ void Solver<D>::step(Model<D>& m, double dt) {
   } else if (settings_.scheme == S::musl) {
     if (g.fields > 1) stage_velocity_ = g.velocity;
     scatter(m, true, false);  // the new particle momenta back to the grid (Sulsky et al. 1995)
-    grid_velocities(m, t + dt, false, g.fields == 1);
+    grid_velocities(m, t + dt, false, false);
     if (g.fields > 1) {
-      // at nodes where fields meet, the strain rate must come from the velocities the points moved
-      // with (contact-corrected); the remapped ones there would ratchet stress across the interface
+      // where the fields touch (closed crack faces, bodies in contact) the strain rate comes from
+      // the contact-corrected velocities the points moved with: remapped ones differ in their
+      // normal parts by the FLIP history, and contact, which only removes approach, would ratchet
+      // the faces open. Elsewhere the fields are independent and take the remapped velocities like
+      // every other node: a field holding only the edge of a few points' support would otherwise
+      // feed f / m_field (unbounded as m_field -> 0) into the stress and go unstable.
       const std::size_t fields = static_cast<std::size_t>(g.fields);
-      const double tiny = tiny_mass(m);
 #pragma omp parallel for schedule(static)
-      for (std::size_t node = 0; node < g.size(); ++node) {
-        int present = 0;
-        for (std::size_t f = 0; f < fields; ++f) present += g.mass[node * fields + f] > tiny;
-        if (present > 1)
+      for (std::size_t node = 0; node < g.size(); ++node)
+        if (touching_[node])
           for (std::size_t f = 0; f < fields; ++f) g.velocity[node * fields + f] = stage_velocity_[node * fields + f];
-      }
     }
     update_stress(m, dt);
   }

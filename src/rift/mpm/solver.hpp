@@ -84,8 +84,9 @@ class Solver {
   CrackSet cracks_;
   std::vector<std::uint8_t> near_crack_;  // material points whose stencil may reach across a crack
   std::vector<std::uint8_t> crack_field_; // per point and stencil node: CRAMP field of the step
-  std::vector<Vec<D>> stage_velocity_;  // MUSL with several fields: grid velocities the points moved with
   std::vector<Vec<D>> acceleration_;
+  std::vector<Vec<D>> stage_velocity_;   // MUSL with several fields: grid velocities the points moved with
+  std::vector<std::uint8_t> touching_;   // per node: fields in contact this step (apply_contact)
   std::vector<Tensor<D>> velocity_gradient_;
   scene::Mpm::Contact crack_contact_ = scene::Mpm::Contact::frictionless;
   bool measure_ = false;
