@@ -16,6 +16,10 @@ struct Bonds {
   // LPS only (empty otherwise): theta_i = sum dilatation_weight e, see surface_correction.hpp
   std::vector<float> dilatation_weight, mirror_dilatation_weight;
   std::vector<std::uint8_t> intact;   // 1 = intact, 0 = broken (never heals)
+  // VES only (empty otherwise), per directed bond i-j: i's deviatoric extension and back extension
+  // after the last step (Mitchell 2011), and the slot of the bond j-i in row j
+  std::vector<double> deviatoric_extension, back_extension;
+  std::vector<std::uint16_t> mirror_slot;
 
   std::int64_t size() const { return static_cast<std::int64_t>(neighbor.size()); }
   static constexpr std::size_t bytes_per_bond() {

@@ -65,7 +65,7 @@ double separation_work_per_stretch2(const MaterialConstants& mc) {
   // radial measure: 3D  2 pi xi^2 dxi ; 2D  t xi dxi (the factor 2 of the two half-planes is in mu_moments)
   auto radial = [&](double xi) { return d == 3 ? 2.0 * pi * xi * xi : t * xi; };
   auto omega = [&](double xi) { return influence(mc.influence, xi, delta); };
-  const bool lps = mc.model == scene::ModelKind::lps;
+  const bool lps = mc.state_based();
   const double m = d == 3 ? 4.0 * pi * influence_moment(mc.influence, delta, 4)
                           : 2.0 * pi * t * influence_moment(mc.influence, delta, 3);
   const double alpha = mc.lps_deviatoric_coefficient() / m;

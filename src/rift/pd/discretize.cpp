@@ -9,6 +9,7 @@
 #include "rift/geometry/region.hpp"
 #include "rift/pd/influence.hpp"
 #include "rift/pd/surface_correction.hpp"
+#include "rift/pd/ves.hpp"
 
 namespace rift::pd {
 
@@ -235,6 +236,7 @@ Model<D> discretize(const scene::Scene& s) {
     }
   }
   compute_dilatation_weights<D>(m);
+  prepare_viscous_history<D>(m);
 
   for (const auto& iv : s.initial_velocities) {
     const auto selected = geometry::indices_inside<D>(geometry::Region::build(s, iv.region), n,

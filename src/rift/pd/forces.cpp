@@ -6,28 +6,37 @@
 #include "rift/parallel/ordered_sum.hpp"
 #include "rift/pd/lps.hpp"
 #include "rift/pd/pmb.hpp"
+#include "rift/pd/ves.hpp"
 
 namespace rift::pd {
 
 template <int D>
-void compute_forces(Model<D>& m, Contact<D>* contact) {
+void compute_forces(Model<D>& m, Contact<D>* contact, double history_dt) {
   using I = scene::Influence;
   for (const auto& body : m.bodies) {
     const auto& c = body.constants;
     if (c.model == scene::ModelKind::pmb) {
       if (c.influence == I::constant) pmb_forces<D, I::constant>(m, body);
       else pmb_forces<D, I::inverse_distance>(m, body);
-    } else {
+    } else if (c.model == scene::ModelKind::lps) {
       if (c.influence == I::constant) lps_dilatation<D, I::constant>(m, body);
       else lps_dilatation<D, I::inverse_distance>(m, body);
+    } else {
+      if (c.influence == I::constant) ves_dilatation<D, I::constant>(m, body, history_dt);
+      else ves_dilatation<D, I::inverse_distance>(m, body, history_dt);
     }
   }
-  // second pass for LPS needs every dilatation of the step (bodies may neighbour through contact only)
+  // the second pass of the state-based models needs every dilatation of the step (bodies may
+  // neighbour through contact only)
   for (const auto& body : m.bodies) {
     const auto& c = body.constants;
-    if (c.model != scene::ModelKind::lps) continue;
-    if (c.influence == I::constant) lps_forces<D, I::constant>(m, body);
-    else lps_forces<D, I::inverse_distance>(m, body);
+    if (c.model == scene::ModelKind::lps) {
+      if (c.influence == I::constant) lps_forces<D, I::constant>(m, body);
+      else lps_forces<D, I::inverse_distance>(m, body);
+    } else if (c.model == scene::ModelKind::ves) {
+      if (c.influence == I::constant) ves_forces<D, I::constant>(m, body);
+      else ves_forces<D, I::inverse_distance>(m, body);
+    }
   }
   if (contact) contact->add_forces(m);
 }
@@ -50,8 +59,11 @@ void update_damage(Model<D>& m) {
 template <int D>
 double strain_energy_density(const Model<D>& m, std::size_t i) {
   const auto& body = m.bodies[m.body[i]];
-  return body.constants.model == scene::ModelKind::pmb ? pmb_energy_density<D>(m, body, i)
-                                                        : lps_energy_density<D>(m, body, i);
+  switch (body.constants.model) {
+    case scene::ModelKind::pmb: return pmb_energy_density<D>(m, body, i);
+    case scene::ModelKind::ves: return ves_energy_density<D>(m, body, i);
+    default: return lps_energy_density<D>(m, body, i);
+  }
 }
 
 template <int D>
@@ -93,7 +105,7 @@ double stable_time_step(const Model<D>& m) {
 }
 
 #define RIFT_INSTANTIATE(D)                                               \
-  template void compute_forces<D>(Model<D>&, Contact<D>*);                \
+  template void compute_forces<D>(Model<D>&, Contact<D>*, double);        \
   template void update_damage<D>(Model<D>&);                              \
   template double strain_energy_density<D>(const Model<D>&, std::size_t); \
   template EnergySummary summarize<D>(const Model<D>&);                   \

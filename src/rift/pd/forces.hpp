@@ -8,8 +8,10 @@
 
 namespace rift::pd {
 
+/// history_dt: the time the viscoelastic (ves) history advances in this evaluation: the step of an
+/// explicit run; 0 holds it (initial forces, dynamic relaxation).
 template <int D>
-void compute_forces(Model<D>& m, Contact<D>* contact);
+void compute_forces(Model<D>& m, Contact<D>* contact, double history_dt = 0.0);
 
 /// After a step: the s0 computed from this step's minimum stretch becomes current (alpha > 0).
 template <int D>

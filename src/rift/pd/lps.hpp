@@ -18,6 +18,18 @@
 
 namespace rift::pd {
 
+/// The force state t_i<j> = b_ij p_i + a_i sigma_ij e_dev of one end of a bond, p_i = kappa theta_i -
+/// a_i P_i / d its pressure-like factor, e_dev its deviatoric extension (VES: less lambda e_b).
+inline double force_state(float dilatation_weight, double pressure, double a, float correction, double omega, double deviatoric) {
+  return dilatation_weight * pressure + a * correction * omega * deviatoric;
+}
+
+/// p_i = kappa theta_i - a_i P_i / d.
+template <int D>
+double pressure_factor(double kappa, double theta, double a, double coupling) {
+  return kappa * theta - a * coupling / D;
+}
+
 template <int D, scene::Influence Omega>
 void lps_dilatation(Model<D>& m, const BodyInfo& body) {
   const auto& c = body.constants;
@@ -60,7 +72,7 @@ void lps_forces(Model<D>& m, const BodyInfo& body) {
     const Vec<D> xi_pos = m.position[i];
     const double a_i = a_dev / m.weighted_volume[i];
     const double theta_i = m.dilatation[i];
-    const double pressure_i = kappa * theta_i - a_i * m.dilatation_coupling[i] / D;
+    const double pressure_i = pressure_factor<D>(kappa, theta_i, a_i, m.dilatation_coupling[i]);
     Vec<D> f{};
     for (auto k = b.offset[i]; k < b.offset[i + 1]; ++k) {
       if (!b.intact[k]) continue;
@@ -72,9 +84,9 @@ void lps_forces(Model<D>& m, const BodyInfo& body) {
       const double omega = influence(Omega, xi, horizon);
       const double a_j = a_dev / m.weighted_volume[j];
       const double theta_j = m.dilatation[j];
-      const double pressure_j = kappa * theta_j - a_j * m.dilatation_coupling[j] / D;
-      const double t_i = b.dilatation_weight[k] * pressure_i + a_i * b.correction[k] * omega * (e - theta_i * xi / D);
-      const double t_j = b.mirror_dilatation_weight[k] * pressure_j + a_j * b.mirror_correction[k] * omega * (e - theta_j * xi / D);
+      const double pressure_j = pressure_factor<D>(kappa, theta_j, a_j, m.dilatation_coupling[j]);
+      const double t_i = force_state(b.dilatation_weight[k], pressure_i, a_i, b.correction[k], omega, e - theta_i * xi / D);
+      const double t_j = force_state(b.mirror_dilatation_weight[k], pressure_j, a_j, b.mirror_correction[k], omega, e - theta_j * xi / D);
       const double scalar = (t_i + t_j) * b.volume[k] / r;
       for (int q = 0; q < D; ++q) f[q] += scalar * eta[q];
     }

@@ -35,6 +35,8 @@ MaterialConstants make_constants(const scene::Scene& s, const scene::Material& m
   const double kappa_equivalent = mc.dimension == 3 ? 5.0 * mc.p_wave_modulus() / 9.0 : 2.0 * mc.p_wave_modulus() / 3.0;
   mc.equivalent_micromodulus = pmb_micromodulus(mc.dimension, kappa_equivalent, horizon, mc.thickness, mc.influence);
   mc.alpha = m.alpha;
+  mc.viscous_fraction = m.viscous_fraction;
+  mc.relaxation_time = m.relaxation_time;
   mc.surface_correction = m.surface_correction;
   if (m.critical_stretch) {
     mc.critical_stretch = *m.critical_stretch;

@@ -22,12 +22,17 @@ struct MaterialConstants {
   double critical_stretch = 0.0;  // s00; 0 = unbreakable
   double alpha = 0.0;
   bool breakable = false;
+  /// Viscoelastic state-based model (ves; Mitchell 2011): lambda, the share of the deviatoric
+  /// response that relaxes, and its relaxation time tau (s).
+  double viscous_fraction = 0.0, relaxation_time = 0.0;
   bool surface_correction = true;
 
+  /// Ordinary state-based (dilatation and deviatoric extension): LPS and its viscoelastic variant.
+  bool state_based() const { return model == scene::ModelKind::lps || model == scene::ModelKind::ves; }
   /// P-wave (constrained) modulus of the dimension: kappa + 4G/3 (3D), kappa + G (2D).
   double p_wave_modulus() const { return dimension == 3 ? kappa + 4.0 * shear_modulus / 3.0 : kappa + shear_modulus; }
   /// Coefficients of the LPS force scalar t = A_dil theta omega |xi| / m + A_dev omega e / m:
-  /// 3D: (3K - 5G, 15G) (Silling et al. 2007; LAMMPS peri/lps); 2D: (2 kappa - 4G, 8G) (Le et al. 2014).
+  /// 3D: (3K - 5G, 15G) (Silling et al. 2007; LAMMPS peri/lps, peri/ves); 2D: (2 kappa - 4G, 8G) (Le et al. 2014).
   double lps_dilatation_coefficient() const {
     return dimension == 3 ? 3.0 * kappa - 5.0 * shear_modulus : 2.0 * kappa - 4.0 * shear_modulus;
   }

@@ -11,6 +11,11 @@
 
 namespace rift::pd {
 
+/// Bond force density per unit V_j along the deformed bond, c omega s (g_i + g_j) / 2.
+inline double pmb_bond_force(double micromodulus, double omega, double s, float correction, float mirror_correction) {
+  return micromodulus * omega * s * (0.5f * (correction + mirror_correction));
+}
+
 template <int D, scene::Influence Omega>
 void pmb_forces(Model<D>& m, const BodyInfo& body) {
   const auto& c = body.constants;
@@ -35,8 +40,7 @@ void pmb_forces(Model<D>& m, const BodyInfo& body) {
         continue;
       }
       s_min = std::min(s_min, s);
-      const double scalar = micromodulus * influence(Omega, xi, horizon) * s * b.volume[k] *
-                            (0.5f * (b.correction[k] + b.mirror_correction[k])) / r;
+      const double scalar = pmb_bond_force(micromodulus, influence(Omega, xi, horizon), s, b.correction[k], b.mirror_correction[k]) * b.volume[k] / r;
       for (int q = 0; q < D; ++q) f[q] += scalar * eta[q];
     }
     m.force[i] = f;

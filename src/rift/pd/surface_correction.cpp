@@ -103,7 +103,7 @@ template <int D>
 void compute_dilatation_weights(Model<D>& m) {
   Bonds& b = m.bonds;
   bool any_lps = false;
-  for (const auto& body : m.bodies) any_lps = any_lps || body.constants.model == scene::ModelKind::lps;
+  for (const auto& body : m.bodies) any_lps = any_lps || body.constants.state_based();
   if (!any_lps) return;
   b.dilatation_weight.assign(b.neighbor.size(), 0.0f);
   b.mirror_dilatation_weight.assign(b.neighbor.size(), 0.0f);
@@ -116,7 +116,7 @@ void compute_dilatation_weights(Model<D>& m) {
   }
   for (const auto& body : m.bodies) {
     const auto& c = body.constants;
-    if (c.model != scene::ModelKind::lps) continue;
+    if (!c.state_based()) continue;
 #pragma omp parallel for schedule(dynamic, 64)
     for (std::size_t i = body.first; i < body.last; ++i) {
       if (!c.surface_correction) {

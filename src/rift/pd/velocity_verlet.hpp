@@ -35,7 +35,7 @@ void velocity_verlet_step(Model<D>& m, const load::Boundaries<D>& loads, Contact
   loads.prescribe_position(m, m.time + dt);
   m.time += dt;
   advance_stretch_limits<D>(m);
-  compute_forces<D>(m, contact);
+  compute_forces<D>(m, contact, dt);
   loads.apply_body_forces(m, m.time);
   kick<D>(m, 0.5 * dt);
   loads.prescribe_velocity(m, m.time, 0.0);

@@ -12,6 +12,7 @@
 #include "rift/io/field_writer.hpp"
 #include "rift/io/history.hpp"
 #include "rift/pd/dynamic_relaxation.hpp"
+#include "rift/pd/stress.hpp"
 #include "rift/run/mpm_runner.hpp"
 #include "rift/run/simulation.hpp"
 
@@ -25,8 +26,11 @@ Plan make_plan(const Simulation<D>& p) {
   plan.particles = p.model.size();
   plan.bonds = p.model.bonds.size() / 2;
   plan.bytes_per_particle = double(pd::Model<D>::bytes_per_particle()) + sizeof(std::int64_t);
-  // both directions of a bond are stored; LPS adds its two dilatation weights per direction
-  plan.bytes_per_bond = 2.0 * (double(pd::Bonds::bytes_per_bond()) + (p.model.bonds.dilatation_weight.empty() ? 0.0 : 2 * sizeof(float)));
+  // both directions of a bond are stored; LPS and VES add two dilatation weights per direction, VES its
+  // deviatoric and back extensions and the reverse-bond slot
+  const auto& b = p.model.bonds;
+  plan.bytes_per_bond = 2.0 * (double(pd::Bonds::bytes_per_bond()) + (b.dilatation_weight.empty() ? 0.0 : 2 * sizeof(float)) +
+                               (b.back_extension.empty() ? 0.0 : 2 * sizeof(double) + sizeof(std::uint16_t)));
   plan.stable_time_step = p.stable_dt;
   plan.time_step = p.dt;
   plan.steps = p.steps;
@@ -44,7 +48,7 @@ Plan check_dim(const scene::Scene& s, std::ostream& out) {
   for (const auto& b : p.model.bodies) {
     const auto& c = b.constants;
     std::snprintf(line, sizeof line, "body         %s: %zu particles, %s, spacing %g m, horizon %g m (%.3f spacings), s0 = %s\n",
-                  b.name.c_str(), b.last - b.first, c.model == scene::ModelKind::pmb ? "PMB" : "LPS", c.spacing, c.horizon,
+                  b.name.c_str(), b.last - b.first, c.model == scene::ModelKind::pmb ? "PMB" : c.model == scene::ModelKind::lps ? "LPS" : "VES", c.spacing, c.horizon,
                   c.horizon / c.spacing, c.breakable ? std::to_string(c.critical_stretch).c_str() : "unbreakable");
     out << line;
   }
@@ -94,6 +98,7 @@ void write_snapshot(io::FieldWriter& w, pd::Model<D>& m, const scene::Scene& s) 
     else if (f == "velocity") w.write(f, vector_field<D>(m, m.velocity, false), 3);
     else if (f == "damage") w.write(f, m.damage, 1);
     else if (f == "dilatation") w.write(f, m.dilatation, 1);
+    else if (f == "stress") w.write(f, pd::particle_stress<D>(m), 6);  // xx, yy, zz, xy, yz, xz
     else if (f == "weighted_volume") w.write(f, m.weighted_volume, 1);
     else if (f == "volume") w.write(f, m.volume, 1);
     else if (f == "body") {

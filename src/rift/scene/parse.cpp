@@ -119,11 +119,11 @@ void parse_materials(R& root, Scene& s) {
     m.name = name;
     m.where = r.where();
     const bool pd = s.method == Method::peridynamics;
-    const std::vector<std::string> models = pd ? std::vector<std::string>{"pmb", "lps"}
+    const std::vector<std::string> models = pd ? std::vector<std::string>{"pmb", "lps", "ves"}
                                                : std::vector<std::string>{"linear_elastic", "neo_hookean", "j2_plasticity"};
     auto model = r.choice("model", models);
     if (!model) throw SceneError(r.where(), r.key("model"), "missing required key (" + R::join(models) + ")");
-    const std::map<std::string, ModelKind> kinds{{"pmb", ModelKind::pmb}, {"lps", ModelKind::lps},
+    const std::map<std::string, ModelKind> kinds{{"pmb", ModelKind::pmb}, {"lps", ModelKind::lps}, {"ves", ModelKind::ves},
         {"linear_elastic", ModelKind::linear_elastic}, {"neo_hookean", ModelKind::neo_hookean}, {"j2_plasticity", ModelKind::j2_plasticity}};
     m.model = kinds.at(*model);
     m.density = r.positive("density", r.required_number("density", "mass density, kg/m^3"));
@@ -157,6 +157,14 @@ void parse_materials(R& root, Scene& s) {
       m.alpha = r.non_negative("alpha", r.number("alpha", 0.0));
       if (auto sc = r.boolean("surface_correction")) m.surface_correction = *sc;
       allowed.insert(allowed.end(), {"influence", "fracture_energy", "critical_stretch", "alpha", "surface_correction"});
+      if (m.model == ModelKind::ves) {
+        // Mitchell (2011) viscoelastic state-based model, as LAMMPS peri/ves (lambda, tau)
+        const double lambda = r.required_number("viscous_fraction", "lambda in [0, 1], the share of the deviatoric response that relaxes");
+        if (!(lambda >= 0.0 && lambda <= 1.0)) r.fail("viscous_fraction", "must lie in [0, 1], got " + R::fmt_double(lambda));
+        m.viscous_fraction = lambda;
+        m.relaxation_time = r.positive("relaxation_time", r.required_number("relaxation_time", "tau, s"));
+        allowed.insert(allowed.end(), {"viscous_fraction", "relaxation_time"});
+      }
     } else {
       if (m.model != ModelKind::linear_elastic && s.dimension == 2 && s.plane == PlaneCondition::stress)
         r.fail("model", "\"" + *model + "\" needs plane strain or 3D (plane stress is for linear_elastic)");
@@ -492,7 +500,7 @@ void parse_contact(R& root, Scene& s) {
 }
 
 const std::vector<std::string>& field_names(Method method) {
-  static const std::vector<std::string> pd{"displacement", "velocity", "damage", "dilatation", "strain_energy_density",
+  static const std::vector<std::string> pd{"displacement", "velocity", "damage", "dilatation", "stress", "strain_energy_density",
                                             "weighted_volume", "volume", "body"};
   static const std::vector<std::string> mpm{"displacement", "velocity", "stress", "strain_energy_density",
                                              "equivalent_plastic_strain", "volume", "body"};

@@ -14,7 +14,7 @@ namespace rift::scene {
 enum class PlaneCondition { none, stress, strain };
 enum class Method { peridynamics, mpm };
 /// Peridynamic models (pmb, lps) and continuum models for the material point method.
-enum class ModelKind { pmb, lps, linear_elastic, neo_hookean, j2_plasticity };
+enum class ModelKind { pmb, lps, ves, linear_elastic, neo_hookean, j2_plasticity };
 /// Influence function omega(|xi|): constant 1, or delta/|xi| ("inverse_distance", LAMMPS peri/lps).
 enum class Influence { constant, inverse_distance };
 
@@ -29,6 +29,8 @@ struct Material {
   std::optional<double> fracture_energy;   // G0, J/m^2
   std::optional<double> critical_stretch;  // s00, given directly
   double alpha = 0.0;                      // s0 = s00 - alpha * s_min (LAMMPS peri)
+  double viscous_fraction = 0.0;           // ves: lambda, share of the deviatoric response that relaxes
+  double relaxation_time = 0.0;            // ves: tau, s
   bool surface_correction = true;
   double yield_stress = 0.0;       // j2_plasticity, Pa
   double hardening_modulus = 0.0;  // j2_plasticity, linear isotropic hardening, Pa

@@ -1,0 +1,65 @@
+// Peridynamic stress of each particle in bond-pair form (the "partial stress" of Silling et al.
+// 2007, sec. 12, as Peridigm writes it, with both ends of each bond averaged):
+//   sigma_i = 1/2 sum_j (t_i<j> + t_j<i>) V_j (y_ij / |y_ij|) (x) xi_ij,
+// t the force states of pmb.hpp, lps.hpp and ves.hpp (PMB: t_i<j> + t_j<i> is the bond force
+// density). For a homogeneous deformation in the bulk t_i<j> = t_j<i> and this is the first
+// Piola-Kirchhoff stress, sum_j T_i<j> (x) xi_ij V_j, of the material the model stands for; near
+// free surfaces and cracks, where the family is cut, it is an estimate. Uses the dilatations of the
+// last force evaluation.
+#pragma once
+#include <vector>
+
+#include "rift/pd/influence.hpp"
+#include "rift/pd/lps.hpp"
+#include "rift/pd/model.hpp"
+#include "rift/pd/pmb.hpp"
+
+namespace rift::pd {
+
+/// Six components per particle: xx, yy, zz, xy, yz, xz (the symmetric part; zero out of plane in 2D).
+template <int D>
+std::vector<double> particle_stress(const Model<D>& m) {
+  std::vector<double> out(6 * m.size(), 0.0);
+  const Bonds& b = m.bonds;
+  for (const auto& body : m.bodies) {
+    const auto& c = body.constants;
+    const bool ves = c.model == scene::ModelKind::ves;
+    const double a_dev = c.lps_deviatoric_coefficient(), lambda = c.viscous_fraction;
+#pragma omp parallel for schedule(static)
+    for (std::size_t i = body.first; i < body.last; ++i) {
+      double s[3][3] = {};
+      const double a_i = a_dev / m.weighted_volume[i];
+      const double pressure_i = pressure_factor<D>(c.kappa, m.dilatation[i], a_i, m.dilatation_coupling[i]);
+      for (auto k = b.offset[i]; k < b.offset[i + 1]; ++k) {
+        if (!b.intact[k]) continue;
+        const auto j = static_cast<std::size_t>(b.neighbor[k]);
+        const Vec<D> eta = m.position[j] - m.position[i];
+        const Vec<D> xi_vec = m.reference_position[j] - m.reference_position[i];
+        const double r = norm<D>(eta);
+        const double xi = b.length[k];
+        const double e = r - xi;
+        const double omega = influence(c.influence, xi, c.horizon);
+        double pair;
+        if (c.model == scene::ModelKind::pmb) {
+          pair = pmb_bond_force(c.micromodulus, omega, e / xi, b.correction[k], b.mirror_correction[k]);
+        } else {
+          const double a_j = a_dev / m.weighted_volume[j];
+          const double pressure_j = pressure_factor<D>(c.kappa, m.dilatation[j], a_j, m.dilatation_coupling[j]);
+          const double eb_i = ves ? lambda * b.back_extension[k] : 0.0;
+          const double eb_j = ves ? lambda * b.back_extension[static_cast<std::size_t>(b.offset[j]) + b.mirror_slot[k]] : 0.0;
+          pair = force_state(b.dilatation_weight[k], pressure_i, a_i, b.correction[k], omega, e - m.dilatation[i] * xi / D - eb_i) +
+                 force_state(b.mirror_dilatation_weight[k], pressure_j, a_j, b.mirror_correction[k], omega, e - m.dilatation[j] * xi / D - eb_j);
+        }
+        const double scale = 0.5 * pair * b.volume[k] / r;
+        for (int p = 0; p < D; ++p)
+          for (int q = 0; q < D; ++q) s[p][q] += scale * eta[p] * xi_vec[q];
+      }
+      double* o = &out[6 * i];
+      o[0] = s[0][0], o[1] = s[1][1], o[3] = 0.5 * (s[0][1] + s[1][0]);
+      if constexpr (D == 3) o[2] = s[2][2], o[4] = 0.5 * (s[1][2] + s[2][1]), o[5] = 0.5 * (s[0][2] + s[2][0]);
+    }
+  }
+  return out;
+}
+
+}  // namespace rift::pd
