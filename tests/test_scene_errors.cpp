@@ -102,6 +102,7 @@ const Case cases[] = {
      "materials.glass.viscous_fraction", "viscous_fraction = 1.5"},
     {"relaxation time on an elastic model", "model = \"pmb\"", "model = \"lps\"\nrelaxation_time = 1e-3", "materials.glass.relaxation_time",
      "relaxation_time"},
+    {"negative crack pressure", "", "\n[[cracks]]\npoints = [[0.0, 0.005], [0.005, 0.005]]\npressure = -1e6\n", "cracks[0].pressure", "pressure = -1e6"},
     {"traction layer thinner than a row", "x = 1.0\n", "x = 1.0\n[[boundaries]]\nregion = \"left\"\ntype = \"traction\"\nx = 1e6\nlayer_depth = 0.0005\n",
      "boundaries[1].layer_depth", "[[boundaries]]\nregion = \"left\"\ntype = \"traction\""},
 };
@@ -220,6 +221,7 @@ const MpmCase mpm_cases[] = {
      "[[cracks]]\npoints = [[0.0205, 0.0025], [0.01, 0.0025]]\n[crack_growth]\ncriterion = \"max_hoop_stress\"\n[solver]",
      "crack_growth.toughness"},
     {"J area term not a boolean", "cell_size = 0.001", "cell_size = 0.001\nj_area_term = \"yes\"", "mpm.j_area_term"},
+    {"pressure on an MPM crack", "[solver]", "[[cracks]]\npoints = [[0.0205, 0.0025], [0.01, 0.0025]]\npressure = 1e6\n[solver]", "cracks[0].pressure"},
     {"unknown mode partition", "cell_size = 0.001", "cell_size = 0.001\nmode_partition = \"displacement\"", "mpm.mode_partition"},
     {"traction layer thinner than a row of points", "type = \"fixed\"",
      "type = \"fixed\"\n[[boundaries]]\nregion = \"beam\"\ntype = \"traction\"\ny = 1e6\nlayer_depth = 0.0002", "boundaries[1].layer_depth"},

@@ -3,6 +3,7 @@
 #include "rift/geometry/region.hpp"
 #include "rift/load/time_function.hpp"
 #include "rift/load/traction_layer.hpp"
+#include "rift/pd/crack_pressure.hpp"
 
 namespace rift::load {
 
@@ -35,6 +36,7 @@ Boundaries<D>::Boundaries(const scene::Scene& s, pd::Model<D>& m) {
     }
     applied_.push_back(std::move(a));
   }
+  cracks_ = s.cracks;
   for (const auto& name : s.output.reactions) {
     reaction_names_.push_back(name);
     reaction_particles_.push_back(select<D>(s, m, name));
@@ -60,6 +62,10 @@ void Boundaries<D>::apply_body_forces(pd::Model<D>& m, double t) const {
         if (a.def.value[k]) m.body_force[i][k] += scale * *a.def.value[k];
     }
   }
+  if (m.crack_bonds.neighbor.empty()) return;
+  std::vector<double> pressure(cracks_.size());
+  for (std::size_t c = 0; c < cracks_.size(); ++c) pressure[c] = cracks_[c].pressure * evaluate(cracks_[c].pressure_time, t);
+  pd::add_crack_pressure<D>(m, pressure);
 }
 
 template <int D>

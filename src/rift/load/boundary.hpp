@@ -16,7 +16,7 @@ class Boundaries {
   /// Select the particles of every boundary and reaction region (throws SceneError when a
   /// region selects no particle) and mark constrained components on the model.
   Boundaries(const scene::Scene& s, pd::Model<D>& m);
-  /// External force density at time t.
+  /// External force density at time t (with the pressure of pressurized pre-cracks).
   void apply_body_forces(pd::Model<D>& m, double t) const;
   /// Velocity of constrained components over the step (t, t + dt): set before the drift.
   void prescribe_velocity(pd::Model<D>& m, double t, double dt) const;
@@ -33,6 +33,7 @@ class Boundaries {
     std::vector<std::size_t> particles;
   };
   std::vector<Applied> applied_;
+  std::vector<scene::Crack> cracks_;  // pressurized pre-cracks (pressure and its time function)
   std::vector<std::string> reaction_names_;
   std::vector<std::vector<std::size_t>> reaction_particles_;
   bool any_kinematic_ = false;

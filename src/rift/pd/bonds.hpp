@@ -27,4 +27,14 @@ struct Bonds {
   }
 };
 
+/// Bonds a pressurized pre-crack cuts (never created in Bonds), row i listing those of particle i:
+/// they carry the crack's fluid pressure (crack_pressure.hpp).
+struct CrackBonds {
+  std::vector<std::int64_t> offset;   // size n+1 (empty rows when no crack is pressurized)
+  std::vector<std::int32_t> neighbor;
+  std::vector<float> volume;          // V_j * partial-volume fraction
+  std::vector<std::uint16_t> crack;   // the scene crack that cuts the bond
+  std::vector<double> coefficient;    // d omega V_j (1/m_i + 1/m_j), whole-family weighted volumes
+};
+
 }  // namespace rift::pd

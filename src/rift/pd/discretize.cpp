@@ -7,6 +7,7 @@
 
 #include "rift/geometry/precrack.hpp"
 #include "rift/geometry/region.hpp"
+#include "rift/pd/crack_pressure.hpp"
 #include "rift/pd/influence.hpp"
 #include "rift/pd/surface_correction.hpp"
 #include "rift/pd/ves.hpp"
@@ -98,15 +99,25 @@ template <int D>
 void build_bonds(const scene::Scene& s, Model<D>& m, const std::vector<std::array<long, 3>>& lattice_index) {
   const std::size_t n = m.size();
   std::vector<geometry::PreCrack> cracks;
-  for (const auto& c : s.cracks) {
+  std::vector<std::uint16_t> crack_of;  // scene crack of each segment / polygon
+  for (std::size_t ci = 0; ci < s.cracks.size(); ++ci) {
+    const auto& c = s.cracks[ci];
     if (D == 2) {  // a polyline: one segment each
-      for (std::size_t k = 0; k + 1 < c.points.size(); ++k) cracks.emplace_back(D, std::vector<Point3>{c.points[k], c.points[k + 1]});
+      for (std::size_t k = 0; k + 1 < c.points.size(); ++k) {
+        cracks.emplace_back(D, std::vector<Point3>{c.points[k], c.points[k + 1]});
+        crack_of.push_back(static_cast<std::uint16_t>(ci));
+      }
     } else {
       cracks.emplace_back(D, c.points);
+      crack_of.push_back(static_cast<std::uint16_t>(ci));
     }
   }
   std::vector<std::vector<std::int32_t>> nb(n);
   std::vector<std::vector<float>> frac(n);
+  // bonds cut by a pressurized crack: they carry its pressure (crack_pressure.hpp)
+  std::vector<std::vector<std::int32_t>> wet_nb(n);
+  std::vector<std::vector<float>> wet_frac(n);
+  std::vector<std::vector<std::uint16_t>> wet_crack(n);
   for (std::size_t bi = 0; bi < m.bodies.size(); ++bi) {
     const auto& info = m.bodies[bi];
     const auto& body = s.bodies[bi];
@@ -123,19 +134,19 @@ void build_bonds(const scene::Scene& s, Model<D>& m, const std::vector<std::arra
     for (std::size_t i = info.first; i < info.last; ++i)
       map[cell(lattice_index[i][0], lattice_index[i][1], lattice_index[i][2])] = static_cast<std::int32_t>(i);
     // cracks whose bounding box (grown by the horizon) can cut this body's bonds
-    std::vector<std::pair<const geometry::PreCrack*, std::array<Point3, 2>>> near;
-    for (const auto& c : cracks) {
+    std::vector<std::pair<std::size_t, std::array<Point3, 2>>> near;
+    for (std::size_t ci = 0; ci < cracks.size(); ++ci) {
       Point3 clo, chi;
-      c.bounds(clo, chi);
+      cracks[ci].bounds(clo, chi);
       for (int k = 0; k < 3; ++k) clo[k] -= info.constants.horizon * 1.5, chi[k] += info.constants.horizon * 1.5;
-      near.push_back({&c, {clo, chi}});
+      near.push_back({ci, {clo, chi}});
     }
 #pragma omp parallel for schedule(dynamic, 256)
     for (std::size_t i = info.first; i < info.last; ++i) {
       const auto& li = lattice_index[i];
       Point3 pi{0, 0, 0};
       for (int k = 0; k < D; ++k) pi[k] = m.reference_position[i][k];
-      std::vector<const geometry::PreCrack*> cutting;
+      std::vector<std::size_t> cutting;
       for (const auto& [c, box] : near) {
         bool in = true;
         for (int k = 0; k < D; ++k) in = in && pi[k] >= box[0][k] && pi[k] <= box[1][k];
@@ -150,7 +161,15 @@ void build_bonds(const scene::Scene& s, Model<D>& m, const std::vector<std::arra
         if (!cutting.empty()) {
           Point3 pj{0, 0, 0};
           for (int k = 0; k < D; ++k) pj[k] = m.reference_position[j][k];
-          for (const auto* c : cutting) cut = cut || c->cuts(pi, pj);
+          for (auto c : cutting) {
+            if (!cracks[c].cuts(pi, pj)) continue;
+            if (!cut && s.cracks[crack_of[c]].pressure > 0.0) {
+              wet_nb[i].push_back(j);
+              wet_frac[i].push_back(static_cast<float>(off.fraction));
+              wet_crack[i].push_back(crack_of[c]);
+            }
+            cut = true;
+          }
         }
         if (cut) continue;
         nb[i].push_back(j);
@@ -180,6 +199,15 @@ void build_bonds(const scene::Scene& s, Model<D>& m, const std::vector<std::arra
     std::vector<std::int32_t>().swap(nb[i]);
     std::vector<float>().swap(frac[i]);
   }
+  CrackBonds& w = m.crack_bonds;
+  w.offset.assign(n + 1, 0);
+  for (std::size_t i = 0; i < n; ++i) w.offset[i + 1] = w.offset[i] + static_cast<std::int64_t>(wet_nb[i].size());
+  for (std::size_t i = 0; i < n; ++i)
+    for (std::size_t q = 0; q < wet_nb[i].size(); ++q) {
+      w.neighbor.push_back(wet_nb[i][q]);
+      w.volume.push_back(static_cast<float>(m.volume[static_cast<std::size_t>(wet_nb[i][q])] * wet_frac[i][q]));
+      w.crack.push_back(wet_crack[i][q]);
+    }
 }
 
 }  // namespace
@@ -237,6 +265,7 @@ Model<D> discretize(const scene::Scene& s) {
   }
   compute_dilatation_weights<D>(m);
   prepare_viscous_history<D>(m);
+  prepare_crack_pressure<D>(m);
 
   for (const auto& iv : s.initial_velocities) {
     const auto selected = geometry::indices_inside<D>(geometry::Region::build(s, iv.region), n,

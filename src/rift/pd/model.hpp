@@ -37,6 +37,7 @@ struct Model {
   std::vector<std::uint8_t> constrained;  // bit k: velocity component k is prescribed
 
   Bonds bonds;
+  CrackBonds crack_bonds;
   std::vector<BodyInfo> bodies;
   int dimension = D;
   double thickness = 1.0;

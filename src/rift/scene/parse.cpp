@@ -326,7 +326,13 @@ void parse_cracks(R& root, Scene& s) {
     Crack c;
     c.where = r.where();
     c.points = point_list(r, "points", s.dimension, s.dimension == 2 ? 2 : 3);  // 2D: a polyline; 3D: a planar polygon
-    r.finish({"points"});
+    std::vector<std::string> allowed{"points"};
+    if (s.method == Method::peridynamics) {
+      c.pressure = r.non_negative("pressure", r.number("pressure", 0.0));
+      c.pressure_time = time_function(r, "time");
+      allowed.insert(allowed.end(), {"pressure", "time"});
+    }
+    r.finish(allowed);
     s.cracks.push_back(c);
   });
 }

@@ -70,18 +70,22 @@ struct Body {
   int particles_per_cell = 2;  // MPM: material points per cell along each axis
 };
 
-/// Pre-crack: a segment (2D, two points) or a planar polygon (3D, >= 3 points). Bonds that
-/// cross it are never created.
-struct Crack {
-  SourceLocation where;
-  std::vector<Point3> points;
-};
-
 enum class TimeFunctionKind { constant, ramp, step, table };
 struct TimeFunction {
   TimeFunctionKind kind = TimeFunctionKind::constant;
   double start = 0.0, end = 0.0;  // ramp: 0 at start -> 1 at end; step: 0 before start, 1 after
   std::vector<std::array<double, 2>> table;  // (t, factor), piecewise linear, held at the ends
+};
+
+/// Pre-crack: a segment (2D, two points) or a planar polygon (3D, >= 3 points). Bonds that
+/// cross it are never created.
+struct Crack {
+  SourceLocation where;
+  std::vector<Point3> points;
+  /// Peridynamics: fluid pressure on the crack faces, Pa, times its time function. The bonds the
+  /// crack cuts carry it as the force state of the fluid's stress -p I (see pd/crack_pressure.hpp).
+  double pressure = 0.0;
+  TimeFunction pressure_time;
 };
 
 enum class BoundaryKind { fixed, velocity, displacement, traction, body_force };

@@ -1,0 +1,64 @@
+// Fluid pressure on the faces of a pre-crack. The bonds the crack cuts are not part of the solid,
+// but the fluid that fills the crack carries the isotropic stress -p I across them. Its force state
+// is the one whose bond-pair stress (stress.hpp) is -p I for a whole family,
+//   T_i<xi> = -p d omega xi / m_i   (sum_j T_i<xi_ij> (x) xi_ij V_j = -p I, since sum omega xi (x) xi V = m I / d),
+// so each cut bond pushes its two ends apart with the force density
+//   f_i = -p d omega (1/m_i + 1/m_j) |xi| V_j y_ij / |y_ij|,
+// m_i = sum omega |xi|^2 V_j over i's whole family: its bonds and the cut ones, without the surface
+// correction (which would count the crack faces as free surfaces and scale the kept bonds up). Summed over the cut bonds of a
+// particle next to a straight crack this is the traction p on the face (Lehoucq and Silling 2008:
+// the force flux of -p I across the crack plane).
+#pragma once
+#include <vector>
+
+#include "rift/pd/influence.hpp"
+#include "rift/pd/model.hpp"
+
+namespace rift::pd {
+
+/// The coefficients d omega V_j (1/m_i + 1/m_j) of the cut bonds (after the weighted volumes).
+template <int D>
+void prepare_crack_pressure(Model<D>& m) {
+  CrackBonds& w = m.crack_bonds;
+  if (w.neighbor.empty()) return;
+  const std::size_t n = m.size();
+  auto length = [&](std::size_t i, std::size_t j) { return norm<D>(m.reference_position[j] - m.reference_position[i]); };
+  std::vector<double> whole(n, 0.0);
+  const Bonds& b = m.bonds;
+  for (std::size_t i = 0; i < n; ++i) {
+    const auto& c = m.constants_of(i);
+    for (auto k = b.offset[i]; k < b.offset[i + 1]; ++k)
+      whole[i] += influence(c.influence, b.length[k], c.horizon) * b.length[k] * b.length[k] * b.volume[k];
+    for (auto k = w.offset[i]; k < w.offset[i + 1]; ++k) {
+      const double xi = length(i, static_cast<std::size_t>(w.neighbor[k]));
+      whole[i] += influence(c.influence, xi, c.horizon) * xi * xi * w.volume[k];
+    }
+  }
+  w.coefficient.assign(w.neighbor.size(), 0.0);
+  for (std::size_t i = 0; i < n; ++i) {
+    const auto& c = m.constants_of(i);
+    for (auto k = w.offset[i]; k < w.offset[i + 1]; ++k) {
+      const auto j = static_cast<std::size_t>(w.neighbor[k]);
+      w.coefficient[k] = D * influence(c.influence, length(i, j), c.horizon) * w.volume[k] * (1.0 / whole[i] + 1.0 / whole[j]);
+    }
+  }
+}
+
+/// Adds the pressure forces to m.body_force; pressure[c] is crack c's current pressure.
+template <int D>
+void add_crack_pressure(Model<D>& m, const std::vector<double>& pressure) {
+  const CrackBonds& w = m.crack_bonds;
+  if (w.neighbor.empty()) return;
+  const std::size_t n = m.size();
+#pragma omp parallel for schedule(static)
+  for (std::size_t i = 0; i < n; ++i)
+    for (auto k = w.offset[i]; k < w.offset[i + 1]; ++k) {
+      const auto j = static_cast<std::size_t>(w.neighbor[k]);
+      const Vec<D> eta = m.position[j] - m.position[i];
+      const double xi = norm<D>(m.reference_position[j] - m.reference_position[i]);
+      const double scale = -pressure[w.crack[k]] * w.coefficient[k] * xi / norm<D>(eta);
+      for (int q = 0; q < D; ++q) m.body_force[i][q] += scale * eta[q];
+    }
+}
+
+}  // namespace rift::pd
