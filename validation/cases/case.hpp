@@ -45,6 +45,7 @@ Result mpm_cct(const Settings&);
 Result mpm_sent(const Settings&);
 Result mpm_denp(const Settings&);
 Result mpm_crack_growth(const Settings&);
+Result hf_sneddon(const Settings&);
 
 struct Entry {
   const char* name;

@@ -20,6 +20,7 @@ const std::vector<Entry>& all_cases() {
       {"mpm_sent", mpm_sent},
       {"mpm_denp", mpm_denp},
       {"mpm_crack_growth", mpm_crack_growth},
+      {"hf_sneddon", hf_sneddon},
   };
   return cases;
 }
