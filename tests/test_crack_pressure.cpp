@@ -70,3 +70,44 @@ TEST(CrackPressure, CutBondsPutTheTractionOnEachFace) {
 }
 
 }  // namespace
+
+namespace {
+
+// A borehole region that fills the upper half of a 2D block (a flat wall of fluid sites): the fluid
+// pushes the material below with the traction p, to round-off in the middle columns where every
+// family is whole; and a round borehole in the middle of a block, symmetric on the lattice, puts no
+// net force on it.
+TEST(CrackPressure, BoreholeSitesPushTheWallWithThePressure) {
+  const double p = 3e6;
+  for (const bool flat : {true, false}) {
+    std::ostringstream s;
+    s << "[scene]\ndimension = 2\nplane = \"strain\"\nthickness = 0.001\n"
+      << "[materials.rock]\nmodel = \"lps\"\ndensity = 2500.0\nyoungs_modulus = 10e9\npoisson_ratio = 0.25\n"
+      << "[regions.block]\nshape = \"box\"\nmin = [0.0, 0.0]\nmax = [0.024, 0.016]\n"
+      << (flat ? "[regions.hole]\nshape = \"box\"\nmin = [-1.0, 0.008]\nmax = [1.0, 1.0]\n"
+               : "[regions.hole]\nshape = \"cylinder\"\ncenter = [0.012, 0.008]\nradius = 0.004\n")
+      << "[bodies.block]\nmaterial = \"rock\"\nregion = \"block\"\nspacing = 0.001\nhorizon = 3.015\n"
+      << "[[boreholes]]\nregion = \"hole\"\npressure = " << p << "\n[solver]\nend_time = 1e-6\n";
+    auto scene = rift::scene::parse_string(s.str(), "borehole.toml");
+    auto m = rift::pd::discretize<2>(scene);
+    rift::load::Boundaries<2> loads(scene, m);
+    loads.apply_body_forces(m, 0.0);
+    double middle = 0.0, fx = 0.0, fy = 0.0, scale = 0.0;
+    for (std::size_t i = 0; i < m.size(); ++i) {
+      const auto& f = m.body_force[i];
+      fx += f[0] * m.volume[i], fy += f[1] * m.volume[i], scale += std::hypot(f[0], f[1]) * m.volume[i];
+      if (std::abs(m.reference_position[i][0] - 0.012) < 0.006) middle += f[1] * m.volume[i];
+    }
+    if (flat) {
+      EXPECT_EQ(m.size(), 24u * 8u);  // the fluid sites hold no material
+      std::printf("flat wall: force / (p A) in the middle columns = %.12f\n", -middle / (p * 0.012 * 0.001));
+      EXPECT_NEAR(-middle / (p * 0.012 * 0.001), 1.0, 1e-6);
+    } else {
+      std::printf("round borehole: net force / sum |f| = %.1e, %.1e\n", fx / scale, fy / scale);
+      EXPECT_LT(std::abs(fx) / scale, 1e-12);
+      EXPECT_LT(std::abs(fy) / scale, 1e-12);
+    }
+  }
+}
+
+}  // namespace

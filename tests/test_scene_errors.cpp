@@ -103,6 +103,7 @@ const Case cases[] = {
     {"relaxation time on an elastic model", "model = \"pmb\"", "model = \"lps\"\nrelaxation_time = 1e-3", "materials.glass.relaxation_time",
      "relaxation_time"},
     {"negative crack pressure", "", "\n[[cracks]]\npoints = [[0.0, 0.005], [0.005, 0.005]]\npressure = -1e6\n", "cracks[0].pressure", "pressure = -1e6"},
+    {"borehole in an unknown region", "", "\n[[boreholes]]\nregion = \"well\"\npressure = 1e6\n", "boreholes[0].region", "\"well\""},
     {"traction layer thinner than a row", "x = 1.0\n", "x = 1.0\n[[boundaries]]\nregion = \"left\"\ntype = \"traction\"\nx = 1e6\nlayer_depth = 0.0005\n",
      "boundaries[1].layer_depth", "[[boundaries]]\nregion = \"left\"\ntype = \"traction\""},
 };
@@ -222,6 +223,7 @@ const MpmCase mpm_cases[] = {
      "crack_growth.toughness"},
     {"J area term not a boolean", "cell_size = 0.001", "cell_size = 0.001\nj_area_term = \"yes\"", "mpm.j_area_term"},
     {"pressure on an MPM crack", "[solver]", "[[cracks]]\npoints = [[0.0205, 0.0025], [0.01, 0.0025]]\npressure = 1e6\n[solver]", "cracks[0].pressure"},
+    {"borehole in mpm", "[solver]", "[[boreholes]]\nregion = \"clamp\"\n[solver]", "boreholes[0].region"},
     {"unknown mode partition", "cell_size = 0.001", "cell_size = 0.001\nmode_partition = \"displacement\"", "mpm.mode_partition"},
     {"traction layer thinner than a row of points", "type = \"fixed\"",
      "type = \"fixed\"\n[[boundaries]]\nregion = \"beam\"\ntype = \"traction\"\ny = 1e6\nlayer_depth = 0.0002", "boundaries[1].layer_depth"},

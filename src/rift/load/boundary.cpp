@@ -36,7 +36,8 @@ Boundaries<D>::Boundaries(const scene::Scene& s, pd::Model<D>& m) {
     }
     applied_.push_back(std::move(a));
   }
-  cracks_ = s.cracks;
+  for (const auto& c : s.cracks) pressure_sources_.push_back({c.pressure, c.pressure_time});
+  for (const auto& b : s.boreholes) pressure_sources_.push_back({b.pressure, b.pressure_time});
   for (const auto& name : s.output.reactions) {
     reaction_names_.push_back(name);
     reaction_particles_.push_back(select<D>(s, m, name));
@@ -63,8 +64,8 @@ void Boundaries<D>::apply_body_forces(pd::Model<D>& m, double t) const {
     }
   }
   if (m.crack_bonds.neighbor.empty()) return;
-  std::vector<double> pressure(cracks_.size());
-  for (std::size_t c = 0; c < cracks_.size(); ++c) pressure[c] = cracks_[c].pressure * evaluate(cracks_[c].pressure_time, t);
+  std::vector<double> pressure(pressure_sources_.size());
+  for (std::size_t c = 0; c < pressure.size(); ++c) pressure[c] = pressure_sources_[c].first * evaluate(pressure_sources_[c].second, t);
   pd::add_crack_pressure<D>(m, pressure);
 }
 

@@ -33,7 +33,7 @@ class Boundaries {
     std::vector<std::size_t> particles;
   };
   std::vector<Applied> applied_;
-  std::vector<scene::Crack> cracks_;  // pressurized pre-cracks (pressure and its time function)
+  std::vector<std::pair<double, scene::TimeFunction>> pressure_sources_;  // cracks, then boreholes
   std::vector<std::string> reaction_names_;
   std::vector<std::vector<std::size_t>> reaction_particles_;
   bool any_kinematic_ = false;

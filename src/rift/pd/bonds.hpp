@@ -1,6 +1,7 @@
 // Bond families in compressed-sparse-row form: row i lists the bonds of particle i (both i-j and
 // j-i are stored, as LAMMPS PERI does, so each particle owns its force sum: no atomics).
 #pragma once
+#include <array>
 #include <cstdint>
 #include <vector>
 
@@ -27,13 +28,16 @@ struct Bonds {
   }
 };
 
-/// Bonds a pressurized pre-crack cuts (never created in Bonds), row i listing those of particle i:
-/// they carry the crack's fluid pressure (crack_pressure.hpp).
+/// Bonds that carry fluid pressure (crack_pressure.hpp), row i listing those of particle i: bonds a
+/// pressurized pre-crack cuts (never created in Bonds), and bonds from the material to the fluid
+/// sites of a borehole (neighbor -1: a lattice site of the body inside the borehole).
 struct CrackBonds {
-  std::vector<std::int64_t> offset;   // size n+1 (empty rows when no crack is pressurized)
-  std::vector<std::int32_t> neighbor;
+  std::vector<std::int64_t> offset;   // size n+1 (empty rows when nothing is pressurized)
+  std::vector<std::int32_t> neighbor; // j, or -1 for a fluid site
   std::vector<float> volume;          // V_j * partial-volume fraction
-  std::vector<std::uint16_t> crack;   // the scene crack that cuts the bond
+  std::vector<std::uint16_t> source;  // pressure source: scene crack c, or borehole b as cracks + b
+  std::vector<std::array<double, 3>> xi;  // reference bond vector x_j - x_i
+  std::vector<double> fluid_weighted_volume;  // m of a fluid site (its whole family); 0 for particles
   std::vector<double> coefficient;    // d omega V_j (1/m_i + 1/m_j), whole-family weighted volumes
 };
 

@@ -1,5 +1,6 @@
-// Fluid pressure on the faces of a pre-crack. The bonds the crack cuts are not part of the solid,
-// but the fluid that fills the crack carries the isotropic stress -p I across them. Its force state
+// Fluid pressure on the faces of a pre-crack and on the wall of a borehole. The bonds the crack cuts
+// are not part of the solid, nor are those from the material to the borehole's lattice sites, but
+// the fluid that fills the crack or the hole carries the isotropic stress -p I across them. Its force state
 // is the one whose bond-pair stress (stress.hpp) is -p I for a whole family,
 //   T_i<xi> = -p d omega xi / m_i   (sum_j T_i<xi_ij> (x) xi_ij V_j = -p I, since sum omega xi (x) xi V = m I / d),
 // so each cut bond pushes its two ends apart with the force density
@@ -7,8 +8,11 @@
 // m_i = sum omega |xi|^2 V_j over i's whole family: its bonds and the cut ones, without the surface
 // correction (which would count the crack faces as free surfaces and scale the kept bonds up). Summed over the cut bonds of a
 // particle next to a straight crack this is the traction p on the face (Lehoucq and Silling 2008:
-// the force flux of -p I across the crack plane).
+// the force flux of -p I across the crack plane). A fluid site of a borehole has the weighted
+// volume of a whole family.
 #pragma once
+#include <array>
+#include <cmath>
 #include <vector>
 
 #include "rift/pd/influence.hpp"
@@ -16,13 +20,14 @@
 
 namespace rift::pd {
 
-/// The coefficients d omega V_j (1/m_i + 1/m_j) of the cut bonds (after the weighted volumes).
+/// The coefficients d omega V_j (1/m_i + 1/m_j) of the pressure-carrying bonds (after the weighted
+/// volumes).
 template <int D>
 void prepare_crack_pressure(Model<D>& m) {
   CrackBonds& w = m.crack_bonds;
   if (w.neighbor.empty()) return;
   const std::size_t n = m.size();
-  auto length = [&](std::size_t i, std::size_t j) { return norm<D>(m.reference_position[j] - m.reference_position[i]); };
+  auto length = [](const std::array<double, 3>& xi) { return std::sqrt(xi[0] * xi[0] + xi[1] * xi[1] + xi[2] * xi[2]); };
   std::vector<double> whole(n, 0.0);
   const Bonds& b = m.bonds;
   for (std::size_t i = 0; i < n; ++i) {
@@ -30,7 +35,7 @@ void prepare_crack_pressure(Model<D>& m) {
     for (auto k = b.offset[i]; k < b.offset[i + 1]; ++k)
       whole[i] += influence(c.influence, b.length[k], c.horizon) * b.length[k] * b.length[k] * b.volume[k];
     for (auto k = w.offset[i]; k < w.offset[i + 1]; ++k) {
-      const double xi = length(i, static_cast<std::size_t>(w.neighbor[k]));
+      const double xi = length(w.xi[k]);
       whole[i] += influence(c.influence, xi, c.horizon) * xi * xi * w.volume[k];
     }
   }
@@ -38,13 +43,15 @@ void prepare_crack_pressure(Model<D>& m) {
   for (std::size_t i = 0; i < n; ++i) {
     const auto& c = m.constants_of(i);
     for (auto k = w.offset[i]; k < w.offset[i + 1]; ++k) {
-      const auto j = static_cast<std::size_t>(w.neighbor[k]);
-      w.coefficient[k] = D * influence(c.influence, length(i, j), c.horizon) * w.volume[k] * (1.0 / whole[i] + 1.0 / whole[j]);
+      const double m_j = w.neighbor[k] >= 0 ? whole[static_cast<std::size_t>(w.neighbor[k])] : w.fluid_weighted_volume[k];
+      w.coefficient[k] = D * influence(c.influence, length(w.xi[k]), c.horizon) * w.volume[k] * (1.0 / whole[i] + 1.0 / m_j);
     }
   }
 }
 
-/// Adds the pressure forces to m.body_force; pressure[c] is crack c's current pressure.
+/// Adds the pressure forces to m.body_force; pressure[s] is source s's current pressure (the scene's
+/// cracks, then its boreholes). Between two particles the force follows the deformed bond; toward a
+/// fluid site, which does not move, the reference one.
 template <int D>
 void add_crack_pressure(Model<D>& m, const std::vector<double>& pressure) {
   const CrackBonds& w = m.crack_bonds;
@@ -53,10 +60,13 @@ void add_crack_pressure(Model<D>& m, const std::vector<double>& pressure) {
 #pragma omp parallel for schedule(static)
   for (std::size_t i = 0; i < n; ++i)
     for (auto k = w.offset[i]; k < w.offset[i + 1]; ++k) {
-      const auto j = static_cast<std::size_t>(w.neighbor[k]);
-      const Vec<D> eta = m.position[j] - m.position[i];
-      const double xi = norm<D>(m.reference_position[j] - m.reference_position[i]);
-      const double scale = -pressure[w.crack[k]] * w.coefficient[k] * xi / norm<D>(eta);
+      const double p = pressure[w.source[k]] * w.coefficient[k];
+      const auto& xi = w.xi[k];
+      const double length = std::sqrt(xi[0] * xi[0] + xi[1] * xi[1] + xi[2] * xi[2]);
+      Vec<D> eta;
+      for (int q = 0; q < D; ++q) eta[q] = xi[q];
+      if (w.neighbor[k] >= 0) eta = m.position[static_cast<std::size_t>(w.neighbor[k])] - m.position[i];
+      const double scale = -p * length / norm<D>(eta);
       for (int q = 0; q < D; ++q) m.body_force[i][q] += scale * eta[q];
     }
 }

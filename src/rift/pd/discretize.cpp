@@ -65,6 +65,8 @@ template <int D>
 void fill_body(const scene::Scene& s, const scene::Body& b, std::size_t index, Model<D>& m,
                std::vector<std::array<long, 3>>& lattice_index) {
   auto region = geometry::Region::build(s, b.region);
+  std::vector<geometry::Region> holes;
+  for (const auto& h : s.boreholes) holes.push_back(geometry::Region::build(s, h.region));
   Point3 lo, hi;
   region.bounds(lo, hi);
   for (int k = 0; k < D; ++k)
@@ -86,6 +88,9 @@ void fill_body(const scene::Scene& s, const scene::Body& b, std::size_t index, M
         Point3 p{0, 0, 0};
         for (int k = 0; k < D; ++k) p[k] = b.lattice_origin[k] + (ijk[k] + 0.5) * b.spacing;
         if (!region.contains(p)) continue;
+        bool fluid = false;
+        for (const auto& h : holes) fluid = fluid || h.contains(p);
+        if (fluid) continue;  // a borehole site: fluid, not material
         Vec<D> v;
         for (int k = 0; k < D; ++k) v[k] = p[k];
         m.reference_position.push_back(v);
@@ -118,11 +123,26 @@ void build_bonds(const scene::Scene& s, Model<D>& m, const std::vector<std::arra
   std::vector<std::vector<std::int32_t>> wet_nb(n);
   std::vector<std::vector<float>> wet_frac(n);
   std::vector<std::vector<std::uint16_t>> wet_crack(n);
+  std::vector<std::vector<std::array<double, 3>>> wet_xi(n);
+  std::vector<std::vector<double>> wet_m(n);  // fluid site: its whole-family weighted volume
   for (std::size_t bi = 0; bi < m.bodies.size(); ++bi) {
     const auto& info = m.bodies[bi];
     const auto& body = s.bodies[bi];
     const double h = info.constants.horizon / info.constants.spacing;
     auto offsets = family_offsets(D, h, body.partial_volume);
+    // boreholes: bonds to their lattice sites carry the fluid pressure; a fluid site's weighted
+    // volume is that of a whole family
+    const auto region = geometry::Region::build(s, body.region);
+    std::vector<geometry::Region> holes;
+    for (const auto& hole : s.boreholes) holes.push_back(geometry::Region::build(s, hole.region));
+    double whole_family = 0.0;
+    const double site_volume = std::pow(body.spacing, D) * (D == 2 ? s.thickness : 1.0);
+    for (const auto& off : offsets) {
+      double r2 = 0.0;
+      for (int k = 0; k < D; ++k) r2 += double(off.o[k]) * off.o[k];
+      const double xi = std::sqrt(r2) * body.spacing;
+      whole_family += influence(info.constants.influence, xi, info.constants.horizon) * xi * xi * site_volume * off.fraction;
+    }
     // dense lattice -> particle map over the body's index box
     std::array<long, 3> lo{0, 0, 0}, hi{0, 0, 0};
     lo = hi = lattice_index[info.first];
@@ -154,9 +174,26 @@ void build_bonds(const scene::Scene& s, Model<D>& m, const std::vector<std::arra
       }
       for (const auto& off : offsets) {
         long x = li[0] + off.o[0], y = li[1] + off.o[1], z = li[2] + off.o[2];
-        if (x < lo[0] || x > hi[0] || y < lo[1] || y > hi[1] || z < lo[2] || z > hi[2]) continue;
-        std::int32_t j = map[cell(x, y, z)];
-        if (j < 0) continue;
+        const bool in_box = !(x < lo[0] || x > hi[0] || y < lo[1] || y > hi[1] || z < lo[2] || z > hi[2]);
+        std::int32_t j = in_box ? map[cell(x, y, z)] : -1;
+        if (j < 0) {
+          if (holes.empty()) continue;
+          Point3 site{0, 0, 0};
+          for (int k = 0; k < D; ++k) site[k] = body.lattice_origin[k] + (double(std::array<long, 3>{x, y, z}[k]) + 0.5) * body.spacing;
+          if (!region.contains(site)) continue;
+          for (std::size_t hi_ = 0; hi_ < holes.size(); ++hi_) {
+            if (!holes[hi_].contains(site)) continue;
+            std::array<double, 3> xi{0, 0, 0};
+            for (int k = 0; k < D; ++k) xi[k] = off.o[k] * body.spacing;
+            wet_nb[i].push_back(-1);
+            wet_frac[i].push_back(static_cast<float>(off.fraction));
+            wet_crack[i].push_back(static_cast<std::uint16_t>(s.cracks.size() + hi_));
+            wet_xi[i].push_back(xi);
+            wet_m[i].push_back(whole_family);
+            break;
+          }
+          continue;
+        }
         bool cut = false;
         if (!cutting.empty()) {
           Point3 pj{0, 0, 0};
@@ -164,9 +201,13 @@ void build_bonds(const scene::Scene& s, Model<D>& m, const std::vector<std::arra
           for (auto c : cutting) {
             if (!cracks[c].cuts(pi, pj)) continue;
             if (!cut && s.cracks[crack_of[c]].pressure > 0.0) {
+              std::array<double, 3> xi{0, 0, 0};
+              for (int k = 0; k < D; ++k) xi[k] = pj[k] - pi[k];
               wet_nb[i].push_back(j);
               wet_frac[i].push_back(static_cast<float>(off.fraction));
               wet_crack[i].push_back(crack_of[c]);
+              wet_xi[i].push_back(xi);
+              wet_m[i].push_back(0.0);
             }
             cut = true;
           }
@@ -204,9 +245,14 @@ void build_bonds(const scene::Scene& s, Model<D>& m, const std::vector<std::arra
   for (std::size_t i = 0; i < n; ++i) w.offset[i + 1] = w.offset[i] + static_cast<std::int64_t>(wet_nb[i].size());
   for (std::size_t i = 0; i < n; ++i)
     for (std::size_t q = 0; q < wet_nb[i].size(); ++q) {
-      w.neighbor.push_back(wet_nb[i][q]);
-      w.volume.push_back(static_cast<float>(m.volume[static_cast<std::size_t>(wet_nb[i][q])] * wet_frac[i][q]));
-      w.crack.push_back(wet_crack[i][q]);
+      const auto j = wet_nb[i][q];
+      // a fluid site has the volume of a lattice cell of the particle's body
+      const double vj = j >= 0 ? m.volume[static_cast<std::size_t>(j)] : m.volume[i];
+      w.neighbor.push_back(j);
+      w.volume.push_back(static_cast<float>(vj * wet_frac[i][q]));
+      w.source.push_back(wet_crack[i][q]);
+      w.xi.push_back(wet_xi[i][q]);
+      w.fluid_weighted_volume.push_back(wet_m[i][q]);
     }
 }
 

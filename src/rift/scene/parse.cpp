@@ -337,6 +337,20 @@ void parse_cracks(R& root, Scene& s) {
   });
 }
 
+void parse_boreholes(R& root, Scene& s) {
+  for_each_entry(root, "boreholes", s.file, [&](R& r, std::size_t) {
+    if (s.method != Method::peridynamics) r.fail("region", "boreholes are for peridynamics (method = \"peridynamics\")");
+    Borehole b;
+    b.where = r.where();
+    b.region = required_string(r, "region", "name of the region the borehole occupies (a cylinder, a disk in 2D)");
+    require_region(s, r, "region", b.region);
+    b.pressure = r.non_negative("pressure", r.number("pressure", 0.0));
+    b.pressure_time = time_function(r, "time");
+    r.finish({"region", "pressure", "time"});
+    s.boreholes.push_back(b);
+  });
+}
+
 void parse_boundaries(R& root, Scene& s) {
   const char* comp[3] = {"x", "y", "z"};
   for_each_entry(root, "boundaries", s.file, [&](R& r, std::size_t) {
@@ -577,6 +591,7 @@ Scene parse_table(const toml::table& tbl, const std::string& file) {
   parse_regions(root, s);
   parse_bodies(root, s);
   parse_cracks(root, s);
+  parse_boreholes(root, s);
   parse_boundaries(root, s);
   parse_initial_velocity(root, s);
   parse_solver(root, s);
@@ -584,7 +599,7 @@ Scene parse_table(const toml::table& tbl, const std::string& file) {
   parse_mpm(root, s);
   parse_crack_growth(root, s);
   parse_output(root, s);
-  root.finish({"scene", "materials", "regions", "bodies", "cracks", "boundaries", "initial_velocity", "solver",
+  root.finish({"scene", "materials", "regions", "bodies", "cracks", "boreholes", "boundaries", "initial_velocity", "solver",
                "contact", "mpm", "crack_growth", "output"});
   return s;
 }

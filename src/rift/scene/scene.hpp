@@ -88,6 +88,16 @@ struct Crack {
   TimeFunction pressure_time;
 };
 
+/// Peridynamics: a borehole (or perforation, or any cavity) given by a region. The bodies' lattice
+/// sites inside it hold fluid instead of material, at `pressure` times its time function; the bonds
+/// from the material to those sites carry it (pd/crack_pressure.hpp).
+struct Borehole {
+  SourceLocation where;
+  std::string region;
+  double pressure = 0.0;  // Pa
+  TimeFunction pressure_time;
+};
+
 enum class BoundaryKind { fixed, velocity, displacement, traction, body_force };
 struct Boundary {
   SourceLocation where;
@@ -178,6 +188,7 @@ struct Scene {
   std::vector<RegionDef> regions;
   std::vector<Body> bodies;
   std::vector<Crack> cracks;
+  std::vector<Borehole> boreholes;
   std::vector<Boundary> boundaries;
   std::vector<InitialVelocity> initial_velocities;
   Solver solver;
