@@ -31,6 +31,8 @@ void prepare_crack_pressure(Model<D>& m) {
   std::vector<double> whole(n, 0.0);
   const Bonds& b = m.bonds;
   for (std::size_t i = 0; i < n; ++i) {
+    // only rows with pressure bonds need it: a cut bond's other end has the mirror bond in its row
+    if (w.offset[i + 1] == w.offset[i]) continue;
     const auto& c = m.constants_of(i);
     for (auto k = b.offset[i]; k < b.offset[i + 1]; ++k)
       whole[i] += influence(c.influence, b.length[k], c.horizon) * b.length[k] * b.length[k] * b.volume[k];

@@ -31,11 +31,11 @@ void compute_forces(Model<D>& m, Contact<D>* contact, double history_dt) {
   for (const auto& body : m.bodies) {
     const auto& c = body.constants;
     if (c.model == scene::ModelKind::lps) {
-      if (c.influence == I::constant) lps_forces<D, I::constant>(m, body);
-      else lps_forces<D, I::inverse_distance>(m, body);
+      if (c.influence == I::constant) state_based_forces<D, I::constant, false>(m, body);
+      else state_based_forces<D, I::inverse_distance, false>(m, body);
     } else if (c.model == scene::ModelKind::ves) {
-      if (c.influence == I::constant) ves_forces<D, I::constant>(m, body);
-      else ves_forces<D, I::inverse_distance>(m, body);
+      if (c.influence == I::constant) state_based_forces<D, I::constant, true>(m, body);
+      else state_based_forces<D, I::inverse_distance, true>(m, body);
     }
   }
   if (contact) contact->add_forces(m);
@@ -61,8 +61,8 @@ double strain_energy_density(const Model<D>& m, std::size_t i) {
   const auto& body = m.bodies[m.body[i]];
   switch (body.constants.model) {
     case scene::ModelKind::pmb: return pmb_energy_density<D>(m, body, i);
-    case scene::ModelKind::ves: return ves_energy_density<D>(m, body, i);
-    default: return lps_energy_density<D>(m, body, i);
+    case scene::ModelKind::ves: return state_based_energy_density<D, true>(m, body, i);
+    default: return state_based_energy_density<D, false>(m, body, i);
   }
 }
 

@@ -30,43 +30,60 @@ double pressure_factor(double kappa, double theta, double a, double coupling) {
   return kappa * theta - a * coupling / D;
 }
 
-template <int D, scene::Influence Omega>
-void lps_dilatation(Model<D>& m, const BodyInfo& body) {
-  const auto& c = body.constants;
+/// Intact bonds of row i: theta_i = sum b e V, with Coupling also q_i = sum sigma e |xi| V; breaks
+/// the bonds stretched past min(s0_i, s0_j) (the mirror bond in row j is broken by the same test) and
+/// returns the smallest stretch of the rest.
+template <int D, scene::Influence Omega, bool Coupling>
+double dilatation_row(Model<D>& m, const MaterialConstants& c, std::size_t i, double& theta, double& q) {
   Bonds& b = m.bonds;
-  const double horizon = c.horizon, s00 = c.critical_stretch, alpha = c.alpha;
-  const bool breakable = c.breakable;
-#pragma omp parallel for schedule(static)
-  for (std::size_t i = body.first; i < body.last; ++i) {
-    const Vec<D> xi_pos = m.position[i];
-    const double s0_i = m.stretch_limit[i];
-    double theta = 0.0, q = 0.0;
-    double s_min = std::numeric_limits<double>::max();
-    for (auto k = b.offset[i]; k < b.offset[i + 1]; ++k) {
-      if (!b.intact[k]) continue;
-      const auto j = static_cast<std::size_t>(b.neighbor[k]);
-      const double r = norm<D>(m.position[j] - xi_pos);
-      const double xi = b.length[k];
-      const double e = r - xi;
-      if (breakable && e > xi * std::min(s0_i, m.stretch_limit[j])) {
-        b.intact[k] = 0;  // the mirror bond in row j is broken by the same test
-        continue;
-      }
-      s_min = std::min(s_min, e / xi);
-      theta += b.dilatation_weight[k] * e * b.volume[k];
-      q += b.correction[k] * influence(Omega, xi, horizon) * xi * e * b.volume[k];
+  const Vec<D> xi_pos = m.position[i];
+  const double s0_i = m.stretch_limit[i];
+  double s_min = std::numeric_limits<double>::max();
+  theta = 0.0, q = 0.0;
+  for (auto k = b.offset[i]; k < b.offset[i + 1]; ++k) {
+    if (!b.intact[k]) continue;
+    const auto j = static_cast<std::size_t>(b.neighbor[k]);
+    const double r = norm<D>(m.position[j] - xi_pos);
+    const double xi = b.length[k];
+    const double e = r - xi;
+    if (c.breakable && e > xi * std::min(s0_i, m.stretch_limit[j])) {
+      b.intact[k] = 0;
+      continue;
     }
-    m.dilatation[i] = theta;
-    m.dilatation_coupling[i] = q - theta * m.weighted_volume[i] / D;
-    if (alpha > 0.0 && s_min < std::numeric_limits<double>::max()) m.next_stretch_limit[i] = s00 - alpha * s_min;
+    s_min = std::min(s_min, e / xi);
+    theta += b.dilatation_weight[k] * e * b.volume[k];
+    if constexpr (Coupling) q += b.correction[k] * influence(Omega, xi, c.horizon) * xi * e * b.volume[k];
   }
+  return s_min;
+}
+
+/// s0_i = s00 - alpha s_min for the next step (alpha > 0, some bond intact).
+template <int D>
+void next_stretch_limit(Model<D>& m, const MaterialConstants& c, std::size_t i, double s_min) {
+  if (c.alpha > 0.0 && s_min < std::numeric_limits<double>::max()) m.next_stretch_limit[i] = c.critical_stretch - c.alpha * s_min;
 }
 
 template <int D, scene::Influence Omega>
-void lps_forces(Model<D>& m, const BodyInfo& body) {
+void lps_dilatation(Model<D>& m, const BodyInfo& body) {
+  const auto& c = body.constants;
+#pragma omp parallel for schedule(static)
+  for (std::size_t i = body.first; i < body.last; ++i) {
+    double theta, q;
+    const double s_min = dilatation_row<D, Omega, true>(m, c, i, theta, q);
+    m.dilatation[i] = theta;
+    m.dilatation_coupling[i] = q - theta * m.weighted_volume[i] / D;
+    next_stretch_limit<D>(m, c, i, s_min);
+  }
+}
+
+/// Second pass of the LPS and of its viscoelastic variant (ves.hpp, Viscous: the deviatoric
+/// extension of each end less lambda times its back extension): f_i = sum_j (t_i<j> + t_j<i>) V_j
+/// along the deformed bond.
+template <int D, scene::Influence Omega, bool Viscous>
+void state_based_forces(Model<D>& m, const BodyInfo& body) {
   const auto& c = body.constants;
   const Bonds& b = m.bonds;
-  const double horizon = c.horizon, kappa = c.kappa, a_dev = c.lps_deviatoric_coefficient();
+  const double horizon = c.horizon, kappa = c.kappa, a_dev = c.lps_deviatoric_coefficient(), lambda = c.viscous_fraction;
 #pragma omp parallel for schedule(static)
   for (std::size_t i = body.first; i < body.last; ++i) {
     const Vec<D> xi_pos = m.position[i];
@@ -85,8 +102,13 @@ void lps_forces(Model<D>& m, const BodyInfo& body) {
       const double a_j = a_dev / m.weighted_volume[j];
       const double theta_j = m.dilatation[j];
       const double pressure_j = pressure_factor<D>(kappa, theta_j, a_j, m.dilatation_coupling[j]);
-      const double t_i = force_state(b.dilatation_weight[k], pressure_i, a_i, b.correction[k], omega, e - theta_i * xi / D);
-      const double t_j = force_state(b.mirror_dilatation_weight[k], pressure_j, a_j, b.mirror_correction[k], omega, e - theta_j * xi / D);
+      double dev_i = e - theta_i * xi / D, dev_j = e - theta_j * xi / D;
+      if constexpr (Viscous) {
+        dev_i -= lambda * b.back_extension[k];
+        dev_j -= lambda * b.back_extension[static_cast<std::size_t>(b.offset[j]) + b.mirror_slot[k]];
+      }
+      const double t_i = force_state(b.dilatation_weight[k], pressure_i, a_i, b.correction[k], omega, dev_i);
+      const double t_j = force_state(b.mirror_dilatation_weight[k], pressure_j, a_j, b.mirror_correction[k], omega, dev_j);
       const double scalar = (t_i + t_j) * b.volume[k] / r;
       for (int q = 0; q < D; ++q) f[q] += scalar * eta[q];
     }
@@ -94,19 +116,24 @@ void lps_forces(Model<D>& m, const BodyInfo& body) {
   }
 }
 
-/// W_i (uses the current dilatation).
-template <int D>
-double lps_energy_density(const Model<D>& m, const BodyInfo& body, std::size_t i) {
+/// W_i (uses the current dilatation; Viscous: and back extensions, ves.hpp).
+template <int D, bool Viscous>
+double state_based_energy_density(const Model<D>& m, const BodyInfo& body, std::size_t i) {
   const auto& c = body.constants;
   const Bonds& b = m.bonds;
-  const double theta = m.dilatation[i];
+  const double theta = m.dilatation[i], lambda = c.viscous_fraction;
   double dev = 0.0;
   for (auto k = b.offset[i]; k < b.offset[i + 1]; ++k) {
     if (!b.intact[k]) continue;
     const auto j = static_cast<std::size_t>(b.neighbor[k]);
     const double xi = b.length[k];
     const double ed = norm<D>(m.position[j] - m.position[i]) - xi - theta * xi / D;
-    dev += b.correction[k] * influence(c.influence, xi, c.horizon) * ed * ed * b.volume[k];
+    if constexpr (Viscous) {
+      const double ev = ed - b.back_extension[k];
+      dev += b.correction[k] * influence(c.influence, xi, c.horizon) * ((1.0 - lambda) * ed * ed + lambda * ev * ev) * b.volume[k];
+    } else {
+      dev += b.correction[k] * influence(c.influence, xi, c.horizon) * ed * ed * b.volume[k];
+    }
   }
   return 0.5 * c.kappa * theta * theta + 0.5 * c.lps_deviatoric_coefficient() / m.weighted_volume[i] * dev;
 }

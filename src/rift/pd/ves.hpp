@@ -51,35 +51,23 @@ void prepare_viscous_history(Model<D>& m) {
     }
 }
 
-/// First pass: dilatation, bond breaking (as lps_dilatation), then the back extension of every intact
-/// bond advanced over dt (dt = 0: held) and P_i.
+/// First pass: dilatation and bond breaking (as the LPS), then the back extension of every intact
+/// bond advanced over dt (dt = 0: held) and P_i. The second pass and W_i are the LPS ones with the
+/// back extensions (state_based_forces, state_based_energy_density in lps.hpp).
 template <int D, scene::Influence Omega>
 void ves_dilatation(Model<D>& m, const BodyInfo& body, double dt) {
   const auto& c = body.constants;
   Bonds& b = m.bonds;
-  const double horizon = c.horizon, s00 = c.critical_stretch, alpha = c.alpha, lambda = c.viscous_fraction;
-  const bool breakable = c.breakable, advance = dt > 0.0;
+  const double horizon = c.horizon, lambda = c.viscous_fraction;
+  const bool advance = dt > 0.0;
   const double x = advance ? dt / c.relaxation_time : 0.0;
   const double one_minus_decay = -std::expm1(-x), decay = 1.0 - one_minus_decay;
   const double beta = advance ? 1.0 - one_minus_decay / x : 0.0;
 #pragma omp parallel for schedule(static)
   for (std::size_t i = body.first; i < body.last; ++i) {
     const Vec<D> xi_pos = m.position[i];
-    const double s0_i = m.stretch_limit[i];
-    double theta = 0.0;
-    double s_min = std::numeric_limits<double>::max();
-    for (auto k = b.offset[i]; k < b.offset[i + 1]; ++k) {
-      if (!b.intact[k]) continue;
-      const auto j = static_cast<std::size_t>(b.neighbor[k]);
-      const double xi = b.length[k];
-      const double e = norm<D>(m.position[j] - xi_pos) - xi;
-      if (breakable && e > xi * std::min(s0_i, m.stretch_limit[j])) {
-        b.intact[k] = 0;  // the mirror bond in row j is broken by the same test
-        continue;
-      }
-      s_min = std::min(s_min, e / xi);
-      theta += b.dilatation_weight[k] * e * b.volume[k];
-    }
+    double theta, unused;
+    const double s_min = dilatation_row<D, Omega, false>(m, c, i, theta, unused);
     double p = 0.0;
     for (auto k = b.offset[i]; k < b.offset[i + 1]; ++k) {
       if (!b.intact[k]) continue;
@@ -96,60 +84,8 @@ void ves_dilatation(Model<D>& m, const BodyInfo& body, double dt) {
     }
     m.dilatation[i] = theta;
     m.dilatation_coupling[i] = p;
-    if (alpha > 0.0 && s_min < std::numeric_limits<double>::max()) m.next_stretch_limit[i] = s00 - alpha * s_min;
+    next_stretch_limit<D>(m, c, i, s_min);
   }
-}
-
-/// Second pass: f_i = sum_j (t_i<j> + t_j<i>) V_j along the deformed bond.
-template <int D, scene::Influence Omega>
-void ves_forces(Model<D>& m, const BodyInfo& body) {
-  const auto& c = body.constants;
-  const Bonds& b = m.bonds;
-  const double horizon = c.horizon, kappa = c.kappa, a_dev = c.lps_deviatoric_coefficient(), lambda = c.viscous_fraction;
-#pragma omp parallel for schedule(static)
-  for (std::size_t i = body.first; i < body.last; ++i) {
-    const Vec<D> xi_pos = m.position[i];
-    const double a_i = a_dev / m.weighted_volume[i];
-    const double theta_i = m.dilatation[i];
-    const double pressure_i = pressure_factor<D>(kappa, theta_i, a_i, m.dilatation_coupling[i]);
-    Vec<D> f{};
-    for (auto k = b.offset[i]; k < b.offset[i + 1]; ++k) {
-      if (!b.intact[k]) continue;
-      const auto j = static_cast<std::size_t>(b.neighbor[k]);
-      const Vec<D> eta = m.position[j] - xi_pos;
-      const double r = norm<D>(eta);
-      const double xi = b.length[k];
-      const double e = r - xi;
-      const double omega = influence(Omega, xi, horizon);
-      const double a_j = a_dev / m.weighted_volume[j];
-      const double theta_j = m.dilatation[j];
-      const double pressure_j = pressure_factor<D>(kappa, theta_j, a_j, m.dilatation_coupling[j]);
-      const double eb_j = b.back_extension[static_cast<std::size_t>(b.offset[j]) + b.mirror_slot[k]];
-      const double t_i = force_state(b.dilatation_weight[k], pressure_i, a_i, b.correction[k], omega, e - theta_i * xi / D - lambda * b.back_extension[k]);
-      const double t_j = force_state(b.mirror_dilatation_weight[k], pressure_j, a_j, b.mirror_correction[k], omega, e - theta_j * xi / D - lambda * eb_j);
-      const double scalar = (t_i + t_j) * b.volume[k] / r;
-      for (int q = 0; q < D; ++q) f[q] += scalar * eta[q];
-    }
-    m.force[i] = f;
-  }
-}
-
-/// W_i (uses the current dilatation and back extensions).
-template <int D>
-double ves_energy_density(const Model<D>& m, const BodyInfo& body, std::size_t i) {
-  const auto& c = body.constants;
-  const Bonds& b = m.bonds;
-  const double theta = m.dilatation[i], lambda = c.viscous_fraction;
-  double dev = 0.0;
-  for (auto k = b.offset[i]; k < b.offset[i + 1]; ++k) {
-    if (!b.intact[k]) continue;
-    const auto j = static_cast<std::size_t>(b.neighbor[k]);
-    const double xi = b.length[k];
-    const double ed = norm<D>(m.position[j] - m.position[i]) - xi - theta * xi / D;
-    const double ev = ed - b.back_extension[k];
-    dev += b.correction[k] * influence(c.influence, xi, c.horizon) * ((1.0 - lambda) * ed * ed + lambda * ev * ev) * b.volume[k];
-  }
-  return 0.5 * c.kappa * theta * theta + 0.5 * c.lps_deviatoric_coefficient() / m.weighted_volume[i] * dev;
 }
 
 }  // namespace rift::pd
