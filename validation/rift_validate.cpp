@@ -9,8 +9,10 @@
 #include <vector>
 
 #include "cases/case.hpp"
+#include "rift/parallel/cpu_quota.hpp"
 
 int main(int argc, char** argv) {
+  rift::parallel::limit_threads_to_cpu_quota();
   rift::validation::Settings settings;
   settings.quick = false;
   std::vector<std::string> names;

@@ -12,10 +12,12 @@
 
 #include "rift/core/error.hpp"
 #include "rift/core/version.hpp"
+#include "rift/parallel/cpu_quota.hpp"
 #include "rift/run/runner.hpp"
 #include "rift/scene/parse.hpp"
 
 int main(int argc, char** argv) {
+  rift::parallel::limit_threads_to_cpu_quota();
   CLI::App app{"rift: fracture of solids with peridynamics"};
   app.set_version_flag("--version", std::string("rift ") + rift::version);
   app.require_subcommand(1);
