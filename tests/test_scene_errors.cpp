@@ -106,6 +106,11 @@ const Case cases[] = {
     {"borehole in an unknown region", "", "\n[[boreholes]]\nregion = \"well\"\npressure = 1e6\n", "boreholes[0].region", "\"well\""},
     {"traction layer thinner than a row", "x = 1.0\n", "x = 1.0\n[[boundaries]]\nregion = \"left\"\ntype = \"traction\"\nx = 1e6\nlayer_depth = 0.0005\n",
      "boundaries[1].layer_depth", "[[boundaries]]\nregion = \"left\"\ntype = \"traction\""},
+    {"in-situ stress without sigma_h", "", "\n[in_situ_stress]\nsigma_H = -10e6\n", "in_situ_stress.sigma_h", "[in_situ_stress]"},
+    {"in-situ sigma_H along z", "", "\n[in_situ_stress]\nsigma_H = -10e6\nsigma_h = -5e6\nsigma_H_axis = \"z\"\n",
+     "in_situ_stress.sigma_H_axis", "sigma_H_axis"},
+    {"borehole that touches no material", "", "\n[regions.far]\nshape = \"box\"\nmin = [1.0, 1.0]\nmax = [1.1, 1.1]\n[[boreholes]]\nregion = \"far\"\npressure = 1e6\n",
+     "boreholes[0].region", "[[boreholes]]"},
 };
 
 class SceneErrors : public ::testing::TestWithParam<Case> {};
@@ -224,6 +229,7 @@ const MpmCase mpm_cases[] = {
     {"J area term not a boolean", "cell_size = 0.001", "cell_size = 0.001\nj_area_term = \"yes\"", "mpm.j_area_term"},
     {"pressure on an MPM crack", "[solver]", "[[cracks]]\npoints = [[0.0205, 0.0025], [0.01, 0.0025]]\npressure = 1e6\n[solver]", "cracks[0].pressure"},
     {"borehole in mpm", "[solver]", "[[boreholes]]\nregion = \"clamp\"\n[solver]", "boreholes[0].region"},
+    {"in-situ stress in mpm", "[solver]", "[in_situ_stress]\nsigma_H = -1e6\nsigma_h = -1e6\n[solver]", "in_situ_stress.sigma_H"},
     {"unknown mode partition", "cell_size = 0.001", "cell_size = 0.001\nmode_partition = \"displacement\"", "mpm.mode_partition"},
     {"traction layer thinner than a row of points", "type = \"fixed\"",
      "type = \"fixed\"\n[[boundaries]]\nregion = \"beam\"\ntype = \"traction\"\ny = 1e6\nlayer_depth = 0.0002", "boundaries[1].layer_depth"},

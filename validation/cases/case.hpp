@@ -46,6 +46,7 @@ Result mpm_sent(const Settings&);
 Result mpm_denp(const Settings&);
 Result mpm_crack_growth(const Settings&);
 Result hf_sneddon(const Settings&);
+Result hf_kirsch(const Settings&);
 
 struct Entry {
   const char* name;

@@ -21,6 +21,7 @@ const std::vector<Entry>& all_cases() {
       {"mpm_denp", mpm_denp},
       {"mpm_crack_growth", mpm_crack_growth},
       {"hf_sneddon", hf_sneddon},
+      {"hf_kirsch", hf_kirsch},
   };
   return cases;
 }

@@ -1,5 +1,7 @@
 #include "rift/load/boundary.hpp"
 
+#include <algorithm>
+
 #include "rift/geometry/region.hpp"
 #include "rift/load/time_function.hpp"
 #include "rift/load/traction_layer.hpp"
@@ -36,6 +38,7 @@ Boundaries<D>::Boundaries(const scene::Scene& s, pd::Model<D>& m) {
     }
     applied_.push_back(std::move(a));
   }
+  if (s.in_situ.enabled) add_in_situ_tractions(s.in_situ, m);
   for (const auto& c : s.cracks) pressure_sources_.push_back({c.pressure, c.pressure_time});
   for (const auto& b : s.boreholes) pressure_sources_.push_back({b.pressure, b.pressure_time});
   for (const auto& name : s.output.reactions) {
@@ -44,6 +47,29 @@ Boundaries<D>::Boundaries(const scene::Scene& s, pd::Model<D>& m) {
     if (reaction_particles_.back().empty())
       throw SceneError({s.file, 0, 0}, "output.reactions", "region \"" + name + "\" selects no particle");
   }
+}
+
+template <int D>
+void Boundaries<D>::add_in_situ_tractions(const scene::InSituStress& in_situ, const pd::Model<D>& m) {
+  Vec<D> lo, hi;
+  for (int k = 0; k < D; ++k) lo[k] = 1e300, hi[k] = -1e300;
+  for (const auto& x : m.reference_position)
+    for (int k = 0; k < D; ++k) lo[k] = std::min(lo[k], x[k]), hi[k] = std::max(hi[k], x[k]);
+  // the outermost row of particles on each face carries sigma . n over its depth (one spacing)
+  for (int k = 0; k < D; ++k)
+    for (int side : {-1, 1}) {
+      Applied a;
+      a.def.where = in_situ.where;
+      a.def.region = std::string("in-situ face ") + (side < 0 ? "-" : "+") + "xyz"[k];
+      a.def.kind = scene::BoundaryKind::traction;
+      a.def.value[k] = side * in_situ.principal(k);
+      for (std::size_t i = 0; i < m.size(); ++i) {
+        const double half_row = 0.5 * m.constants_of(i).spacing;
+        if (side > 0 ? m.reference_position[i][k] > hi[k] - half_row : m.reference_position[i][k] < lo[k] + half_row)
+          a.particles.push_back(i);
+      }
+      applied_.push_back(std::move(a));
+    }
 }
 
 template <int D>

@@ -1,6 +1,6 @@
 // Boundary conditions on regions: fixed, prescribed velocity or displacement per component,
 // traction (converted to a body-force density over the loaded particle layer: b = T / depth),
-// body force; each scaled by its time function. Also the reaction force on tagged regions.
+// body force; each scaled by its time function; the in-situ stress as tractions on the faces. Also the reaction force on tagged regions.
 #pragma once
 #include <string>
 #include <vector>
@@ -32,6 +32,8 @@ class Boundaries {
     scene::Boundary def;
     std::vector<std::size_t> particles;
   };
+  /// Tractions sigma . n of the far-field stresses on the faces of the bodies' bounding box.
+  void add_in_situ_tractions(const scene::InSituStress& in_situ, const pd::Model<D>& m);
   std::vector<Applied> applied_;
   std::vector<std::pair<double, scene::TimeFunction>> pressure_sources_;  // cracks, then boreholes
   std::vector<std::string> reaction_names_;

@@ -133,6 +133,8 @@ void build_bonds(const scene::Scene& s, Model<D>& m, const std::vector<std::arra
     // boreholes: bonds to their lattice sites carry the fluid pressure; a fluid site's weighted
     // volume is that of a whole family
     const auto region = geometry::Region::build(s, body.region);
+    Point3 region_lo, region_hi;
+    region.bounds(region_lo, region_hi);
     std::vector<geometry::Region> holes;
     for (const auto& hole : s.boreholes) holes.push_back(geometry::Region::build(s, hole.region));
     double whole_family = 0.0;
@@ -180,7 +182,10 @@ void build_bonds(const scene::Scene& s, Model<D>& m, const std::vector<std::arra
           if (holes.empty()) continue;
           Point3 site{0, 0, 0};
           for (int k = 0; k < D; ++k) site[k] = body.lattice_origin[k] + (double(std::array<long, 3>{x, y, z}[k]) + 0.5) * body.spacing;
-          if (!region.contains(site)) continue;
+          // inside the body's bounds: the body's region may be the block with the hole cut out
+          bool inside = true;
+          for (int k = 0; k < D; ++k) inside = inside && site[k] >= region_lo[k] && site[k] <= region_hi[k];
+          if (!inside) continue;
           for (std::size_t hi_ = 0; hi_ < holes.size(); ++hi_) {
             if (!holes[hi_].contains(site)) continue;
             std::array<double, 3> xi{0, 0, 0};
@@ -254,6 +259,14 @@ void build_bonds(const scene::Scene& s, Model<D>& m, const std::vector<std::arra
       w.xi.push_back(wet_xi[i][q]);
       w.fluid_weighted_volume.push_back(wet_m[i][q]);
     }
+  std::vector<bool> wet(s.boreholes.size(), false);
+  for (auto src : w.source)
+    if (src >= s.cracks.size()) wet[src - s.cracks.size()] = true;
+  for (std::size_t h = 0; h < s.boreholes.size(); ++h)
+    if (!wet[h])
+      throw SceneError(s.boreholes[h].where, "boreholes[" + std::to_string(h) + "].region",
+                       "region \"" + s.boreholes[h].region + "\" touches no material: none of its lattice sites inside a body's bounds "
+                       "lies within a horizon of a particle");
 }
 
 }  // namespace

@@ -2,6 +2,8 @@
 
 #include <omp.h>
 
+#include <fmt/format.h>
+
 #include <chrono>
 #include <cmath>
 #include <filesystem>
@@ -68,6 +70,14 @@ Plan check_dim(const scene::Scene& s, std::ostream& out) {
                   s.solver.load_steps, s.solver.max_iterations, s.solver.tolerance);
   }
   out << line;
+  if (s.in_situ.enabled) {
+    const auto& in_situ = s.in_situ;
+    std::snprintf(line, sizeof line,
+                  "in-situ      sigma_H = %g MPa along %c, sigma_h = %g MPa, sigma_v = %g MPa%s: equilibrium first, no bond breaks\n",
+                  in_situ.sigma_H / 1e6, "xy"[in_situ.sigma_H_axis], in_situ.sigma_h / 1e6, in_situ.sigma_v / 1e6,
+                  D == 2 ? " (out of plane)" : "");
+    out << line;
+  }
   std::string fields;
   for (const auto& f : s.output.fields) fields += " " + f;
   out << "output       " << s.output.count << " snapshots (position" << fields << ") -> fields.h5 + fields.xdmf\n";
@@ -169,6 +179,14 @@ Result run_dim(const scene::Scene& s, const Options& o) {
     return e;
   };
 
+  if (s.in_situ.enabled) {
+    const auto r = p.equilibrate_in_situ(s.in_situ);
+    res.notes.push_back(fmt::format("in-situ stage: {} in {} iterations of dynamic relaxation (residual {:.3g}, tolerance {:g})",
+                                    r.converged ? "equilibrium" : "NOT converged", r.iterations, r.residual, s.in_situ.tolerance));
+    if (!r.converged && !o.quiet)
+      std::fprintf(stderr, "rift: warning: the in-situ stage did not converge in %d iterations (residual %.3g > %.3g)\n", r.iterations,
+                   r.residual, s.in_situ.tolerance);
+  }
   p.start();
   const auto loop_start = std::chrono::steady_clock::now();
   Progress progress(p.steps, s.solver.end_time, o.quiet);

@@ -4,6 +4,7 @@
 #include "rift/load/boundary.hpp"
 #include "rift/pd/contact.hpp"
 #include "rift/pd/discretize.hpp"
+#include "rift/pd/dynamic_relaxation.hpp"
 #include "rift/pd/forces.hpp"
 #include "rift/pd/velocity_verlet.hpp"
 #include "rift/run/time_step.hpp"
@@ -31,6 +32,18 @@ struct Simulation {
     }
   }
   pd::Contact<D>* contact_ptr() { return contact.enabled() ? &contact : nullptr; }
+  /// The in-situ stage ([in_situ_stress]): static equilibrium under the far-field stresses and
+  /// every other load at t = 0, with no bond allowed to break; the run starts from it at rest.
+  pd::RelaxationResult equilibrate_in_situ(const scene::InSituStress& in_situ) {
+    std::vector<bool> breakable;
+    for (auto& b : model.bodies) breakable.push_back(b.constants.breakable), b.constants.breakable = false;
+    const auto initial_velocity = model.velocity;
+    pd::DynamicRelaxation<D> dr(model);
+    auto r = dr.relax(model, loads, contact_ptr(), 0.0, in_situ.max_iterations, in_situ.tolerance);
+    for (std::size_t b = 0; b < model.bodies.size(); ++b) model.bodies[b].constants.breakable = breakable[b];
+    model.velocity = initial_velocity;
+    return r;
+  }
   /// Forces and loads of the initial state (call once before the first step).
   void start() {
     pd::compute_forces<D>(model, contact_ptr());

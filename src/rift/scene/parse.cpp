@@ -385,6 +385,28 @@ void parse_boundaries(R& root, Scene& s) {
   });
 }
 
+void parse_in_situ_stress(R& root, Scene& s) {
+  const toml::table* t = root.table("in_situ_stress");
+  if (!t) return;
+  R r(*t, "in_situ_stress", s.file);
+  if (s.method != Method::peridynamics) r.fail("sigma_H", "in-situ stress is for peridynamics (method = \"peridynamics\")");
+  InSituStress& v = s.in_situ;
+  v.enabled = true;
+  v.where = r.where();
+  const std::string unit = "far-field principal stress, Pa, compression negative";
+  v.sigma_H = r.required_number("sigma_H", "maximum horizontal " + unit);
+  v.sigma_h = r.required_number("sigma_h", "minimum horizontal " + unit);
+  if (s.dimension == 3) v.sigma_v = r.required_number("sigma_v", "vertical (z) " + unit);
+  else v.sigma_v = r.number("sigma_v", 0.0);  // out of the horizontal section: recorded, not applied
+  if (auto axis = r.choice("sigma_H_axis", {"x", "y"})) v.sigma_H_axis = *axis == "x" ? 0 : 1;
+  if (auto n = r.integer("max_iterations")) {
+    if (*n < 1) r.fail("max_iterations", "must be >= 1");
+    v.max_iterations = static_cast<int>(*n);
+  }
+  if (auto tol = r.number("tolerance")) v.tolerance = r.positive("tolerance", *tol);
+  r.finish({"sigma_H", "sigma_h", "sigma_v", "sigma_H_axis", "max_iterations", "tolerance"});
+}
+
 void parse_initial_velocity(R& root, Scene& s) {
   for_each_entry(root, "initial_velocity", s.file, [&](R& r, std::size_t) {
     InitialVelocity v;
@@ -593,14 +615,15 @@ Scene parse_table(const toml::table& tbl, const std::string& file) {
   parse_cracks(root, s);
   parse_boreholes(root, s);
   parse_boundaries(root, s);
+  parse_in_situ_stress(root, s);
   parse_initial_velocity(root, s);
   parse_solver(root, s);
   parse_contact(root, s);
   parse_mpm(root, s);
   parse_crack_growth(root, s);
   parse_output(root, s);
-  root.finish({"scene", "materials", "regions", "bodies", "cracks", "boreholes", "boundaries", "initial_velocity", "solver",
-               "contact", "mpm", "crack_growth", "output"});
+  root.finish({"scene", "materials", "regions", "bodies", "cracks", "boreholes", "boundaries", "in_situ_stress", "initial_velocity",
+               "solver", "contact", "mpm", "crack_growth", "output"});
   return s;
 }
 

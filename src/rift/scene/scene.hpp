@@ -98,6 +98,23 @@ struct Borehole {
   TimeFunction pressure_time;
 };
 
+/// Peridynamics: the far-field principal stresses of the rock (Pa, compression negative), applied
+/// as tractions sigma . n on the faces of the bodies' bounding box: sigma_H along the axis
+/// `sigma_H_axis` (x or y), sigma_h along the other horizontal axis, sigma_v along z (3D; in 2D
+/// the section is horizontal and sigma_v is out of plane). Before the run the scene is brought to
+/// equilibrium under them and every other load at t = 0, with no bond allowed to break (the
+/// in-situ stage, adaptive dynamic relaxation); that state starts the run (the pressurization stage).
+struct InSituStress {
+  bool enabled = false;
+  SourceLocation where;
+  double sigma_v = 0.0, sigma_H = 0.0, sigma_h = 0.0;
+  int sigma_H_axis = 0;  // 0: x, 1: y
+  int max_iterations = 50000;
+  double tolerance = 1e-6;
+  /// Stress tensor component along axis k (principal axes = coordinate axes).
+  double principal(int k) const { return k == 2 ? sigma_v : (k == sigma_H_axis ? sigma_H : sigma_h); }
+};
+
 enum class BoundaryKind { fixed, velocity, displacement, traction, body_force };
 struct Boundary {
   SourceLocation where;
@@ -190,6 +207,7 @@ struct Scene {
   std::vector<Crack> cracks;
   std::vector<Borehole> boreholes;
   std::vector<Boundary> boundaries;
+  InSituStress in_situ;
   std::vector<InitialVelocity> initial_velocities;
   Solver solver;
   Contact contact;
