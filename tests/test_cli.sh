@@ -43,6 +43,7 @@ end_time = 4e-6
 snapshots = 3
 history_rows = 5
 reactions = ["left"]
+probes = [[0.0101, 0.0041], [0.019, 0.009]]
 SCENE
 "$rift" --version | grep -q '^rift '
 "$rift" check "$tmp/plate.toml" | grep -q 'bytes/bond'
@@ -52,6 +53,19 @@ test -s "$tmp/out/fields.h5"
 test -s "$tmp/out/damage.png"
 test "$(wc -l < "$tmp/out/history.csv")" -eq 7  # header, initial state, 5 rows
 head -1 "$tmp/out/history.csv" | grep -q 'reaction_left_x'
+head -1 "$tmp/out/history.csv" | grep -q 'damage_probe_0,damage_probe_1'
+# the damage histogram: ten intervals of 0.1 whose shares add up to 100%, and its chart
+test -s "$tmp/out/damage_histogram.png"
+/usr/bin/python3 - "$tmp/out" <<'PY'
+import csv, sys
+rows = list(csv.DictReader(open(sys.argv[1] + "/damage_histogram.csv")))
+assert len(rows) == 10 and rows[0]["damage_from"] == "0.0" and rows[-1]["damage_to"] == "1.0", rows
+assert abs(sum(float(r["percent"]) for r in rows) - 100.0) < 1e-3
+assert sum(int(r["particles"]) for r in rows) == 40 * 20, "every particle in one interval"
+# the probe at the crack tip is damaged by the end, the far corner is not
+last = list(csv.DictReader(open(sys.argv[1] + "/history.csv")))[-1]
+assert float(last["damage_probe_0"]) > 0.0 and float(last["damage_probe_1"]) == 0.0, last
+PY
 /usr/bin/python3 - "$tmp/out" <<'PY'
 import sys, xml.etree.ElementTree as ET
 out = sys.argv[1]
@@ -70,4 +84,13 @@ set -e
 test "$status" -eq 2
 grep -q "bad.toml:22:11: error: 'bodies.plate.spacing': must be > 0" "$tmp/err.txt"
 test ! -e "$tmp/bad_out"
+# a probe outside the body is a scene error too
+sed 's/probes = .*/probes = [[0.5, 0.5]]/' "$tmp/plate.toml" > "$tmp/bad_probe.toml"
+set +e
+"$rift" run "$tmp/bad_probe.toml" -o "$tmp/bad_probe_out" 2> "$tmp/err.txt"
+status=$?
+set -e
+test "$status" -eq 2
+grep -q "'output.probes': probe 0 lies" "$tmp/err.txt"
+test ! -e "$tmp/bad_probe_out"
 echo "command line: all checks passed"

@@ -10,6 +10,7 @@
 #include <ostream>
 
 #include "rift/core/progress.hpp"
+#include "rift/io/damage_histogram.hpp"
 #include "rift/io/damage_image.hpp"
 #include "rift/io/field_writer.hpp"
 #include "rift/io/history.hpp"
@@ -21,6 +22,30 @@
 namespace rift::run {
 
 namespace {
+
+/// The particle nearest to each [output] probe (reference positions); a probe farther than one
+/// spacing from every particle lies outside the bodies and is a scene error.
+template <int D>
+std::vector<std::size_t> probe_particles(const scene::Scene& s, const pd::Model<D>& m) {
+  std::vector<std::size_t> out;
+  for (std::size_t k = 0; k < s.output.probes.size(); ++k) {
+    const auto& p = s.output.probes[k];
+    std::size_t best = 0;
+    double best_d2 = 1e300;
+    for (std::size_t i = 0; i < m.size(); ++i) {
+      double d2 = 0.0;
+      for (int q = 0; q < D; ++q) d2 += (m.reference_position[i][q] - p[q]) * (m.reference_position[i][q] - p[q]);
+      if (d2 < best_d2) best_d2 = d2, best = i;
+    }
+    const double spacing = m.constants_of(best).spacing;
+    if (std::sqrt(best_d2) > spacing)
+      throw SceneError(s.output.probes_where, "output.probes",
+                       fmt::format("probe {} lies {:g} m from the nearest particle, more than one spacing ({:g} m): it is not inside a body",
+                                   k, std::sqrt(best_d2), spacing));
+    out.push_back(best);
+  }
+  return out;
+}
 
 template <int D>
 Plan make_plan(const Simulation<D>& p) {
@@ -42,6 +67,7 @@ Plan make_plan(const Simulation<D>& p) {
 template <int D>
 Plan check_dim(const scene::Scene& s, std::ostream& out) {
   Simulation<D> p(s);
+  const auto probes = probe_particles<D>(s, p.model);
   Plan plan = make_plan<D>(p);
   char line[256];
   out << "scene        " << s.name << " (" << s.file << ")\n";
@@ -86,7 +112,9 @@ Plan check_dim(const scene::Scene& s, std::ostream& out) {
   out << ") -> history.csv";
   for (const auto& r : s.output.reactions) out << ", reaction on " << r;
   out << "\n";
+  if (!probes.empty()) out << "             damage at " << probes.size() << " probes -> damage_probe_0... columns of history.csv\n";
   if (D == 2 && s.output.damage_image) out << "             final damage image -> damage.png\n";
+  if (s.output.damage_histogram) out << "             final damage histogram (intervals of 0.1) -> damage_histogram.csv + .png\n";
   return plan;
 }
 
@@ -142,6 +170,7 @@ void check_finite(const pd::Model<D>& m, long step, const pd::EnergySummary& e) 
 template <int D>
 Result run_dim(const scene::Scene& s, const Options& o) {
   Simulation<D> p(s);  // every scene error is raised here, before anything is written
+  const auto probes = probe_particles<D>(s, p.model);
   auto& m = p.model;
   Result res;
   res.output_dir = o.output_dir.empty() ? "results/" + s.name : o.output_dir;
@@ -151,6 +180,7 @@ Result run_dim(const scene::Scene& s, const Options& o) {
   res.fields_xdmf = fields.xdmf_path();
   std::vector<std::string> columns{"time", "step"};
   columns.insert(columns.end(), s.output.history.begin(), s.output.history.end());
+  for (std::size_t k = 0; k < probes.size(); ++k) columns.push_back("damage_probe_" + std::to_string(k));
   const char* comp[3] = {"x", "y", "z"};
   for (const auto& r : p.loads.reaction_names())
     for (int k = 0; k < D; ++k) columns.push_back("reaction_" + r + "_" + comp[k]);
@@ -172,6 +202,7 @@ Result run_dim(const scene::Scene& s, const Options& o) {
       else if (q == "broken_bonds") row.push_back(double(e.broken_bonds));
       else if (q == "max_damage") row.push_back(dmax);
     }
+    for (auto i : probes) row.push_back(m.damage[i]);
     for (const auto& r : p.loads.reactions(m))
       for (int k = 0; k < D; ++k) row.push_back(r[k]);
     row.insert(row.end(), extra.begin(), extra.end());
@@ -229,6 +260,14 @@ Result run_dim(const scene::Scene& s, const Options& o) {
   res.steps = p.steps;
   res.time = m.time;
   progress.finish(p.steps, m.time, res.final_energy.broken_fraction);
+  if (s.output.damage_histogram) {
+    std::string png = res.output_dir + "/damage_histogram.png", reason;
+    const bool drawn = io::write_damage_histogram(res.output_dir, png, io::damage_histogram(m.damage),
+                                                  s.name + ": damage at t = " + std::to_string(m.time) + " s", reason);
+    res.files.push_back({"histogram", res.output_dir + "/damage_histogram.csv"});
+    if (drawn) res.files.push_back({"chart", png});
+    else res.notes.push_back("damage histogram chart not written: " + reason);
+  }
   if (D == 2 && s.output.damage_image) {
     std::vector<double> x(m.size()), y(m.size());
     for (std::size_t i = 0; i < m.size(); ++i) x[i] = m.position[i][0], y[i] = m.position[i][1];

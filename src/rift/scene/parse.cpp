@@ -592,11 +592,20 @@ void parse_output(R& root, Scene& s) {
     o.reactions = *rx;
   }
   if (auto d = r.boolean("damage_image")) o.damage_image = *d;
+  if (auto d = r.boolean("damage_histogram")) {
+    if (s.method != Method::peridynamics) r.fail("damage_histogram", "only for peridynamics (damage is a peridynamic field)");
+    o.damage_histogram = *d;
+  }
+  if (r.has("probes")) {
+    if (s.method != Method::peridynamics) r.fail("probes", "only for peridynamics (they record damage)");
+    o.probes = point_list(r, "probes", s.dimension, 1);
+    o.probes_where = r.where("probes");
+  }
   if (auto d = r.boolean("crack_tip_plot")) {
     if (s.method != Method::mpm) r.fail("crack_tip_plot", "only for [scene] method = \"mpm\" (explicit cracks)");
     o.crack_tip_plot = *d;
   }
-  r.finish({"snapshots", "history_rows", "fields", "history", "reactions", "damage_image", "crack_tip_plot"});
+  r.finish({"snapshots", "history_rows", "fields", "history", "reactions", "damage_image", "damage_histogram", "probes", "crack_tip_plot"});
 }
 
 Scene parse_table(const toml::table& tbl, const std::string& file) {

@@ -191,6 +191,9 @@ struct Output {
   std::vector<std::string> history; // history columns after time and step (default: all)
   std::vector<std::string> reactions;  // region names whose reaction force is recorded
   bool damage_image = true;         // 2D: PNG of the final damage field
+  bool damage_histogram = true;     // peridynamics: particles per damage interval of 0.1 at the end (CSV + PNG)
+  std::vector<Point3> probes;       // peridynamics: points whose nearest particle's damage joins the history
+  SourceLocation probes_where;
   bool crack_tip_plot = true;       // MPM with cracks: PNG of K_I, K_II against time per crack tip
 };
 
