@@ -111,3 +111,70 @@ TEST(CrackPressure, BoreholeSitesPushTheWallWithThePressure) {
 }
 
 }  // namespace
+
+namespace {
+
+// Cracks grown from a pressurized pre-crack (pd/fluid_network.hpp). In the 2D block of the first test
+// the pre-crack now covers only x < 12 mm; every bond across the rest of the line y = 8 mm is broken
+// by hand, as if the crack had grown. The broken bonds are joined to the pre-crack's particles, so
+// they carry its pressure and the middle columns feel p A to round-off, as under a crack across the
+// whole block. With the bonds broken only from x = 16 mm on, the intact bonds between 12 and 16 mm
+// (more than a horizon) keep that crack dry: no force on its faces.
+TEST(CrackPressure, CracksJoinedToTheSourceByBrokenBondsCarryItsPressure) {
+  const double p = 2e6, line = 0.008;
+  const std::string text = R"([scene]
+dimension = 2
+plane = "strain"
+thickness = 0.001
+[materials.rock]
+model = "lps"
+density = 2500.0
+youngs_modulus = 10e9
+poisson_ratio = 0.25
+[regions.block]
+shape = "box"
+min = [0.0, 0.0]
+max = [0.024, 0.016]
+[bodies.block]
+material = "rock"
+region = "block"
+spacing = 0.001
+horizon = 3.015
+lattice_origin = [0.0, 0.0]
+[[cracks]]
+points = [[-0.01, 0.008], [0.012, 0.008]]
+pressure = 2e6
+[solver]
+end_time = 1e-6
+)";
+  for (double broken_from : {0.012, 0.016}) {
+    auto scene = rift::scene::parse_string(text, "grown.toml");
+    auto m = rift::pd::discretize<2>(scene);
+    rift::load::Boundaries<2> loads(scene, m);
+    auto& b = m.bonds;
+    for (std::size_t i = 0; i < m.size(); ++i)
+      for (auto k = b.offset[i]; k < b.offset[i + 1]; ++k) {
+        const auto& xi = m.reference_position[i];
+        const auto& xj = m.reference_position[static_cast<std::size_t>(b.neighbor[k])];
+        if ((xi[1] - line) * (xj[1] - line) >= 0.0) continue;  // does not cross the line
+        const double crossing = xi[0] + (line - xi[1]) * (xj[0] - xi[0]) / (xj[1] - xi[1]);
+        if (crossing >= broken_from) b.intact[k] = 0;
+      }
+    loads.apply_body_forces(m, 0.0);
+    double middle = 0.0, beyond = 0.0;
+    for (std::size_t i = 0; i < m.size(); ++i) {
+      const auto& x = m.reference_position[i];
+      if (x[1] < line) continue;
+      const double f = m.body_force[i][1] * m.volume[i];
+      if (std::abs(x[0] - 0.012) < 0.006) middle += f;
+      if (x[0] > 0.019) beyond += f;
+    }
+    if (broken_from < 0.013) {
+      EXPECT_NEAR(middle / (p * 0.012 * 0.001), 1.0, 1e-6) << "grown crack: middle columns";
+    } else {
+      EXPECT_EQ(beyond, 0.0) << "a crack the fluid does not reach";
+    }
+  }
+}
+
+}  // namespace

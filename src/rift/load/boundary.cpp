@@ -93,6 +93,9 @@ void Boundaries<D>::apply_body_forces(pd::Model<D>& m, double t) const {
   std::vector<double> pressure(pressure_sources_.size());
   for (std::size_t c = 0; c < pressure.size(); ++c) pressure[c] = pressure_sources_[c].first * evaluate(pressure_sources_[c].second, t);
   pd::add_crack_pressure<D>(m, pressure);
+  // the same fluid in the cracks grown from each source
+  pd::update_fluid_network<D>(m);
+  pd::add_network_pressure<D>(m, pressure);
 }
 
 template <int D>

@@ -41,4 +41,12 @@ struct CrackBonds {
   std::vector<double> coefficient;    // d omega V_j (1/m_i + 1/m_j), whole-family weighted volumes
 };
 
+/// The fluid each pressure source has in the cracks grown from it (fluid_network.hpp); empty
+/// without pressure sources.
+struct FluidNetwork {
+  std::vector<int> source;                    // per particle: the source whose fluid reaches it, -1 none
+  std::vector<double> whole_weighted_volume;  // per particle: m over its whole family, uncorrected
+  std::int64_t broken_bonds = -1;             // broken bonds when the labels were last made
+};
+
 }  // namespace rift::pd

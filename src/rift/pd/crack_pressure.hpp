@@ -15,34 +15,24 @@
 #include <cmath>
 #include <vector>
 
+#include "rift/pd/fluid_network.hpp"
 #include "rift/pd/influence.hpp"
 #include "rift/pd/model.hpp"
 
 namespace rift::pd {
 
 /// The coefficients d omega V_j (1/m_i + 1/m_j) of the pressure-carrying bonds (after the weighted
-/// volumes).
+/// volumes), and the whole-family weighted volumes of every particle for the crack network.
 template <int D>
 void prepare_crack_pressure(Model<D>& m) {
   CrackBonds& w = m.crack_bonds;
   if (w.neighbor.empty()) return;
-  const std::size_t n = m.size();
   auto length = [](const std::array<double, 3>& xi) { return std::sqrt(xi[0] * xi[0] + xi[1] * xi[1] + xi[2] * xi[2]); };
-  std::vector<double> whole(n, 0.0);
-  const Bonds& b = m.bonds;
-  for (std::size_t i = 0; i < n; ++i) {
-    // only rows with pressure bonds need it: a cut bond's other end has the mirror bond in its row
-    if (w.offset[i + 1] == w.offset[i]) continue;
-    const auto& c = m.constants_of(i);
-    for (auto k = b.offset[i]; k < b.offset[i + 1]; ++k)
-      whole[i] += influence(c.influence, b.length[k], c.horizon) * b.length[k] * b.length[k] * b.volume[k];
-    for (auto k = w.offset[i]; k < w.offset[i + 1]; ++k) {
-      const double xi = length(w.xi[k]);
-      whole[i] += influence(c.influence, xi, c.horizon) * xi * xi * w.volume[k];
-    }
-  }
+  // whole-family weighted volumes, kept for the bonds that break later (fluid_network.hpp)
+  m.fluid_network.whole_weighted_volume = whole_family_weighted_volumes<D>(m);
+  const auto& whole = m.fluid_network.whole_weighted_volume;
   w.coefficient.assign(w.neighbor.size(), 0.0);
-  for (std::size_t i = 0; i < n; ++i) {
+  for (std::size_t i = 0; i < m.size(); ++i) {
     const auto& c = m.constants_of(i);
     for (auto k = w.offset[i]; k < w.offset[i + 1]; ++k) {
       const double m_j = w.neighbor[k] >= 0 ? whole[static_cast<std::size_t>(w.neighbor[k])] : w.fluid_weighted_volume[k];

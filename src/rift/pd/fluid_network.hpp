@@ -1,0 +1,103 @@
+// Fluid in the cracks that grow from a pressurized borehole or pre-crack. The fluid of a pressure
+// source reaches every particle joined to it by a chain of broken bonds: the particles next to the
+// source (those with pressure bonds, crack_pressure.hpp) and, through the bonds broken since, the
+// faces of every crack connected to it. A broken bond between two particles the same fluid reaches
+// then carries that fluid's stress -p I like a bond the pre-crack cuts:
+//   f_i = -p d omega (1/m_i + 1/m_j) |xi| V_j y_ij / |y_ij|   (m over whole families, uncorrected),
+// so the pressure acts on the crack faces as the crack grows (the toughness-dominated limit of
+// hydraulic fracture: no pressure drop along the crack). A crack that no fluid reaches stays dry.
+#pragma once
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <vector>
+
+#include "rift/pd/influence.hpp"
+#include "rift/pd/model.hpp"
+
+namespace rift::pd {
+
+/// Whole-family weighted volumes m_i = sum omega |xi|^2 V_j over every bond ever in i's family
+/// (intact or broken) and the bonds a pressurized pre-crack cut, without the surface correction.
+template <int D>
+std::vector<double> whole_family_weighted_volumes(const Model<D>& m) {
+  const std::size_t n = m.size();
+  std::vector<double> whole(n, 0.0);
+  const Bonds& b = m.bonds;
+  const CrackBonds& w = m.crack_bonds;
+#pragma omp parallel for schedule(static)
+  for (std::size_t i = 0; i < n; ++i) {
+    const auto& c = m.constants_of(i);
+    double sum = 0.0;
+    for (auto k = b.offset[i]; k < b.offset[i + 1]; ++k)
+      sum += influence(c.influence, b.length[k], c.horizon) * b.length[k] * b.length[k] * b.volume[k];
+    if (!w.offset.empty())
+      for (auto k = w.offset[i]; k < w.offset[i + 1]; ++k) {
+        const auto& x = w.xi[k];
+        const double xi = std::sqrt(x[0] * x[0] + x[1] * x[1] + x[2] * x[2]);
+        sum += influence(c.influence, xi, c.horizon) * xi * xi * w.volume[k];
+      }
+    whole[i] = sum;
+  }
+  return whole;
+}
+
+/// Labels every particle with the pressure source whose fluid reaches it (-1: none), by a search
+/// over broken bonds from the particles with pressure bonds. Runs again only when bonds broke.
+template <int D>
+void update_fluid_network(Model<D>& m) {
+  FluidNetwork& f = m.fluid_network;
+  const Bonds& b = m.bonds;
+  const CrackBonds& w = m.crack_bonds;
+  const auto broken = static_cast<std::int64_t>(std::count(b.intact.begin(), b.intact.end(), std::uint8_t{0}));
+  if (broken == f.broken_bonds && !f.source.empty()) return;
+  f.broken_bonds = broken;
+  const std::size_t n = m.size();
+  f.source.assign(n, -1);
+  std::vector<std::size_t> queue;
+  for (std::size_t i = 0; i < n; ++i)
+    if (w.offset[i + 1] > w.offset[i]) {
+      f.source[i] = w.source[static_cast<std::size_t>(w.offset[i])];
+      queue.push_back(i);
+    }
+  if (broken == 0) return;
+  for (std::size_t q = 0; q < queue.size(); ++q) {
+    const std::size_t i = queue[q];
+    for (auto k = b.offset[i]; k < b.offset[i + 1]; ++k) {
+      if (b.intact[k]) continue;
+      const auto j = static_cast<std::size_t>(b.neighbor[k]);
+      if (f.source[j] >= 0) continue;
+      f.source[j] = f.source[i];
+      queue.push_back(j);
+    }
+  }
+}
+
+/// Adds the pressure on the broken bonds of each fluid network to m.body_force (pressure[s] as in
+/// add_crack_pressure). Call after update_fluid_network.
+template <int D>
+void add_network_pressure(Model<D>& m, const std::vector<double>& pressure) {
+  const FluidNetwork& f = m.fluid_network;
+  if (f.broken_bonds == 0) return;
+  const Bonds& b = m.bonds;
+  const std::size_t n = m.size();
+#pragma omp parallel for schedule(dynamic, 256)
+  for (std::size_t i = 0; i < n; ++i) {
+    const int s = f.source[i];
+    if (s < 0 || pressure[static_cast<std::size_t>(s)] == 0.0) continue;
+    const auto& c = m.constants_of(i);
+    for (auto k = b.offset[i]; k < b.offset[i + 1]; ++k) {
+      if (b.intact[k]) continue;
+      const auto j = static_cast<std::size_t>(b.neighbor[k]);
+      if (f.source[j] != s) continue;
+      const double xi = b.length[k];
+      const double coefficient = D * influence(c.influence, xi, c.horizon) * b.volume[k] *
+                                 (1.0 / f.whole_weighted_volume[i] + 1.0 / f.whole_weighted_volume[j]);
+      const Vec<D> eta = m.position[j] - m.position[i];
+      const double scale = -pressure[static_cast<std::size_t>(s)] * coefficient * xi / norm<D>(eta);
+      for (int q = 0; q < D; ++q) m.body_force[i][q] += scale * eta[q];
+    }
+  }
+}
+
+}  // namespace rift::pd
