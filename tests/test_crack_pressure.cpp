@@ -9,6 +9,8 @@
 
 #include "rift/load/boundary.hpp"
 #include "rift/pd/discretize.hpp"
+#include "rift/pd/dynamic_relaxation.hpp"
+#include "rift/run/simulation.hpp"
 #include "rift/scene/parse.hpp"
 
 namespace {
@@ -175,6 +177,70 @@ end_time = 1e-6
       EXPECT_EQ(beyond, 0.0) << "a crack the fluid does not reach";
     }
   }
+}
+
+}  // namespace
+
+namespace {
+
+// Injection into a borehole (a = 10 mm, 100 mm square, plane strain LPS, E = 10 GPa, nu = 0.25,
+// G = 4 GPa) of a compliant fluid (K_f = 200 MPa), volume Q t = 1.66e-9 m^3 into the 1 mm slab,
+// static by dynamic relaxation. Mass balance of the lumped fluid: V0 + Q t = V (1 + p / K_f), with
+// the hole's volume V = V0 (1 + g p / G), g = (1 + (1 - 2 nu) a^2 / b^2) / (1 - a^2 / b^2) the wall
+// compliance of a thick cylinder of outer radius b (plane strain Lame; b = 56.4 mm, the radius of
+// the square's area), so p = K_f ((V0 + Q t) / V - 1) solves, to first order,
+//   p = Q t / (V0 (1 / K_f + g / G)).
+// The reference volume V0 is the borehole's lattice sites (pi a^2 t within 1%). The pressure must
+// match within 1.5% and the cavity's growth V - V0 (the work conjugate of the pressure forces)
+// g V0 p / G within 10% (measured 0.96: the staircase wall at a / spacing = 10 and the square).
+TEST(InjectedFluid, PressureFollowsTheMassBalanceOfTheBorehole) {
+  const double a = 0.01, t = 0.001, G = 4e9, K_f = 2e8, nu = 0.25, injected = 1.66e-9;
+  const std::string text = R"([scene]
+dimension = 2
+plane = "strain"
+thickness = 0.001
+[materials.rock]
+model = "lps"
+density = 2500.0
+youngs_modulus = 10e9
+poisson_ratio = 0.25
+[regions.block]
+shape = "box"
+min = [-0.05, -0.05]
+max = [0.05, 0.05]
+[regions.hole]
+shape = "cylinder"
+center = [0.0, 0.0]
+radius = 0.01
+[bodies.block]
+material = "rock"
+region = "block"
+spacing = 0.001
+horizon = 3.015
+[[boreholes]]
+region = "hole"
+injection_rate = 1.66e-9
+fluid_bulk_modulus = 2e8
+[solver]
+type = "dynamic_relaxation"
+tolerance = 1e-8
+max_iterations = 50000
+)";
+  auto scene = rift::scene::parse_string(text, "injection.toml");
+  rift::run::Simulation<2> sim(scene);
+  auto& m = sim.model;
+  rift::pd::DynamicRelaxation<2> dr(m);
+  const auto relaxed = dr.relax(m, sim.loads, sim.contact_ptr(), 1.0, 50000, 1e-8);
+  EXPECT_TRUE(relaxed.converged) << relaxed.residual;
+  sim.loads.apply_body_forces(m, 1.0);
+  const double V0 = m.fluid_network.reference_volume[0], V = m.fluid_network.cavity_volume[0], p = m.fluid_network.pressure[0];
+  const double b = 0.1 / std::sqrt(M_PI), g = (1 + (1 - 2 * nu) * a * a / (b * b)) / (1 - a * a / (b * b));
+  const double expected = injected / (V0 * (1 / K_f + g / G));
+  std::printf("V0 / (pi a^2 t) = %.4f, p = %.4f MPa (expected %.4f), (V - V0) / (g V0 p / G) = %.4f\n", V0 / (M_PI * a * a * t), p / 1e6,
+              expected / 1e6, (V - V0) / (g * V0 * p / G));
+  EXPECT_NEAR(V0 / (M_PI * a * a * t), 1.0, 0.01);
+  EXPECT_NEAR(p / expected, 1.0, 0.015);
+  EXPECT_NEAR((V - V0) / (g * V0 * p / G), 1.0, 0.10);
 }
 
 }  // namespace

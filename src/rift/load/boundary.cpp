@@ -39,8 +39,9 @@ Boundaries<D>::Boundaries(const scene::Scene& s, pd::Model<D>& m) {
     applied_.push_back(std::move(a));
   }
   if (s.in_situ.enabled) add_in_situ_tractions(s.in_situ, m);
-  for (const auto& c : s.cracks) pressure_sources_.push_back({c.pressure, c.pressure_time});
-  for (const auto& b : s.boreholes) pressure_sources_.push_back({b.pressure, b.pressure_time});
+  for (const auto& c : s.cracks) pressure_sources_.push_back({c.pressure, c.pressure_time, false, 0.0, 0.0});
+  for (const auto& b : s.boreholes)
+    pressure_sources_.push_back({b.pressure, b.pressure_time, b.injection_rate.has_value(), b.injection_rate.value_or(0.0), b.fluid_bulk_modulus});
   for (const auto& name : s.output.reactions) {
     reaction_names_.push_back(name);
     reaction_particles_.push_back(select<D>(s, m, name));
@@ -90,12 +91,27 @@ void Boundaries<D>::apply_body_forces(pd::Model<D>& m, double t) const {
     }
   }
   if (m.crack_bonds.neighbor.empty()) return;
-  std::vector<double> pressure(pressure_sources_.size());
-  for (std::size_t c = 0; c < pressure.size(); ++c) pressure[c] = pressure_sources_[c].first * evaluate(pressure_sources_[c].second, t);
-  pd::add_crack_pressure<D>(m, pressure);
-  // the same fluid in the cracks grown from each source
+  // the fluid of each source also fills the cracks grown from it
   pd::update_fluid_network<D>(m);
-  pd::add_network_pressure<D>(m, pressure);
+  auto& fluid = m.fluid_network;
+  fluid.pressure.assign(pressure_sources_.size(), 0.0);
+  fluid.cavity_volume.resize(pressure_sources_.size(), 0.0);
+  for (std::size_t c = 0; c < pressure_sources_.size(); ++c) {
+    const auto& src = pressure_sources_[c];
+    if (!src.injected) {
+      fluid.pressure[c] = src.pressure * evaluate(src.time, t);
+      continue;
+    }
+    // mass balance of a lumped compressible fluid: the fluid's volume at zero pressure, V0 (1 + p0 / K_f)
+    // + Q t, fills the cavity V at p = K_f (V_fluid / V - 1); no tension (the fluid cavitates)
+    const double reference = fluid.reference_volume[c];
+    const double volume = reference + pd::cavity_volume_change<D>(m, static_cast<int>(c));
+    const double fluid_volume = reference * (1.0 + src.pressure / src.fluid_bulk_modulus) + src.injection_rate * t;
+    fluid.cavity_volume[c] = volume;
+    fluid.pressure[c] = std::max(0.0, src.fluid_bulk_modulus * (fluid_volume / volume - 1.0));
+  }
+  pd::add_crack_pressure<D>(m, fluid.pressure);
+  pd::add_network_pressure<D>(m, fluid.pressure);
 }
 
 template <int D>

@@ -26,6 +26,12 @@ class Boundaries {
   std::vector<Vec<D>> reactions(const pd::Model<D>& m) const;
   const std::vector<std::string>& reaction_names() const { return reaction_names_; }
   bool has_kinematic() const { return any_kinematic_; }
+  /// Whether a load depends on the deformation (an injected fluid's pressure on its cavity volume).
+  bool state_dependent() const {
+    for (const auto& p : pressure_sources_)
+      if (p.injected) return true;
+    return false;
+  }
 
  private:
   struct Applied {
@@ -35,7 +41,13 @@ class Boundaries {
   /// Tractions sigma . n of the far-field stresses on the faces of the bodies' bounding box.
   void add_in_situ_tractions(const scene::InSituStress& in_situ, const pd::Model<D>& m);
   std::vector<Applied> applied_;
-  std::vector<std::pair<double, scene::TimeFunction>> pressure_sources_;  // cracks, then boreholes
+  struct PressureSource {
+    double pressure = 0.0;  // prescribed (times `time`), or the pressure at t = 0 of an injection
+    scene::TimeFunction time;
+    bool injected = false;
+    double injection_rate = 0.0, fluid_bulk_modulus = 0.0;
+  };
+  std::vector<PressureSource> pressure_sources_;  // cracks, then boreholes
   std::vector<std::string> reaction_names_;
   std::vector<std::vector<std::size_t>> reaction_particles_;
   bool any_kinematic_ = false;

@@ -145,6 +145,28 @@ void build_bonds(const scene::Scene& s, Model<D>& m, const std::vector<std::arra
       const double xi = std::sqrt(r2) * body.spacing;
       whole_family += influence(info.constants.influence, xi, info.constants.horizon) * xi * xi * site_volume * off.fraction;
     }
+    // the boreholes' reference volumes: their lattice sites within the body's bounds
+    m.fluid_network.reference_volume.resize(s.cracks.size() + s.boreholes.size(), 0.0);
+    for (std::size_t h = 0; h < holes.size(); ++h) {
+      Point3 hole_lo, hole_hi;
+      holes[h].bounds(hole_lo, hole_hi);
+      std::array<long, 3> from{0, 0, 0}, to{0, 0, 0};
+      for (int k = 0; k < D; ++k) {
+        const double lo_k = std::max(hole_lo[k], region_lo[k]), hi_k = std::min(hole_hi[k], region_hi[k]);
+        from[k] = static_cast<long>(std::ceil((lo_k - body.lattice_origin[k]) / body.spacing - 0.5));
+        to[k] = static_cast<long>(std::floor((hi_k - body.lattice_origin[k]) / body.spacing - 0.5));
+      }
+      std::int64_t sites = 0;
+      for (long z = from[2]; z <= to[2]; ++z)
+        for (long y = from[1]; y <= to[1]; ++y)
+          for (long x = from[0]; x <= to[0]; ++x) {
+            const long ijk[3] = {x, y, z};
+            Point3 site{0, 0, 0};
+            for (int k = 0; k < D; ++k) site[k] = body.lattice_origin[k] + (double(ijk[k]) + 0.5) * body.spacing;
+            if (holes[h].contains(site)) ++sites;
+          }
+      m.fluid_network.reference_volume[s.cracks.size() + h] += double(sites) * site_volume;
+    }
     // dense lattice -> particle map over the body's index box
     std::array<long, 3> lo{0, 0, 0}, hi{0, 0, 0};
     lo = hi = lattice_index[info.first];

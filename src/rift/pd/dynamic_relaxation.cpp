@@ -42,6 +42,11 @@ RelaxationResult DynamicRelaxation<D>::relax(Model<D>& m, const load::Boundaries
   for (int it = 0; it < max_iterations; ++it) {
     advance_stretch_limits<D>(m);
     compute_forces<D>(m, contact);
+    if (loads.state_dependent() && it > 0) {  // an injected fluid's pressure follows the cavity volume
+      loads.apply_body_forces(m, t);
+      load_norm = 0.0;
+      for (std::size_t i = 0; i < n; ++i) load_norm += dot<D>(m.body_force[i], m.body_force[i]) * m.volume[i] * m.volume[i];
+    }
     // U^T K U with the local diagonal stiffness K_ii = -(F^n - F^{n-1}) / (lambda V^{n-1/2}) (eq. 12), U^T U,
     // squared residual of the free components and squared reactions of the constrained ones
     auto sums = parallel::ordered_sums<4>(n, [&](std::size_t i, std::array<double, 4>& acc) {

@@ -8,11 +8,13 @@
 // hydraulic fracture: no pressure drop along the crack). A crack that no fluid reaches stays dry.
 #pragma once
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdint>
 #include <vector>
 
 #include "rift/pd/influence.hpp"
+#include "rift/parallel/ordered_sum.hpp"
 #include "rift/pd/model.hpp"
 
 namespace rift::pd {
@@ -73,6 +75,14 @@ void update_fluid_network(Model<D>& m) {
   }
 }
 
+/// d omega V_j (1/m_i + 1/m_j) of the broken bond k = i-j (whole-family weighted volumes).
+template <int D>
+double broken_bond_coefficient(const Model<D>& m, const MaterialConstants& c, std::int64_t k, std::size_t i, std::size_t j) {
+  const double xi = m.bonds.length[k];
+  const auto& whole = m.fluid_network.whole_weighted_volume;
+  return D * influence(c.influence, xi, c.horizon) * m.bonds.volume[k] * (1.0 / whole[i] + 1.0 / whole[j]);
+}
+
 /// Adds the pressure on the broken bonds of each fluid network to m.body_force (pressure[s] as in
 /// add_crack_pressure). Call after update_fluid_network.
 template <int D>
@@ -91,13 +101,50 @@ void add_network_pressure(Model<D>& m, const std::vector<double>& pressure) {
       const auto j = static_cast<std::size_t>(b.neighbor[k]);
       if (f.source[j] != s) continue;
       const double xi = b.length[k];
-      const double coefficient = D * influence(c.influence, xi, c.horizon) * b.volume[k] *
-                                 (1.0 / f.whole_weighted_volume[i] + 1.0 / f.whole_weighted_volume[j]);
+      const double coefficient = broken_bond_coefficient<D>(m, c, k, i, j);
       const Vec<D> eta = m.position[j] - m.position[i];
       const double scale = -pressure[static_cast<std::size_t>(s)] * coefficient * xi / norm<D>(eta);
       for (int q = 0; q < D; ++q) m.body_force[i][q] += scale * eta[q];
     }
   }
+}
+
+/// Volume change of source s's cavity (borehole and the cracks joined to it) from the reference
+/// state, defined as the work conjugate of the pressure forces: p dV = sum_i f_i . du_i V_i. A bond
+/// to a fluid site adds coef |xi| V_i (-xi/|xi| . u_i) (its force keeps the reference direction),
+/// a cut or broken bond between two particles adds coef |xi| V_i (|y| - |xi|) / 2 from each end
+/// (coef V_i is symmetric). For a flat crack whose faces part by w this is w times the face area.
+template <int D>
+double cavity_volume_change(const Model<D>& m, int s) {
+  const CrackBonds& w = m.crack_bonds;
+  const FluidNetwork& f = m.fluid_network;
+  const Bonds& b = m.bonds;
+  const auto sums = parallel::ordered_sums<1>(m.size(), [&](std::size_t i, std::array<double, 1>& acc) {
+    for (auto k = w.offset[i]; k < w.offset[i + 1]; ++k) {
+      if (w.source[k] != s) continue;
+      const auto& x = w.xi[k];
+      const double xi = std::sqrt(x[0] * x[0] + x[1] * x[1] + x[2] * x[2]);
+      if (w.neighbor[k] < 0) {
+        double along = 0.0;  // -xi_hat . u_i
+        for (int q = 0; q < D; ++q) along -= x[q] / xi * (m.position[i][q] - m.reference_position[i][q]);
+        acc[0] += w.coefficient[k] * xi * m.volume[i] * along;
+      } else {
+        const double y = norm<D>(m.position[static_cast<std::size_t>(w.neighbor[k])] - m.position[i]);
+        acc[0] += 0.5 * w.coefficient[k] * xi * m.volume[i] * (y - xi);
+      }
+    }
+    if (f.broken_bonds <= 0 || f.source[i] != s) return;
+    const auto& c = m.constants_of(i);
+    for (auto k = b.offset[i]; k < b.offset[i + 1]; ++k) {
+      if (b.intact[k]) continue;
+      const auto j = static_cast<std::size_t>(b.neighbor[k]);
+      if (f.source[j] != s) continue;
+      const double xi = b.length[k];
+      const double coefficient = broken_bond_coefficient<D>(m, c, k, i, j);
+      acc[0] += 0.5 * coefficient * xi * m.volume[i] * (norm<D>(m.position[j] - m.position[i]) - xi);
+    }
+  });
+  return sums[0];
 }
 
 }  // namespace rift::pd

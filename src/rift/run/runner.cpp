@@ -181,6 +181,13 @@ Result run_dim(const scene::Scene& s, const Options& o) {
   std::vector<std::string> columns{"time", "step"};
   columns.insert(columns.end(), s.output.history.begin(), s.output.history.end());
   for (std::size_t k = 0; k < probes.size(); ++k) columns.push_back("damage_probe_" + std::to_string(k));
+  std::vector<std::size_t> injected;  // pressure sources fed by an injection rate: their pressure and cavity volume
+  for (std::size_t k = 0; k < s.boreholes.size(); ++k)
+    if (s.boreholes[k].injection_rate) {
+      injected.push_back(s.cracks.size() + k);
+      columns.push_back("pressure_borehole_" + std::to_string(k));
+      columns.push_back("cavity_volume_borehole_" + std::to_string(k));
+    }
   const char* comp[3] = {"x", "y", "z"};
   for (const auto& r : p.loads.reaction_names())
     for (int k = 0; k < D; ++k) columns.push_back("reaction_" + r + "_" + comp[k]);
@@ -203,6 +210,7 @@ Result run_dim(const scene::Scene& s, const Options& o) {
       else if (q == "max_damage") row.push_back(dmax);
     }
     for (auto i : probes) row.push_back(m.damage[i]);
+    for (auto c : injected) row.insert(row.end(), {m.fluid_network.pressure[c], m.fluid_network.cavity_volume[c]});
     for (const auto& r : p.loads.reactions(m))
       for (int k = 0; k < D; ++k) row.push_back(r[k]);
     row.insert(row.end(), extra.begin(), extra.end());

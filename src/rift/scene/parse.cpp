@@ -346,7 +346,15 @@ void parse_boreholes(R& root, Scene& s) {
     require_region(s, r, "region", b.region);
     b.pressure = r.non_negative("pressure", r.number("pressure", 0.0));
     b.pressure_time = time_function(r, "time");
-    r.finish({"region", "pressure", "time"});
+    if (auto q = r.number("injection_rate")) {
+      b.injection_rate = r.non_negative("injection_rate", *q);
+      b.fluid_bulk_modulus = r.positive("fluid_bulk_modulus", r.required_number("fluid_bulk_modulus", "bulk modulus of the injected fluid, Pa"));
+      if (r.has("time"))
+        r.fail("time", "with injection_rate the pressure follows from the injected volume; `pressure` is its value at t = 0 and takes no time function");
+    } else if (r.has("fluid_bulk_modulus")) {
+      r.fail("fluid_bulk_modulus", "only with injection_rate (the pressure is prescribed otherwise)");
+    }
+    r.finish({"region", "pressure", "time", "injection_rate", "fluid_bulk_modulus"});
     s.boreholes.push_back(b);
   });
 }

@@ -94,8 +94,13 @@ struct Crack {
 struct Borehole {
   SourceLocation where;
   std::string region;
-  double pressure = 0.0;  // Pa
+  double pressure = 0.0;  // Pa (with injection: the pressure at t = 0)
   TimeFunction pressure_time;
+  /// Injection instead of a prescribed pressure: fluid volume per second (at zero pressure) pumped
+  /// into the borehole and the cracks joined to it (2D: into the modelled thickness), m^3/s, and the
+  /// fluid's bulk modulus; the pressure follows from the mass balance (pd/fluid_network.hpp).
+  std::optional<double> injection_rate;
+  double fluid_bulk_modulus = 0.0;  // Pa
 };
 
 /// Peridynamics: the far-field principal stresses of the rock (Pa, compression negative), applied
