@@ -48,6 +48,7 @@ struct FluidNetwork {
   std::vector<double> whole_weighted_volume;  // per particle: m over its whole family, uncorrected
   std::int64_t broken_bonds = -1;             // broken bonds when the labels were last made
   // per pressure source (the scene's cracks, then its boreholes)
+  std::vector<std::uint8_t> dry;         // a crack without pressure of its own: its cut bonds carry a fluid that reaches them
   std::vector<double> reference_volume;  // the cavity's volume in the reference state (a borehole's lattice sites)
   std::vector<double> pressure;          // the last pressure applied, Pa
   std::vector<double> cavity_volume;     // the last cavity volume (injected sources), m^3

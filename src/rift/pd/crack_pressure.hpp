@@ -52,7 +52,9 @@ void add_crack_pressure(Model<D>& m, const std::vector<double>& pressure) {
 #pragma omp parallel for schedule(static)
   for (std::size_t i = 0; i < n; ++i)
     for (auto k = w.offset[i]; k < w.offset[i + 1]; ++k) {
-      const double p = pressure[w.source[k]] * w.coefficient[k];
+      const int source = pressure_bond_source<D>(m, k, i);
+      if (source < 0) continue;
+      const double p = pressure[static_cast<std::size_t>(source)] * w.coefficient[k];
       const auto& xi = w.xi[k];
       const double length = std::sqrt(xi[0] * xi[0] + xi[1] * xi[1] + xi[2] * xi[2]);
       Vec<D> eta;

@@ -103,6 +103,10 @@ void fill_body(const scene::Scene& s, const scene::Body& b, std::size_t index, M
 template <int D>
 void build_bonds(const scene::Scene& s, Model<D>& m, const std::vector<std::array<long, 3>>& lattice_index) {
   const std::size_t n = m.size();
+  bool any_fluid = !s.boreholes.empty();
+  for (const auto& c : s.cracks) any_fluid = any_fluid || c.pressure > 0.0;
+  m.fluid_network.dry.assign(s.cracks.size() + s.boreholes.size(), 0);
+  for (std::size_t c = 0; c < s.cracks.size(); ++c) m.fluid_network.dry[c] = s.cracks[c].pressure > 0.0 ? 0 : 1;
   std::vector<geometry::PreCrack> cracks;
   std::vector<std::uint16_t> crack_of;  // scene crack of each segment / polygon
   for (std::size_t ci = 0; ci < s.cracks.size(); ++ci) {
@@ -227,7 +231,9 @@ void build_bonds(const scene::Scene& s, Model<D>& m, const std::vector<std::arra
           for (int k = 0; k < D; ++k) pj[k] = m.reference_position[j][k];
           for (auto c : cutting) {
             if (!cracks[c].cuts(pi, pj)) continue;
-            if (!cut && s.cracks[crack_of[c]].pressure > 0.0) {
+            // pressurized cracks carry their pressure; the others, when the scene has a fluid, may
+            // carry one that reaches them (fluid_network.hpp)
+            if (!cut && (s.cracks[crack_of[c]].pressure > 0.0 || any_fluid)) {
               std::array<double, 3> xi{0, 0, 0};
               for (int k = 0; k < D; ++k) xi[k] = pj[k] - pi[k];
               wet_nb[i].push_back(j);

@@ -5,7 +5,9 @@
 // then carries that fluid's stress -p I like a bond the pre-crack cuts:
 //   f_i = -p d omega (1/m_i + 1/m_j) |xi| V_j y_ij / |y_ij|   (m over whole families, uncorrected),
 // so the pressure acts on the crack faces as the crack grows (the toughness-dominated limit of
-// hydraulic fracture: no pressure drop along the crack). A crack that no fluid reaches stays dry.
+// hydraulic fracture: no pressure drop along the crack). A crack that no fluid reaches stays dry, and
+// so does a pre-crack without pressure of its own until a fluid reaches it across broken bonds or
+// the borehole it starts from: then its cut bonds carry that fluid's pressure.
 #pragma once
 #include <algorithm>
 #include <array>
@@ -44,8 +46,22 @@ std::vector<double> whole_family_weighted_volumes(const Model<D>& m) {
   return whole;
 }
 
+/// The source whose pressure the pressure bond k of row i carries: its own, or for a crack without
+/// pressure of its own (dry) the fluid that reaches both ends (-1: none).
+template <int D>
+int pressure_bond_source(const Model<D>& m, std::int64_t k, std::size_t i) {
+  const CrackBonds& w = m.crack_bonds;
+  const FluidNetwork& f = m.fluid_network;
+  const int own = w.source[static_cast<std::size_t>(k)];
+  if (!f.dry[static_cast<std::size_t>(own)]) return own;
+  const auto j = w.neighbor[static_cast<std::size_t>(k)];
+  if (f.source.empty() || f.source[i] < 0 || f.source[static_cast<std::size_t>(j)] != f.source[i]) return -1;
+  return f.source[i];
+}
+
 /// Labels every particle with the pressure source whose fluid reaches it (-1: none), by a search
-/// over broken bonds from the particles with pressure bonds. Runs again only when bonds broke.
+/// from the particles next to a source (pressure bonds of a borehole or a pressurized crack) across
+/// broken bonds and the bonds dry pre-cracks cut. Runs again only when bonds broke.
 template <int D>
 void update_fluid_network(Model<D>& m) {
   FluidNetwork& f = m.fluid_network;
@@ -58,20 +74,23 @@ void update_fluid_network(Model<D>& m) {
   f.source.assign(n, -1);
   std::vector<std::size_t> queue;
   for (std::size_t i = 0; i < n; ++i)
-    if (w.offset[i + 1] > w.offset[i]) {
-      f.source[i] = w.source[static_cast<std::size_t>(w.offset[i])];
-      queue.push_back(i);
-    }
-  if (broken == 0) return;
+    for (auto k = w.offset[i]; k < w.offset[i + 1]; ++k)
+      if (!f.dry[w.source[static_cast<std::size_t>(k)]]) {
+        f.source[i] = w.source[static_cast<std::size_t>(k)];
+        queue.push_back(i);
+        break;
+      }
+  auto reach = [&](std::size_t i, std::size_t j) {
+    if (f.source[j] >= 0) return;
+    f.source[j] = f.source[i];
+    queue.push_back(j);
+  };
   for (std::size_t q = 0; q < queue.size(); ++q) {
     const std::size_t i = queue[q];
-    for (auto k = b.offset[i]; k < b.offset[i + 1]; ++k) {
-      if (b.intact[k]) continue;
-      const auto j = static_cast<std::size_t>(b.neighbor[k]);
-      if (f.source[j] >= 0) continue;
-      f.source[j] = f.source[i];
-      queue.push_back(j);
-    }
+    for (auto k = b.offset[i]; k < b.offset[i + 1]; ++k)
+      if (!b.intact[k]) reach(i, static_cast<std::size_t>(b.neighbor[k]));
+    for (auto k = w.offset[i]; k < w.offset[i + 1]; ++k)
+      if (f.dry[w.source[static_cast<std::size_t>(k)]] && w.neighbor[k] >= 0) reach(i, static_cast<std::size_t>(w.neighbor[k]));
   }
 }
 
@@ -121,7 +140,7 @@ double cavity_volume_change(const Model<D>& m, int s) {
   const Bonds& b = m.bonds;
   const auto sums = parallel::ordered_sums<1>(m.size(), [&](std::size_t i, std::array<double, 1>& acc) {
     for (auto k = w.offset[i]; k < w.offset[i + 1]; ++k) {
-      if (w.source[k] != s) continue;
+      if (pressure_bond_source<D>(m, k, i) != s) continue;
       const auto& x = w.xi[k];
       const double xi = std::sqrt(x[0] * x[0] + x[1] * x[1] + x[2] * x[2]);
       if (w.neighbor[k] < 0) {
