@@ -75,22 +75,19 @@ assert len(grids) == 4, len(grids)  # initial state + 3 snapshots
 names = {a.get("Name") for a in grids[-1].findall("Attribute")}
 assert {"displacement", "velocity", "damage", "dilatation"} <= names, names
 PY
-# a mistake: exit status 2, message with file:line:column, nothing written
+# a mistake: exit status 2, the message (file:line:column, key), nothing written
+refused() {  # scene, expected text of the message
+  set +e
+  "$rift" run "$1" -o "$1.out" 2> "$tmp/err.txt"
+  local status=$?
+  set -e
+  test "$status" -eq 2
+  grep -q "$2" "$tmp/err.txt"
+  test ! -e "$1.out"
+}
 sed 's/spacing = 0.0005/spacing = -0.0005/' "$tmp/plate.toml" > "$tmp/bad.toml"
-set +e
-"$rift" run "$tmp/bad.toml" -o "$tmp/bad_out" 2> "$tmp/err.txt"
-status=$?
-set -e
-test "$status" -eq 2
-grep -q "bad.toml:22:11: error: 'bodies.plate.spacing': must be > 0" "$tmp/err.txt"
-test ! -e "$tmp/bad_out"
+refused "$tmp/bad.toml" "bad.toml:22:11: error: 'bodies.plate.spacing': must be > 0"
 # a probe outside the body is a scene error too
 sed 's/probes = .*/probes = [[0.5, 0.5]]/' "$tmp/plate.toml" > "$tmp/bad_probe.toml"
-set +e
-"$rift" run "$tmp/bad_probe.toml" -o "$tmp/bad_probe_out" 2> "$tmp/err.txt"
-status=$?
-set -e
-test "$status" -eq 2
-grep -q "'output.probes': probe 0 lies" "$tmp/err.txt"
-test ! -e "$tmp/bad_probe_out"
+refused "$tmp/bad_probe.toml" "'output.probes': probe 0 lies"
 echo "command line: all checks passed"

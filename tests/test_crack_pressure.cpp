@@ -117,15 +117,8 @@ TEST(CrackPressure, BoreholeSitesPushTheWallWithThePressure) {
 
 namespace {
 
-// Cracks grown from a pressurized pre-crack (pd/fluid_network.hpp). In the 2D block of the first test
-// the pre-crack now covers only x < 12 mm; every bond across the rest of the line y = 8 mm is broken
-// by hand, as if the crack had grown. The broken bonds are joined to the pre-crack's particles, so
-// they carry its pressure and the middle columns feel p A to round-off, as under a crack across the
-// whole block. With the bonds broken only from x = 16 mm on, the intact bonds between 12 and 16 mm
-// (more than a horizon) keep that crack dry: no force on its faces.
-TEST(CrackPressure, CracksJoinedToTheSourceByBrokenBondsCarryItsPressure) {
-  const double p = 2e6, line = 0.008;
-  const std::string text = R"([scene]
+// The 2D block of the first test (plane strain LPS, 24 x 16 spacings, sites at (i + 1/2) mm).
+const std::string block_24_by_16 = R"([scene]
 dimension = 2
 plane = "strain"
 thickness = 0.001
@@ -144,7 +137,17 @@ region = "block"
 spacing = 0.001
 horizon = 3.015
 lattice_origin = [0.0, 0.0]
-[[cracks]]
+)";
+
+// Cracks grown from a pressurized pre-crack (pd/fluid_network.hpp). In the 2D block of the first test
+// the pre-crack now covers only x < 12 mm; every bond across the rest of the line y = 8 mm is broken
+// by hand, as if the crack had grown. The broken bonds are joined to the pre-crack's particles, so
+// they carry its pressure and the middle columns feel p A to round-off, as under a crack across the
+// whole block. With the bonds broken only from x = 16 mm on, the intact bonds between 12 and 16 mm
+// (more than a horizon) keep that crack dry: no force on its faces.
+TEST(CrackPressure, CracksJoinedToTheSourceByBrokenBondsCarryItsPressure) {
+  const double p = 2e6, line = 0.008;
+  const std::string text = block_24_by_16 + R"([[cracks]]
 points = [[-0.01, 0.008], [0.012, 0.008]]
 pressure = 2e6
 [solver]
@@ -266,29 +269,10 @@ namespace {
 // dry crack from it across the block; the middle columns feel the borehole's p A, to round-off.
 TEST(CrackPressure, DryPreCrackFromABoreholeCarriesItsPressure) {
   const double p = 3e6, line = 0.008;
-  const std::string text = R"([scene]
-dimension = 2
-plane = "strain"
-thickness = 0.001
-[materials.rock]
-model = "lps"
-density = 2500.0
-youngs_modulus = 10e9
-poisson_ratio = 0.25
-[regions.block]
-shape = "box"
-min = [0.0, 0.0]
-max = [0.024, 0.016]
-[regions.cavity]
+  const std::string text = block_24_by_16 + R"([regions.cavity]
 shape = "box"
 min = [0.0, 0.006]
 max = [0.003, 0.010]
-[bodies.block]
-material = "rock"
-region = "block"
-spacing = 0.001
-horizon = 3.015
-lattice_origin = [0.0, 0.0]
 [[cracks]]
 points = [[0.001, 0.008], [0.04, 0.008]]
 [[boreholes]]

@@ -2,6 +2,7 @@
 // j-i are stored, as LAMMPS PERI does, so each particle owns its force sum: no atomics).
 #pragma once
 #include <array>
+#include <cmath>
 #include <cstdint>
 #include <vector>
 
@@ -39,6 +40,9 @@ struct CrackBonds {
   std::vector<std::array<double, 3>> xi;  // reference bond vector x_j - x_i
   std::vector<double> fluid_weighted_volume;  // m of a fluid site (its whole family); 0 for particles
   std::vector<double> coefficient;    // d omega V_j (1/m_i + 1/m_j), whole-family weighted volumes
+
+  /// |xi| of pressure bond k.
+  double length(std::size_t k) const { return std::sqrt(xi[k][0] * xi[k][0] + xi[k][1] * xi[k][1] + xi[k][2] * xi[k][2]); }
 };
 
 /// The fluid each pressure source has in the cracks grown from it (fluid_network.hpp); empty

@@ -27,7 +27,6 @@ template <int D>
 void prepare_crack_pressure(Model<D>& m) {
   CrackBonds& w = m.crack_bonds;
   if (w.neighbor.empty()) return;
-  auto length = [](const std::array<double, 3>& xi) { return std::sqrt(xi[0] * xi[0] + xi[1] * xi[1] + xi[2] * xi[2]); };
   // whole-family weighted volumes, kept for the bonds that break later (fluid_network.hpp)
   m.fluid_network.whole_weighted_volume = whole_family_weighted_volumes<D>(m);
   const auto& whole = m.fluid_network.whole_weighted_volume;
@@ -36,7 +35,7 @@ void prepare_crack_pressure(Model<D>& m) {
     const auto& c = m.constants_of(i);
     for (auto k = w.offset[i]; k < w.offset[i + 1]; ++k) {
       const double m_j = w.neighbor[k] >= 0 ? whole[static_cast<std::size_t>(w.neighbor[k])] : w.fluid_weighted_volume[k];
-      w.coefficient[k] = D * influence(c.influence, length(w.xi[k]), c.horizon) * w.volume[k] * (1.0 / whole[i] + 1.0 / m_j);
+      w.coefficient[k] = D * influence(c.influence, w.length(static_cast<std::size_t>(k)), c.horizon) * w.volume[k] * (1.0 / whole[i] + 1.0 / m_j);
     }
   }
 }
@@ -56,7 +55,7 @@ void add_crack_pressure(Model<D>& m, const std::vector<double>& pressure) {
       if (source < 0) continue;
       const double p = pressure[static_cast<std::size_t>(source)] * w.coefficient[k];
       const auto& xi = w.xi[k];
-      const double length = std::sqrt(xi[0] * xi[0] + xi[1] * xi[1] + xi[2] * xi[2]);
+      const double length = w.length(static_cast<std::size_t>(k));
       Vec<D> eta;
       for (int q = 0; q < D; ++q) eta[q] = xi[q];
       if (w.neighbor[k] >= 0) eta = m.position[static_cast<std::size_t>(w.neighbor[k])] - m.position[i];

@@ -61,6 +61,15 @@ std::vector<Offset> family_offsets(int dimension, double h, scene::Body::Partial
   return out;  // ordered as the lattice is numbered (x fastest), so rows come out sorted by j
 }
 
+/// Position of the body's lattice site (i, j, k): lattice_origin + (index + 1/2) spacing.
+template <int D>
+Point3 lattice_site(const scene::Body& b, long x, long y, long z) {
+  const long ijk[3] = {x, y, z};
+  Point3 p{0, 0, 0};
+  for (int k = 0; k < D; ++k) p[k] = b.lattice_origin[k] + (double(ijk[k]) + 0.5) * b.spacing;
+  return p;
+}
+
 template <int D>
 void fill_body(const scene::Scene& s, const scene::Body& b, std::size_t index, Model<D>& m,
                std::vector<std::array<long, 3>>& lattice_index) {
@@ -84,9 +93,7 @@ void fill_body(const scene::Scene& s, const scene::Body& b, std::size_t index, M
   for (long z = first[2]; z <= last[2]; ++z)
     for (long y = first[1]; y <= last[1]; ++y)
       for (long x = first[0]; x <= last[0]; ++x) {
-        long ijk[3] = {x, y, z};
-        Point3 p{0, 0, 0};
-        for (int k = 0; k < D; ++k) p[k] = b.lattice_origin[k] + (ijk[k] + 0.5) * b.spacing;
+        const Point3 p = lattice_site<D>(b, x, y, z);
         if (!region.contains(p)) continue;
         bool fluid = false;
         for (const auto& h : holes) fluid = fluid || h.contains(p);
@@ -123,12 +130,21 @@ void build_bonds(const scene::Scene& s, Model<D>& m, const std::vector<std::arra
   }
   std::vector<std::vector<std::int32_t>> nb(n);
   std::vector<std::vector<float>> frac(n);
-  // bonds cut by a pressurized crack: they carry its pressure (crack_pressure.hpp)
+  // pressure bonds (crack_pressure.hpp): bonds the cracks cut (when the scene has a fluid) and bonds
+  // to the fluid sites of boreholes
   std::vector<std::vector<std::int32_t>> wet_nb(n);
   std::vector<std::vector<float>> wet_frac(n);
   std::vector<std::vector<std::uint16_t>> wet_crack(n);
   std::vector<std::vector<std::array<double, 3>>> wet_xi(n);
   std::vector<std::vector<double>> wet_m(n);  // fluid site: its whole-family weighted volume
+  auto record_pressure_bond = [&](std::size_t i, std::int32_t j, double fraction, std::size_t source, const std::array<double, 3>& xi,
+                                  double fluid_m) {
+    wet_nb[i].push_back(j);
+    wet_frac[i].push_back(static_cast<float>(fraction));
+    wet_crack[i].push_back(static_cast<std::uint16_t>(source));
+    wet_xi[i].push_back(xi);
+    wet_m[i].push_back(fluid_m);
+  };
   for (std::size_t bi = 0; bi < m.bodies.size(); ++bi) {
     const auto& info = m.bodies[bi];
     const auto& body = s.bodies[bi];
@@ -164,10 +180,7 @@ void build_bonds(const scene::Scene& s, Model<D>& m, const std::vector<std::arra
       for (long z = from[2]; z <= to[2]; ++z)
         for (long y = from[1]; y <= to[1]; ++y)
           for (long x = from[0]; x <= to[0]; ++x) {
-            const long ijk[3] = {x, y, z};
-            Point3 site{0, 0, 0};
-            for (int k = 0; k < D; ++k) site[k] = body.lattice_origin[k] + (double(ijk[k]) + 0.5) * body.spacing;
-            if (holes[h].contains(site)) ++sites;
+            if (holes[h].contains(lattice_site<D>(body, x, y, z))) ++sites;
           }
       m.fluid_network.reference_volume[s.cracks.size() + h] += double(sites) * site_volume;
     }
@@ -206,8 +219,7 @@ void build_bonds(const scene::Scene& s, Model<D>& m, const std::vector<std::arra
         std::int32_t j = in_box ? map[cell(x, y, z)] : -1;
         if (j < 0) {
           if (holes.empty()) continue;
-          Point3 site{0, 0, 0};
-          for (int k = 0; k < D; ++k) site[k] = body.lattice_origin[k] + (double(std::array<long, 3>{x, y, z}[k]) + 0.5) * body.spacing;
+          const Point3 site = lattice_site<D>(body, x, y, z);
           // inside the body's bounds: the body's region may be the block with the hole cut out
           bool inside = true;
           for (int k = 0; k < D; ++k) inside = inside && site[k] >= region_lo[k] && site[k] <= region_hi[k];
@@ -216,11 +228,7 @@ void build_bonds(const scene::Scene& s, Model<D>& m, const std::vector<std::arra
             if (!holes[hi_].contains(site)) continue;
             std::array<double, 3> xi{0, 0, 0};
             for (int k = 0; k < D; ++k) xi[k] = off.o[k] * body.spacing;
-            wet_nb[i].push_back(-1);
-            wet_frac[i].push_back(static_cast<float>(off.fraction));
-            wet_crack[i].push_back(static_cast<std::uint16_t>(s.cracks.size() + hi_));
-            wet_xi[i].push_back(xi);
-            wet_m[i].push_back(whole_family);
+            record_pressure_bond(i, -1, off.fraction, s.cracks.size() + hi_, xi, whole_family);
             break;
           }
           continue;
@@ -231,16 +239,12 @@ void build_bonds(const scene::Scene& s, Model<D>& m, const std::vector<std::arra
           for (int k = 0; k < D; ++k) pj[k] = m.reference_position[j][k];
           for (auto c : cutting) {
             if (!cracks[c].cuts(pi, pj)) continue;
-            // pressurized cracks carry their pressure; the others, when the scene has a fluid, may
-            // carry one that reaches them (fluid_network.hpp)
-            if (!cut && (s.cracks[crack_of[c]].pressure > 0.0 || any_fluid)) {
+            // with a fluid in the scene, a cut bond carries its crack's pressure or, for a crack
+            // without one, the fluid that reaches it (fluid_network.hpp)
+            if (!cut && any_fluid) {
               std::array<double, 3> xi{0, 0, 0};
               for (int k = 0; k < D; ++k) xi[k] = pj[k] - pi[k];
-              wet_nb[i].push_back(j);
-              wet_frac[i].push_back(static_cast<float>(off.fraction));
-              wet_crack[i].push_back(crack_of[c]);
-              wet_xi[i].push_back(xi);
-              wet_m[i].push_back(0.0);
+              record_pressure_bond(i, j, off.fraction, crack_of[c], xi, 0.0);
             }
             cut = true;
           }

@@ -37,15 +37,18 @@ RelaxationResult DynamicRelaxation<D>::relax(Model<D>& m, const load::Boundaries
   for (auto& v : m.velocity) v = Vec<D>{};
   std::vector<Vec<D>> previous(n);  // F^{n-1} / lambda
   RelaxationResult result;
-  double load_norm = 0.0;
-  for (std::size_t i = 0; i < n; ++i) load_norm += dot<D>(m.body_force[i], m.body_force[i]) * m.volume[i] * m.volume[i];
+  auto squared_load = [&] {  // ||external force||^2
+    double sum = 0.0;
+    for (std::size_t i = 0; i < n; ++i) sum += dot<D>(m.body_force[i], m.body_force[i]) * m.volume[i] * m.volume[i];
+    return sum;
+  };
+  double load_norm = squared_load();
   for (int it = 0; it < max_iterations; ++it) {
     advance_stretch_limits<D>(m);
     compute_forces<D>(m, contact);
     if (loads.state_dependent() && it > 0) {  // an injected fluid's pressure follows the cavity volume
       loads.apply_body_forces(m, t);
-      load_norm = 0.0;
-      for (std::size_t i = 0; i < n; ++i) load_norm += dot<D>(m.body_force[i], m.body_force[i]) * m.volume[i] * m.volume[i];
+      load_norm = squared_load();
     }
     // U^T K U with the local diagonal stiffness K_ii = -(F^n - F^{n-1}) / (lambda V^{n-1/2}) (eq. 12), U^T U,
     // squared residual of the free components and squared reactions of the constrained ones

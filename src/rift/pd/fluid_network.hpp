@@ -37,8 +37,7 @@ std::vector<double> whole_family_weighted_volumes(const Model<D>& m) {
       sum += influence(c.influence, b.length[k], c.horizon) * b.length[k] * b.length[k] * b.volume[k];
     if (!w.offset.empty())
       for (auto k = w.offset[i]; k < w.offset[i + 1]; ++k) {
-        const auto& x = w.xi[k];
-        const double xi = std::sqrt(x[0] * x[0] + x[1] * x[1] + x[2] * x[2]);
+        const double xi = w.length(static_cast<std::size_t>(k));
         sum += influence(c.influence, xi, c.horizon) * xi * xi * w.volume[k];
       }
     whole[i] = sum;
@@ -102,29 +101,37 @@ double broken_bond_coefficient(const Model<D>& m, const MaterialConstants& c, st
   return D * influence(c.influence, xi, c.horizon) * m.bonds.volume[k] * (1.0 / whole[i] + 1.0 / whole[j]);
 }
 
+/// Calls f(k, j, coefficient) for each broken bond k = i-j whose two ends the fluid of source s
+/// reaches, with its pressure coefficient d omega V_j (1/m_i + 1/m_j).
+template <int D, class F>
+void for_each_network_bond(const Model<D>& m, std::size_t i, int s, F&& f) {
+  const FluidNetwork& net = m.fluid_network;
+  if (net.broken_bonds <= 0 || net.source[i] != s) return;
+  const Bonds& b = m.bonds;
+  const auto& c = m.constants_of(i);
+  for (auto k = b.offset[i]; k < b.offset[i + 1]; ++k) {
+    if (b.intact[k]) continue;
+    const auto j = static_cast<std::size_t>(b.neighbor[k]);
+    if (net.source[j] == s) f(k, j, broken_bond_coefficient<D>(m, c, k, i, j));
+  }
+}
+
 /// Adds the pressure on the broken bonds of each fluid network to m.body_force (pressure[s] as in
 /// add_crack_pressure). Call after update_fluid_network.
 template <int D>
 void add_network_pressure(Model<D>& m, const std::vector<double>& pressure) {
   const FluidNetwork& f = m.fluid_network;
   if (f.broken_bonds == 0) return;
-  const Bonds& b = m.bonds;
   const std::size_t n = m.size();
 #pragma omp parallel for schedule(dynamic, 256)
   for (std::size_t i = 0; i < n; ++i) {
     const int s = f.source[i];
     if (s < 0 || pressure[static_cast<std::size_t>(s)] == 0.0) continue;
-    const auto& c = m.constants_of(i);
-    for (auto k = b.offset[i]; k < b.offset[i + 1]; ++k) {
-      if (b.intact[k]) continue;
-      const auto j = static_cast<std::size_t>(b.neighbor[k]);
-      if (f.source[j] != s) continue;
-      const double xi = b.length[k];
-      const double coefficient = broken_bond_coefficient<D>(m, c, k, i, j);
+    for_each_network_bond<D>(m, i, s, [&](std::int64_t k, std::size_t j, double coefficient) {
       const Vec<D> eta = m.position[j] - m.position[i];
-      const double scale = -pressure[static_cast<std::size_t>(s)] * coefficient * xi / norm<D>(eta);
+      const double scale = -pressure[static_cast<std::size_t>(s)] * coefficient * m.bonds.length[k] / norm<D>(eta);
       for (int q = 0; q < D; ++q) m.body_force[i][q] += scale * eta[q];
-    }
+    });
   }
 }
 
@@ -136,13 +143,11 @@ void add_network_pressure(Model<D>& m, const std::vector<double>& pressure) {
 template <int D>
 double cavity_volume_change(const Model<D>& m, int s) {
   const CrackBonds& w = m.crack_bonds;
-  const FluidNetwork& f = m.fluid_network;
-  const Bonds& b = m.bonds;
   const auto sums = parallel::ordered_sums<1>(m.size(), [&](std::size_t i, std::array<double, 1>& acc) {
     for (auto k = w.offset[i]; k < w.offset[i + 1]; ++k) {
       if (pressure_bond_source<D>(m, k, i) != s) continue;
       const auto& x = w.xi[k];
-      const double xi = std::sqrt(x[0] * x[0] + x[1] * x[1] + x[2] * x[2]);
+      const double xi = w.length(static_cast<std::size_t>(k));
       if (w.neighbor[k] < 0) {
         double along = 0.0;  // -xi_hat . u_i
         for (int q = 0; q < D; ++q) along -= x[q] / xi * (m.position[i][q] - m.reference_position[i][q]);
@@ -152,16 +157,10 @@ double cavity_volume_change(const Model<D>& m, int s) {
         acc[0] += 0.5 * w.coefficient[k] * xi * m.volume[i] * (y - xi);
       }
     }
-    if (f.broken_bonds <= 0 || f.source[i] != s) return;
-    const auto& c = m.constants_of(i);
-    for (auto k = b.offset[i]; k < b.offset[i + 1]; ++k) {
-      if (b.intact[k]) continue;
-      const auto j = static_cast<std::size_t>(b.neighbor[k]);
-      if (f.source[j] != s) continue;
-      const double xi = b.length[k];
-      const double coefficient = broken_bond_coefficient<D>(m, c, k, i, j);
+    for_each_network_bond<D>(m, i, s, [&](std::int64_t k, std::size_t j, double coefficient) {
+      const double xi = m.bonds.length[k];
       acc[0] += 0.5 * coefficient * xi * m.volume[i] * (norm<D>(m.position[j] - m.position[i]) - xi);
-    }
+    });
   });
   return sums[0];
 }
