@@ -12,6 +12,7 @@
 #include "rift/load/traction_layer.hpp"
 #include "rift/mpm/energy.hpp"
 #include "rift/mpm/stencil.hpp"
+#include "rift/parallel/team.hpp"
 
 namespace rift::mpm {
 
@@ -99,8 +100,11 @@ double Solver<D>::stable_time_step(const Model<D>& m) const {
 template <int D>
 void Solver<D>::scatter(Model<D>& m, bool momentum_only, bool internal_force) {
   auto& ps = m.particles;
-  const int threads = static_cast<int>(thread_grids_.size());
-  for (auto& tg : thread_grids_) {
+  // one buffer per thread of the team for_each_stencil forks (one thread for a few points)
+  const std::size_t buffers = rift::parallel::worth_a_team(ps.size()) ? thread_grids_.size() : 1;
+  const int threads = static_cast<int>(buffers);
+  for (std::size_t t = 0; t < buffers; ++t) {
+    auto& tg = thread_grids_[t];
     if (tg.slots() != m.grid.slots()) {
       tg = m.grid;
       tg.resize();
@@ -151,12 +155,13 @@ void Solver<D>::scatter(Model<D>& m, bool momentum_only, bool internal_force) {
   });
   // sum the thread buffers in thread order (reproducible)
   auto& g = m.grid;
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for if(rift::parallel::worth_a_team(g.slots())) schedule(static)
   for (std::size_t n = 0; n < g.slots(); ++n) {
     double mass = 0.0;
     Vec<D> mom{}, f{}, grad{}, u{};
     double volume = 0.0;
-    for (const auto& tg : thread_grids_) {
+    for (std::size_t t = 0; t < buffers; ++t) {
+      const auto& tg = thread_grids_[t];
       mass += tg.mass[n];
       for (int a = 0; a < D; ++a) mom[a] += tg.momentum[n][a], f[a] += tg.force[n][a];
       if (normals) {
@@ -210,7 +215,7 @@ void Solver<D>::apply_contact(Model<D>& m) {
   const double tiny = tiny_mass(m);
   using C = scene::Mpm::Contact;
   touching_.assign(g.size(), 0);
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for if(rift::parallel::worth_a_team(g.size())) schedule(static)
   for (std::size_t node = 0; node < g.size(); ++node) {
     const std::size_t base = node * fields;
     int present = 0;
@@ -290,7 +295,7 @@ template <int D>
 void Solver<D>::grid_velocities(Model<D>& m, double t, bool record_start, bool contact) {
   auto& g = m.grid;
   const double tiny = tiny_mass(m);
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for if(rift::parallel::worth_a_team(g.slots())) schedule(static)
   for (std::size_t n = 0; n < g.slots(); ++n) {
     for (int a = 0; a < D; ++a) g.velocity[n][a] = g.mass[n] > tiny ? g.momentum[n][a] / g.mass[n] : 0.0;
     // FLIP increments are taken from the plain projection, so that contact and boundary
@@ -336,7 +341,7 @@ void Solver<D>::step(Model<D>& m, double dt) {
       acceleration_.resize(ps.size());
       velocity_gradient_.resize(ps.size());
       const double reach = 2.0 * g.cell_size;
-#pragma omp parallel
+#pragma omp parallel if(rift::parallel::worth_a_team(ps.size()))
       {
         Stencil<D> st;
 #pragma omp for schedule(static)
@@ -377,7 +382,7 @@ void Solver<D>::step(Model<D>& m, double dt) {
   }
   // grid momentum update with mass-proportional damping: dp/dt = f - damping p
   const double alpha = settings_.damping;
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for if(rift::parallel::worth_a_team(g.slots())) schedule(static)
   for (std::size_t n = 0; n < g.slots(); ++n)
     for (int a = 0; a < D; ++a) g.momentum[n][a] += dt * (g.force[n][a] - alpha * g.momentum[n][a]);
   grid_velocities(m, t + dt, false);
@@ -438,7 +443,7 @@ void Solver<D>::step(Model<D>& m, double dt) {
       // every other node: a field holding only the edge of a few points' support would otherwise
       // feed f / m_field (unbounded as m_field -> 0) into the stress and go unstable.
       const std::size_t fields = static_cast<std::size_t>(g.fields);
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for if(rift::parallel::worth_a_team(g.size())) schedule(static)
       for (std::size_t node = 0; node < g.size(); ++node)
         if (touching_[node])
           for (std::size_t f = 0; f < fields; ++f) g.velocity[node * fields + f] = stage_velocity_[node * fields + f];

@@ -8,6 +8,7 @@
 
 #include "rift/core/error.hpp"
 #include "rift/mpm/model.hpp"
+#include "rift/parallel/team.hpp"
 
 namespace rift::mpm {
 
@@ -66,12 +67,12 @@ bool make_stencil(const Model<D>& m, const Vec<D>& x, Stencil<D>& st) {
 }
 
 /// Runs body(p, stencil) for every material point p in parallel (static schedule, `threads`
-/// threads), the stencil taken at positions[p]; a point whose stencil leaves the grid raises a
+/// threads, or the calling thread alone for a few points: parallel/team.hpp), the stencil taken at positions[p]; a point whose stencil leaves the grid raises a
 /// PhysicsError after the loop.
 template <int D, class Body>
 void for_each_stencil(const Model<D>& m, const std::vector<Vec<D>>& positions, int threads, Body body) {
   LostParticle lost;
-#pragma omp parallel num_threads(threads)
+#pragma omp parallel num_threads(threads) if(rift::parallel::worth_a_team(positions.size()))
   {
     Stencil<D> st;
 #pragma omp for schedule(static)

@@ -14,7 +14,7 @@ std::array<double, K> ordered_sums(std::size_t n, F&& f) {
   constexpr std::size_t block = 4096;
   const std::size_t blocks = (n + block - 1) / block;
   std::vector<std::array<double, K>> partial(blocks);
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for if(blocks > 1) schedule(static)
   for (std::size_t b = 0; b < blocks; ++b) {
     std::array<double, K> acc{};
     const std::size_t end = std::min(n, (b + 1) * block);

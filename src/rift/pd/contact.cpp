@@ -4,6 +4,8 @@
 #include <array>
 #include <cmath>
 
+#include "rift/parallel/team.hpp"
+
 namespace rift::pd {
 
 template <int D>
@@ -41,7 +43,7 @@ void Contact<D>::rebuild(const Model<D>& m) {
   std::vector<std::array<long, 3>> sorted_keys(n);
   for (std::size_t q = 0; q < n; ++q) sorted_keys[q] = key[order[q]];
   std::vector<std::vector<std::int32_t>> rows(n);
-#pragma omp parallel for schedule(dynamic, 512)
+#pragma omp parallel for if(rift::parallel::worth_a_team(n)) schedule(dynamic, 512)
   for (std::size_t i = 0; i < n; ++i) {
     const int rz = D == 3 ? 1 : 0;
     for (long dz = -rz; dz <= rz; ++dz)
@@ -70,14 +72,14 @@ void Contact<D>::add_forces(Model<D>& m) {
   if (!enabled_) return;
   double moved2 = 0.0;
   const std::size_t n = m.size();
-#pragma omp parallel for reduction(max : moved2) schedule(static)
+#pragma omp parallel for if(rift::parallel::worth_a_team(n)) reduction(max : moved2) schedule(static)
   for (std::size_t i = 0; i < n; ++i) {
     const Vec<D> d = m.position[i] - built_at_[i];
     moved2 = std::max(moved2, dot<D>(d, d));
   }
   if (4.0 * moved2 > skin_ * skin_) rebuild(m);
   const Bonds& b = m.bonds;
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for if(rift::parallel::worth_a_team(n)) schedule(static)
   for (std::size_t i = 0; i < n; ++i) {
     Vec<D> f{};
     bool any = false;

@@ -18,6 +18,7 @@
 #include "rift/pd/fluid_network.hpp"
 #include "rift/pd/influence.hpp"
 #include "rift/pd/model.hpp"
+#include "rift/parallel/team.hpp"
 
 namespace rift::pd {
 
@@ -48,7 +49,7 @@ void add_crack_pressure(Model<D>& m, const std::vector<double>& pressure) {
   const CrackBonds& w = m.crack_bonds;
   if (w.neighbor.empty()) return;
   const std::size_t n = m.size();
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for if(rift::parallel::worth_a_team(n)) schedule(static)
   for (std::size_t i = 0; i < n; ++i)
     for (auto k = w.offset[i]; k < w.offset[i + 1]; ++k) {
       const int source = pressure_bond_source<D>(m, k, i);

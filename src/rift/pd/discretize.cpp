@@ -11,6 +11,7 @@
 #include "rift/pd/influence.hpp"
 #include "rift/pd/surface_correction.hpp"
 #include "rift/pd/ves.hpp"
+#include "rift/parallel/team.hpp"
 
 namespace rift::pd {
 
@@ -202,7 +203,7 @@ void build_bonds(const scene::Scene& s, Model<D>& m, const std::vector<std::arra
       for (int k = 0; k < 3; ++k) clo[k] -= info.constants.horizon * 1.5, chi[k] += info.constants.horizon * 1.5;
       near.push_back({ci, {clo, chi}});
     }
-#pragma omp parallel for schedule(dynamic, 256)
+#pragma omp parallel for if(rift::parallel::worth_a_team(info.last - info.first)) schedule(dynamic, 256)
     for (std::size_t i = info.first; i < info.last; ++i) {
       const auto& li = lattice_index[i];
       Point3 pi{0, 0, 0};
@@ -265,7 +266,7 @@ void build_bonds(const scene::Scene& s, Model<D>& m, const std::vector<std::arra
   b.correction.assign(nbonds, 1.0f);
   b.mirror_correction.assign(nbonds, 1.0f);
   b.intact.assign(nbonds, 1);
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for if(rift::parallel::worth_a_team(n)) schedule(static)
   for (std::size_t i = 0; i < n; ++i) {
     auto k0 = static_cast<std::size_t>(b.offset[i]);
     for (std::size_t q = 0; q < nb[i].size(); ++q) {
@@ -344,7 +345,7 @@ Model<D> discretize(const scene::Scene& s) {
   m.weighted_volume.assign(n, 0.0);
   for (const auto& body : m.bodies) {
     const auto& c = body.constants;
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for if(rift::parallel::worth_a_team(body.last - body.first)) schedule(static)
     for (std::size_t i = body.first; i < body.last; ++i) {
       double w = 0.0;
       for (auto k = m.bonds.offset[i]; k < m.bonds.offset[i + 1]; ++k) {

@@ -5,6 +5,7 @@
 #include "rift/parallel/ordered_sum.hpp"
 #include "rift/pd/forces.hpp"
 #include "rift/pd/influence.hpp"
+#include "rift/parallel/team.hpp"
 
 namespace rift::pd {
 
@@ -76,7 +77,7 @@ RelaxationResult DynamicRelaxation<D>::relax(Model<D>& m, const load::Boundaries
       break;
     }
     const double cn = (den > 0.0 && num > 0.0) ? 2.0 * std::sqrt(num / den) : 0.0;
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for if(rift::parallel::worth_a_team(n)) schedule(static)
     for (std::size_t i = 0; i < n; ++i) {
       for (int k = 0; k < D; ++k) {
         if (m.constrained[i] >> k & 1) continue;

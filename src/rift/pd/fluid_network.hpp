@@ -18,6 +18,7 @@
 #include "rift/pd/influence.hpp"
 #include "rift/parallel/ordered_sum.hpp"
 #include "rift/pd/model.hpp"
+#include "rift/parallel/team.hpp"
 
 namespace rift::pd {
 
@@ -29,7 +30,7 @@ std::vector<double> whole_family_weighted_volumes(const Model<D>& m) {
   std::vector<double> whole(n, 0.0);
   const Bonds& b = m.bonds;
   const CrackBonds& w = m.crack_bonds;
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for if(rift::parallel::worth_a_team(n)) schedule(static)
   for (std::size_t i = 0; i < n; ++i) {
     const auto& c = m.constants_of(i);
     double sum = 0.0;
@@ -123,7 +124,7 @@ void add_network_pressure(Model<D>& m, const std::vector<double>& pressure) {
   const FluidNetwork& f = m.fluid_network;
   if (f.broken_bonds == 0) return;
   const std::size_t n = m.size();
-#pragma omp parallel for schedule(dynamic, 256)
+#pragma omp parallel for if(rift::parallel::worth_a_team(n)) schedule(dynamic, 256)
   for (std::size_t i = 0; i < n; ++i) {
     const int s = f.source[i];
     if (s < 0 || pressure[static_cast<std::size_t>(s)] == 0.0) continue;

@@ -7,6 +7,7 @@
 #include "rift/pd/lps.hpp"
 #include "rift/pd/pmb.hpp"
 #include "rift/pd/ves.hpp"
+#include "rift/parallel/team.hpp"
 
 namespace rift::pd {
 
@@ -45,7 +46,7 @@ template <int D>
 void update_damage(Model<D>& m) {
   const Bonds& b = m.bonds;
   const std::size_t n = m.size();
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for if(rift::parallel::worth_a_team(n)) schedule(static)
   for (std::size_t i = 0; i < n; ++i) {
     double all = 0.0, intact = 0.0;
     for (auto k = b.offset[i]; k < b.offset[i + 1]; ++k) {
@@ -89,7 +90,7 @@ double stable_time_step(const Model<D>& m) {
   for (const auto& body : m.bodies) {
     const auto& c = body.constants;
     double local = std::numeric_limits<double>::max();
-#pragma omp parallel for reduction(min : local) schedule(static)
+#pragma omp parallel for if(rift::parallel::worth_a_team(body.last - body.first)) reduction(min : local) schedule(static)
     for (std::size_t i = body.first; i < body.last; ++i) {
       double sum = 0.0;
       for (auto k = m.bonds.offset[i]; k < m.bonds.offset[i + 1]; ++k) {

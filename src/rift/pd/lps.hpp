@@ -15,6 +15,7 @@
 
 #include "rift/pd/influence.hpp"
 #include "rift/pd/model.hpp"
+#include "rift/parallel/team.hpp"
 
 namespace rift::pd {
 
@@ -66,7 +67,7 @@ void next_stretch_limit(Model<D>& m, const MaterialConstants& c, std::size_t i, 
 template <int D, scene::Influence Omega>
 void lps_dilatation(Model<D>& m, const BodyInfo& body) {
   const auto& c = body.constants;
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for if(rift::parallel::worth_a_team(body.last - body.first)) schedule(static)
   for (std::size_t i = body.first; i < body.last; ++i) {
     double theta, q;
     const double s_min = dilatation_row<D, Omega, true>(m, c, i, theta, q);
@@ -84,7 +85,7 @@ void state_based_forces(Model<D>& m, const BodyInfo& body) {
   const auto& c = body.constants;
   const Bonds& b = m.bonds;
   const double horizon = c.horizon, kappa = c.kappa, a_dev = c.lps_deviatoric_coefficient(), lambda = c.viscous_fraction;
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for if(rift::parallel::worth_a_team(body.last - body.first)) schedule(static)
   for (std::size_t i = body.first; i < body.last; ++i) {
     const Vec<D> xi_pos = m.position[i];
     const double a_i = a_dev / m.weighted_volume[i];

@@ -8,6 +8,7 @@
 
 #include "rift/pd/influence.hpp"
 #include "rift/pd/model.hpp"
+#include "rift/parallel/team.hpp"
 
 namespace rift::pd {
 
@@ -22,7 +23,7 @@ void pmb_forces(Model<D>& m, const BodyInfo& body) {
   Bonds& b = m.bonds;
   const double micromodulus = c.micromodulus, s00 = c.critical_stretch, alpha = c.alpha, horizon = c.horizon;
   const bool breakable = c.breakable;
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for if(rift::parallel::worth_a_team(body.last - body.first)) schedule(static)
   for (std::size_t i = body.first; i < body.last; ++i) {
     const Vec<D> xi_pos = m.position[i];
     const double s0_i = m.stretch_limit[i];

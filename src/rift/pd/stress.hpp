@@ -13,6 +13,7 @@
 #include "rift/pd/lps.hpp"
 #include "rift/pd/model.hpp"
 #include "rift/pd/pmb.hpp"
+#include "rift/parallel/team.hpp"
 
 namespace rift::pd {
 
@@ -25,7 +26,7 @@ std::vector<double> particle_stress(const Model<D>& m) {
     const auto& c = body.constants;
     const bool ves = c.model == scene::ModelKind::ves;
     const double a_dev = c.lps_deviatoric_coefficient(), lambda = c.viscous_fraction;
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for if(rift::parallel::worth_a_team(body.last - body.first)) schedule(static)
     for (std::size_t i = body.first; i < body.last; ++i) {
       double s[3][3] = {};
       const double a_i = a_dev / m.weighted_volume[i];

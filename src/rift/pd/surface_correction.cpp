@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "rift/pd/influence.hpp"
+#include "rift/parallel/team.hpp"
 
 namespace rift::pd {
 
@@ -44,7 +45,7 @@ double isotropic_mean(int D, const std::array<int, 3>& e) {
 /// mirror[k] = side value of the bond j-i for bond k = i-j (rows are sorted by neighbour).
 void mirror_values(const Bonds& b, const std::vector<float>& side, std::vector<float>& mirror) {
   const auto n = static_cast<std::int64_t>(b.offset.size()) - 1;
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for if(rift::parallel::worth_a_team(static_cast<std::size_t>(n))) schedule(static)
   for (std::int64_t i = 0; i < n; ++i)
     for (auto k = b.offset[i]; k < b.offset[i + 1]; ++k) {
       const auto j = b.neighbor[k];
@@ -68,7 +69,7 @@ void apply_surface_correction(Model<D>& m) {
     // continuum moment int_ball omega |xi|^p dV
     const double full = D == 3 ? 4.0 * pi * influence_moment(c.influence, c.horizon, 2 + p)
                                : 2.0 * pi * c.thickness * influence_moment(c.influence, c.horizon, 1 + p);
-#pragma omp parallel for schedule(dynamic, 64)
+#pragma omp parallel for if(rift::parallel::worth_a_team(body.last - body.first)) schedule(dynamic, 64)
     for (std::size_t i = body.first; i < body.last; ++i) {
       Eigen::MatrixXd A = Eigen::MatrixXd::Zero(na, na);
       Eigen::VectorXd rhs(na);
@@ -117,7 +118,7 @@ void compute_dilatation_weights(Model<D>& m) {
   for (const auto& body : m.bodies) {
     const auto& c = body.constants;
     if (!c.state_based()) continue;
-#pragma omp parallel for schedule(dynamic, 64)
+#pragma omp parallel for if(rift::parallel::worth_a_team(body.last - body.first)) schedule(dynamic, 64)
     for (std::size_t i = body.first; i < body.last; ++i) {
       if (!c.surface_correction) {
         for (auto k = b.offset[i]; k < b.offset[i + 1]; ++k)

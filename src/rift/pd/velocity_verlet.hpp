@@ -5,13 +5,14 @@
 #include "rift/pd/contact.hpp"
 #include "rift/pd/forces.hpp"
 #include "rift/pd/model.hpp"
+#include "rift/parallel/team.hpp"
 
 namespace rift::pd {
 
 template <int D>
 void kick(Model<D>& m, double half_dt) {
   const std::size_t n = m.size();
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for if(rift::parallel::worth_a_team(n)) schedule(static)
   for (std::size_t i = 0; i < n; ++i) {
     const double inv_rho = 1.0 / m.constants_of(i).density;
     for (int k = 0; k < D; ++k) m.velocity[i][k] += half_dt * (m.force[i][k] + m.body_force[i][k]) * inv_rho;
@@ -21,7 +22,7 @@ void kick(Model<D>& m, double half_dt) {
 template <int D>
 void drift(Model<D>& m, double dt) {
   const std::size_t n = m.size();
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for if(rift::parallel::worth_a_team(n)) schedule(static)
   for (std::size_t i = 0; i < n; ++i)
     for (int k = 0; k < D; ++k) m.position[i][k] += dt * m.velocity[i][k];
 }

@@ -25,6 +25,7 @@
 #include "rift/pd/influence.hpp"
 #include "rift/pd/lps.hpp"
 #include "rift/pd/model.hpp"
+#include "rift/parallel/team.hpp"
 
 namespace rift::pd {
 
@@ -42,7 +43,7 @@ void prepare_viscous_history(Model<D>& m) {
   for (std::int64_t i = 0; i < n; ++i)
     if (b.offset[i + 1] - b.offset[i] > std::numeric_limits<std::uint16_t>::max())
       throw PhysicsError("a particle has more than 65535 bonds; the viscoelastic model needs fewer (a smaller horizon / spacing)");
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for if(rift::parallel::worth_a_team(static_cast<std::size_t>(n))) schedule(static)
   for (std::int64_t i = 0; i < n; ++i)
     for (auto k = b.offset[i]; k < b.offset[i + 1]; ++k) {
       const auto j = b.neighbor[k];
@@ -63,7 +64,7 @@ void ves_dilatation(Model<D>& m, const BodyInfo& body, double dt) {
   const double x = advance ? dt / c.relaxation_time : 0.0;
   const double one_minus_decay = -std::expm1(-x), decay = 1.0 - one_minus_decay;
   const double beta = advance ? 1.0 - one_minus_decay / x : 0.0;
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for if(rift::parallel::worth_a_team(body.last - body.first)) schedule(static)
   for (std::size_t i = body.first; i < body.last; ++i) {
     const Vec<D> xi_pos = m.position[i];
     double theta, unused;
