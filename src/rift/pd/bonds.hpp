@@ -8,6 +8,18 @@
 
 namespace rift::pd {
 
+/// States of a bond (Bonds::intact).
+inline constexpr std::uint8_t bond_broken = 0;
+inline constexpr std::uint8_t bond_intact = 1;
+/// A bond across a pre-existing fracture whose interface law failed (interface_law.hpp): it bears
+/// compression, the faces pressed on each other, and nothing in tension, the faces apart.
+inline constexpr std::uint8_t bond_interface_failed = 2;
+
+/// Whether a bond in `state` carries force at extension e = |y| - |xi|.
+inline bool bears_load(std::uint8_t state, double e) {
+  return state == bond_intact || (state == bond_interface_failed && e < 0.0);
+}
+
 struct Bonds {
   std::vector<std::int64_t> offset;   // size n+1; row i is [offset[i], offset[i+1])
   std::vector<std::int32_t> neighbor; // j
@@ -17,7 +29,7 @@ struct Bonds {
   std::vector<float> mirror_correction;  // the same factor of j for this bond
   // LPS only (empty otherwise): theta_i = sum dilatation_weight e, see surface_correction.hpp
   std::vector<float> dilatation_weight, mirror_dilatation_weight;
-  std::vector<std::uint8_t> intact;   // 1 = intact, 0 = broken (never heals)
+  std::vector<std::uint8_t> intact;   // bond_intact, bond_broken (never heals) or bond_interface_failed
   // VES only (empty otherwise), per directed bond i-j: i's deviatoric extension and back extension
   // after the last step (Mitchell 2011), and the slot of the bond j-i in row j
   std::vector<double> deviatoric_extension, back_extension;
@@ -43,6 +55,28 @@ struct CrackBonds {
 
   /// |xi| of pressure bond k.
   double length(std::size_t k) const { return std::sqrt(xi[k][0] * xi[k][0] + xi[k][1] * xi[k][1] + xi[k][2] * xi[k][2]); }
+};
+
+/// A pre-existing fracture's plane and its interface law (scene::Interface), 3D vectors also in 2D.
+struct InterfaceLaw {
+  std::array<double, 3> point{}, normal{};  // a point of the plane and its unit normal
+  std::array<double, 3> tangent{}, binormal{};  // in-plane axes (2D: binormal is z)
+  std::vector<std::array<double, 3>> polygon;    // 2D: the segment's end points; 3D: the polygon
+  double length = 0.0;                           // 2D: the segment's length
+  double critical_stretch = 0.0, cohesion = 0.0, friction_coefficient = 0.0;
+  int near_side = 0;  // the side (sign of (x - point) . normal) of the fluid sources; 0 without
+};
+
+/// The bonds that cross a pre-existing fracture, row i listing those of particle i (the mirror
+/// bond j-i sits in row j).
+struct InterfaceBonds {
+  std::vector<std::int64_t> offset;        // size n+1 (empty without interfaces)
+  std::vector<std::int64_t> slot;          // the bond's index in Bonds
+  std::vector<std::uint16_t> interface;    // the scene's interface
+  std::vector<InterfaceLaw> laws;          // per scene interface
+  std::vector<std::int32_t> particles;     // the particles with a bond across an interface, ascending
+
+  bool empty() const { return slot.empty(); }
 };
 
 /// The fluid each pressure source has in the cracks grown from it (fluid_network.hpp); empty

@@ -9,6 +9,7 @@
 #include "rift/geometry/region.hpp"
 #include "rift/pd/crack_pressure.hpp"
 #include "rift/pd/influence.hpp"
+#include "rift/pd/interface_law.hpp"
 #include "rift/pd/surface_correction.hpp"
 #include "rift/pd/ves.hpp"
 #include "rift/parallel/team.hpp"
@@ -129,8 +130,12 @@ void build_bonds(const scene::Scene& s, Model<D>& m, const std::vector<std::arra
       crack_of.push_back(static_cast<std::uint16_t>(ci));
     }
   }
+  std::vector<geometry::PreCrack> interfaces;
+  for (const auto& f : s.interfaces) interfaces.emplace_back(D, f.points);
   std::vector<std::vector<std::int32_t>> nb(n);
   std::vector<std::vector<float>> frac(n);
+  // bonds across pre-existing fractures (interface_law.hpp): their place in row i and the interface
+  std::vector<std::vector<std::pair<std::uint32_t, std::uint16_t>>> across(n);
   // pressure bonds (crack_pressure.hpp): bonds the cracks cut (when the scene has a fluid) and bonds
   // to the fluid sites of boreholes
   std::vector<std::vector<std::int32_t>> wet_nb(n);
@@ -195,25 +200,33 @@ void build_bonds(const scene::Scene& s, Model<D>& m, const std::vector<std::arra
     auto cell = [&](long x, long y, long z) { return static_cast<std::size_t>(((z - lo[2]) * ny + (y - lo[1])) * nx + (x - lo[0])); };
     for (std::size_t i = info.first; i < info.last; ++i)
       map[cell(lattice_index[i][0], lattice_index[i][1], lattice_index[i][2])] = static_cast<std::int32_t>(i);
-    // cracks whose bounding box (grown by the horizon) can cut this body's bonds
-    std::vector<std::pair<std::size_t, std::array<Point3, 2>>> near;
-    for (std::size_t ci = 0; ci < cracks.size(); ++ci) {
-      Point3 clo, chi;
-      cracks[ci].bounds(clo, chi);
-      for (int k = 0; k < 3; ++k) clo[k] -= info.constants.horizon * 1.5, chi[k] += info.constants.horizon * 1.5;
-      near.push_back({ci, {clo, chi}});
-    }
+    // cracks (and interfaces) whose bounding box, grown by the horizon, can cut this body's bonds
+    auto grown_boxes = [&](const std::vector<geometry::PreCrack>& planes) {
+      std::vector<std::pair<std::size_t, std::array<Point3, 2>>> boxes;
+      for (std::size_t ci = 0; ci < planes.size(); ++ci) {
+        Point3 clo, chi;
+        planes[ci].bounds(clo, chi);
+        for (int k = 0; k < 3; ++k) clo[k] -= info.constants.horizon * 1.5, chi[k] += info.constants.horizon * 1.5;
+        boxes.push_back({ci, {clo, chi}});
+      }
+      return boxes;
+    };
+    const auto near = grown_boxes(cracks), near_interfaces = grown_boxes(interfaces);
 #pragma omp parallel for if(rift::parallel::worth_a_team(info.last - info.first)) schedule(dynamic, 256)
     for (std::size_t i = info.first; i < info.last; ++i) {
       const auto& li = lattice_index[i];
       Point3 pi{0, 0, 0};
       for (int k = 0; k < D; ++k) pi[k] = m.reference_position[i][k];
-      std::vector<std::size_t> cutting;
-      for (const auto& [c, box] : near) {
-        bool in = true;
-        for (int k = 0; k < D; ++k) in = in && pi[k] >= box[0][k] && pi[k] <= box[1][k];
-        if (in) cutting.push_back(c);
-      }
+      auto within = [&](const std::vector<std::pair<std::size_t, std::array<Point3, 2>>>& boxes) {
+        std::vector<std::size_t> list;
+        for (const auto& [c, box] : boxes) {
+          bool in = true;
+          for (int k = 0; k < D; ++k) in = in && pi[k] >= box[0][k] && pi[k] <= box[1][k];
+          if (in) list.push_back(c);
+        }
+        return list;
+      };
+      const auto cutting = within(near), crossing = within(near_interfaces);
       for (const auto& off : offsets) {
         long x = li[0] + off.o[0], y = li[1] + off.o[1], z = li[2] + off.o[2];
         const bool in_box = !(x < lo[0] || x > hi[0] || y < lo[1] || y > hi[1] || z < lo[2] || z > hi[2]);
@@ -251,6 +264,15 @@ void build_bonds(const scene::Scene& s, Model<D>& m, const std::vector<std::arra
           }
         }
         if (cut) continue;
+        if (!crossing.empty()) {
+          Point3 pj{0, 0, 0};
+          for (int k = 0; k < D; ++k) pj[k] = m.reference_position[j][k];
+          for (auto f : crossing)
+            if (interfaces[f].cuts(pi, pj)) {
+              across[i].push_back({static_cast<std::uint32_t>(nb[i].size()), static_cast<std::uint16_t>(f)});
+              break;
+            }
+        }
         nb[i].push_back(j);
         frac[i].push_back(static_cast<float>(off.fraction));
       }
@@ -277,6 +299,17 @@ void build_bonds(const scene::Scene& s, Model<D>& m, const std::vector<std::arra
     }
     std::vector<std::int32_t>().swap(nb[i]);
     std::vector<float>().swap(frac[i]);
+  }
+  InterfaceBonds& ib = m.interface_bonds;
+  if (!s.interfaces.empty()) {
+    ib.offset.assign(n + 1, 0);
+    for (std::size_t i = 0; i < n; ++i) {
+      ib.offset[i + 1] = ib.offset[i] + static_cast<std::int64_t>(across[i].size());
+      for (const auto& [q, f] : across[i]) {
+        ib.slot.push_back(b.offset[i] + q);
+        ib.interface.push_back(f);
+      }
+    }
   }
   CrackBonds& w = m.crack_bonds;
   w.offset.assign(n + 1, 0);
@@ -358,6 +391,7 @@ Model<D> discretize(const scene::Scene& s) {
   compute_dilatation_weights<D>(m);
   prepare_viscous_history<D>(m);
   prepare_crack_pressure<D>(m);
+  prepare_interfaces<D>(s, m);
 
   for (const auto& iv : s.initial_velocities) {
     const auto selected = geometry::indices_inside<D>(geometry::Region::build(s, iv.region), n,

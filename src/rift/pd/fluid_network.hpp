@@ -67,7 +67,8 @@ void update_fluid_network(Model<D>& m) {
   FluidNetwork& f = m.fluid_network;
   const Bonds& b = m.bonds;
   const CrackBonds& w = m.crack_bonds;
-  const auto broken = static_cast<std::int64_t>(std::count(b.intact.begin(), b.intact.end(), std::uint8_t{0}));
+  const auto broken = static_cast<std::int64_t>(b.intact.size()) -
+                      static_cast<std::int64_t>(std::count(b.intact.begin(), b.intact.end(), bond_intact));
   if (broken == f.broken_bonds && !f.source.empty()) return;
   f.broken_bonds = broken;
   const std::size_t n = m.size();
@@ -88,7 +89,7 @@ void update_fluid_network(Model<D>& m) {
   for (std::size_t q = 0; q < queue.size(); ++q) {
     const std::size_t i = queue[q];
     for (auto k = b.offset[i]; k < b.offset[i + 1]; ++k)
-      if (!b.intact[k]) reach(i, static_cast<std::size_t>(b.neighbor[k]));
+      if (b.intact[k] != bond_intact) reach(i, static_cast<std::size_t>(b.neighbor[k]));
     for (auto k = w.offset[i]; k < w.offset[i + 1]; ++k)
       if (f.dry[w.source[static_cast<std::size_t>(k)]] && w.neighbor[k] >= 0) reach(i, static_cast<std::size_t>(w.neighbor[k]));
   }
@@ -111,7 +112,7 @@ void for_each_network_bond(const Model<D>& m, std::size_t i, int s, F&& f) {
   const Bonds& b = m.bonds;
   const auto& c = m.constants_of(i);
   for (auto k = b.offset[i]; k < b.offset[i + 1]; ++k) {
-    if (b.intact[k]) continue;
+    if (b.intact[k] == bond_intact) continue;  // broken bonds and failed interfaces carry the fluid
     const auto j = static_cast<std::size_t>(b.neighbor[k]);
     if (net.source[j] == s) f(k, j, broken_bond_coefficient<D>(m, c, k, i, j));
   }

@@ -4,6 +4,7 @@
 #include <limits>
 
 #include "rift/parallel/ordered_sum.hpp"
+#include "rift/pd/interface_law.hpp"
 #include "rift/pd/lps.hpp"
 #include "rift/pd/pmb.hpp"
 #include "rift/pd/ves.hpp"
@@ -14,6 +15,7 @@ namespace rift::pd {
 template <int D>
 void compute_forces(Model<D>& m, Contact<D>* contact, double history_dt) {
   using I = scene::Influence;
+  apply_interface_law<D>(m);  // bonds across pre-existing fractures, with the last stresses
   for (const auto& body : m.bodies) {
     const auto& c = body.constants;
     if (c.model == scene::ModelKind::pmb) {
@@ -51,7 +53,7 @@ void update_damage(Model<D>& m) {
     double all = 0.0, intact = 0.0;
     for (auto k = b.offset[i]; k < b.offset[i + 1]; ++k) {
       all += b.volume[k];
-      if (b.intact[k]) intact += b.volume[k];
+      if (b.intact[k] == bond_intact) intact += b.volume[k];
     }
     m.damage[i] = all > 0.0 ? 1.0 - intact / all : 0.0;
   }
@@ -73,7 +75,7 @@ EnergySummary summarize(const Model<D>& m) {
     const double rho = m.constants_of(i).density;
     acc[0] += 0.5 * rho * dot<D>(m.velocity[i], m.velocity[i]) * m.volume[i];
     acc[1] += strain_energy_density<D>(m, i) * m.volume[i];
-    for (auto k = m.bonds.offset[i]; k < m.bonds.offset[i + 1]; ++k) acc[2] += !m.bonds.intact[k];
+    for (auto k = m.bonds.offset[i]; k < m.bonds.offset[i + 1]; ++k) acc[2] += m.bonds.intact[k] != bond_intact;
   });
   EnergySummary s;
   s.kinetic = sums[0];

@@ -47,11 +47,14 @@ double dilatation_row(Model<D>& m, const MaterialConstants& c, std::size_t i, do
     const double r = norm<D>(m.position[j] - xi_pos);
     const double xi = b.length[k];
     const double e = r - xi;
-    if (c.breakable && e > xi * std::min(s0_i, m.stretch_limit[j])) {
-      b.intact[k] = 0;
+    if (b.intact[k] == bond_interface_failed) {
+      if (e >= 0.0) continue;  // a failed interface bears compression only
+    } else if (c.breakable && e > xi * std::min(s0_i, m.stretch_limit[j])) {
+      b.intact[k] = bond_broken;
       continue;
+    } else {
+      s_min = std::min(s_min, e / xi);
     }
-    s_min = std::min(s_min, e / xi);
     theta += b.dilatation_weight[k] * e * b.volume[k];
     if constexpr (Coupling) q += b.correction[k] * influence(Omega, xi, c.horizon) * xi * e * b.volume[k];
   }
@@ -99,6 +102,7 @@ void state_based_forces(Model<D>& m, const BodyInfo& body) {
       const double r = norm<D>(eta);
       const double xi = b.length[k];
       const double e = r - xi;
+      if (!bears_load(b.intact[k], e)) continue;
       const double omega = influence(Omega, xi, horizon);
       const double a_j = a_dev / m.weighted_volume[j];
       const double theta_j = m.dilatation[j];
@@ -128,7 +132,9 @@ double state_based_energy_density(const Model<D>& m, const BodyInfo& body, std::
     if (!b.intact[k]) continue;
     const auto j = static_cast<std::size_t>(b.neighbor[k]);
     const double xi = b.length[k];
-    const double ed = norm<D>(m.position[j] - m.position[i]) - xi - theta * xi / D;
+    const double e = norm<D>(m.position[j] - m.position[i]) - xi;
+    if (!bears_load(b.intact[k], e)) continue;
+    const double ed = e - theta * xi / D;
     if constexpr (Viscous) {
       const double ev = ed - b.back_extension[k];
       dev += b.correction[k] * influence(c.influence, xi, c.horizon) * ((1.0 - lambda) * ed * ed + lambda * ev * ev) * b.volume[k];

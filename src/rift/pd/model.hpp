@@ -38,6 +38,7 @@ struct Model {
 
   Bonds bonds;
   CrackBonds crack_bonds;
+  InterfaceBonds interface_bonds;
   FluidNetwork fluid_network;
   std::vector<BodyInfo> bodies;
   int dimension = D;

@@ -17,48 +17,56 @@
 
 namespace rift::pd {
 
+/// The bond-pair stress of particle i (3 x 3, zero out of plane in 2D; not symmetrized).
+template <int D>
+void bond_pair_stress(const Model<D>& m, std::size_t i, double s[3][3]) {
+  const auto& c = m.constants_of(i);
+  const Bonds& b = m.bonds;
+  const bool ves = c.model == scene::ModelKind::ves;
+  const double a_dev = c.lps_deviatoric_coefficient(), lambda = c.viscous_fraction;
+  for (int p = 0; p < 3; ++p)
+    for (int q = 0; q < 3; ++q) s[p][q] = 0.0;
+  const double a_i = a_dev / m.weighted_volume[i];
+  const double pressure_i = pressure_factor<D>(c.kappa, m.dilatation[i], a_i, m.dilatation_coupling[i]);
+  for (auto k = b.offset[i]; k < b.offset[i + 1]; ++k) {
+    if (!b.intact[k]) continue;
+    const auto j = static_cast<std::size_t>(b.neighbor[k]);
+    const Vec<D> eta = m.position[j] - m.position[i];
+    const Vec<D> xi_vec = m.reference_position[j] - m.reference_position[i];
+    const double r = norm<D>(eta);
+    const double xi = b.length[k];
+    const double e = r - xi;
+    if (!bears_load(b.intact[k], e)) continue;
+    const double omega = influence(c.influence, xi, c.horizon);
+    double pair;
+    if (c.model == scene::ModelKind::pmb) {
+      pair = pmb_bond_force(c.micromodulus, omega, e / xi, b.correction[k], b.mirror_correction[k]);
+    } else {
+      const double a_j = a_dev / m.weighted_volume[j];
+      const double pressure_j = pressure_factor<D>(c.kappa, m.dilatation[j], a_j, m.dilatation_coupling[j]);
+      const double eb_i = ves ? lambda * b.back_extension[k] : 0.0;
+      const double eb_j = ves ? lambda * b.back_extension[static_cast<std::size_t>(b.offset[j]) + b.mirror_slot[k]] : 0.0;
+      pair = force_state(b.dilatation_weight[k], pressure_i, a_i, b.correction[k], omega, e - m.dilatation[i] * xi / D - eb_i) +
+             force_state(b.mirror_dilatation_weight[k], pressure_j, a_j, b.mirror_correction[k], omega, e - m.dilatation[j] * xi / D - eb_j);
+    }
+    const double scale = 0.5 * pair * b.volume[k] / r;
+    for (int p = 0; p < D; ++p)
+      for (int q = 0; q < D; ++q) s[p][q] += scale * eta[p] * xi_vec[q];
+  }
+}
+
 /// Six components per particle: xx, yy, zz, xy, yz, xz (the symmetric part; zero out of plane in 2D).
 template <int D>
 std::vector<double> particle_stress(const Model<D>& m) {
   std::vector<double> out(6 * m.size(), 0.0);
-  const Bonds& b = m.bonds;
-  for (const auto& body : m.bodies) {
-    const auto& c = body.constants;
-    const bool ves = c.model == scene::ModelKind::ves;
-    const double a_dev = c.lps_deviatoric_coefficient(), lambda = c.viscous_fraction;
-#pragma omp parallel for if(rift::parallel::worth_a_team(body.last - body.first)) schedule(static)
-    for (std::size_t i = body.first; i < body.last; ++i) {
-      double s[3][3] = {};
-      const double a_i = a_dev / m.weighted_volume[i];
-      const double pressure_i = pressure_factor<D>(c.kappa, m.dilatation[i], a_i, m.dilatation_coupling[i]);
-      for (auto k = b.offset[i]; k < b.offset[i + 1]; ++k) {
-        if (!b.intact[k]) continue;
-        const auto j = static_cast<std::size_t>(b.neighbor[k]);
-        const Vec<D> eta = m.position[j] - m.position[i];
-        const Vec<D> xi_vec = m.reference_position[j] - m.reference_position[i];
-        const double r = norm<D>(eta);
-        const double xi = b.length[k];
-        const double e = r - xi;
-        const double omega = influence(c.influence, xi, c.horizon);
-        double pair;
-        if (c.model == scene::ModelKind::pmb) {
-          pair = pmb_bond_force(c.micromodulus, omega, e / xi, b.correction[k], b.mirror_correction[k]);
-        } else {
-          const double a_j = a_dev / m.weighted_volume[j];
-          const double pressure_j = pressure_factor<D>(c.kappa, m.dilatation[j], a_j, m.dilatation_coupling[j]);
-          const double eb_i = ves ? lambda * b.back_extension[k] : 0.0;
-          const double eb_j = ves ? lambda * b.back_extension[static_cast<std::size_t>(b.offset[j]) + b.mirror_slot[k]] : 0.0;
-          pair = force_state(b.dilatation_weight[k], pressure_i, a_i, b.correction[k], omega, e - m.dilatation[i] * xi / D - eb_i) +
-                 force_state(b.mirror_dilatation_weight[k], pressure_j, a_j, b.mirror_correction[k], omega, e - m.dilatation[j] * xi / D - eb_j);
-        }
-        const double scale = 0.5 * pair * b.volume[k] / r;
-        for (int p = 0; p < D; ++p)
-          for (int q = 0; q < D; ++q) s[p][q] += scale * eta[p] * xi_vec[q];
-      }
-      double* o = &out[6 * i];
-      o[0] = s[0][0], o[1] = s[1][1], o[3] = 0.5 * (s[0][1] + s[1][0]);
-      if constexpr (D == 3) o[2] = s[2][2], o[4] = 0.5 * (s[1][2] + s[2][1]), o[5] = 0.5 * (s[0][2] + s[2][0]);
-    }
+  const std::size_t n = m.size();
+#pragma omp parallel for if(rift::parallel::worth_a_team(n)) schedule(static)
+  for (std::size_t i = 0; i < n; ++i) {
+    double s[3][3];
+    bond_pair_stress<D>(m, i, s);
+    double* o = &out[6 * i];
+    o[0] = s[0][0], o[1] = s[1][1], o[3] = 0.5 * (s[0][1] + s[1][0]);
+    if constexpr (D == 3) o[2] = s[2][2], o[4] = 0.5 * (s[1][2] + s[2][1]), o[5] = 0.5 * (s[0][2] + s[2][0]);
   }
   return out;
 }

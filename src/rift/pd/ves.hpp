@@ -74,7 +74,9 @@ void ves_dilatation(Model<D>& m, const BodyInfo& body, double dt) {
       if (!b.intact[k]) continue;
       const auto j = static_cast<std::size_t>(b.neighbor[k]);
       const double xi = b.length[k];
-      const double ed = norm<D>(m.position[j] - xi_pos) - xi - theta * xi / D;
+      const double e = norm<D>(m.position[j] - xi_pos) - xi;
+      if (!bears_load(b.intact[k], e)) continue;
+      const double ed = e - theta * xi / D;
       double eb = b.back_extension[k];
       if (advance) {
         eb = b.deviatoric_extension[k] * one_minus_decay + eb * decay + beta * (ed - b.deviatoric_extension[k]);

@@ -4,6 +4,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <filesystem>
@@ -15,6 +16,7 @@
 #include "rift/io/field_writer.hpp"
 #include "rift/io/history.hpp"
 #include "rift/pd/dynamic_relaxation.hpp"
+#include "rift/pd/interface_outcome.hpp"
 #include "rift/pd/stress.hpp"
 #include "rift/run/mpm_runner.hpp"
 #include "rift/run/simulation.hpp"
@@ -112,6 +114,18 @@ Plan check_dim(const scene::Scene& s, std::ostream& out) {
   out << ") -> history.csv";
   for (const auto& r : s.output.reactions) out << ", reaction on " << r;
   out << "\n";
+  if (!s.interfaces.empty()) {
+    const auto& ib = p.model.interface_bonds;
+    for (std::size_t k = 0; k < s.interfaces.size(); ++k) {
+      const auto& f = s.interfaces[k];
+      const auto across = std::count(ib.interface.begin(), ib.interface.end(), static_cast<std::uint16_t>(k)) / 2;
+      std::snprintf(line, sizeof line,
+                    "interface %zu    %ld bonds across; tension at stretch %g, shear at %g MPa + %g sigma_n; outcome -> "
+                    "crossed/dilated_interface_%zu columns of history.csv\n",
+                    k, long(across), f.critical_stretch, f.cohesion / 1e6, f.friction_coefficient, k);
+      out << line;
+    }
+  }
   if (!probes.empty()) out << "             damage at " << probes.size() << " probes -> damage_probe_0... columns of history.csv\n";
   if (D == 2 && s.output.damage_image) out << "             final damage image -> damage.png\n";
   if (s.output.damage_histogram) out << "             final damage histogram (intervals of 0.1) -> damage_histogram.csv + .png\n";
@@ -188,6 +202,9 @@ Result run_dim(const scene::Scene& s, const Options& o) {
       columns.push_back("pressure_borehole_" + std::to_string(k));
       columns.push_back("cavity_volume_borehole_" + std::to_string(k));
     }
+  for (std::size_t k = 0; k < s.interfaces.size(); ++k)
+    for (const char* q : {"crossed", "dilated", "crossing_distance", "opened_length"})
+      columns.push_back(std::string(q) + "_interface_" + std::to_string(k));
   const char* comp[3] = {"x", "y", "z"};
   for (const auto& r : p.loads.reaction_names())
     for (int k = 0; k < D; ++k) columns.push_back("reaction_" + r + "_" + comp[k]);
@@ -211,6 +228,8 @@ Result run_dim(const scene::Scene& s, const Options& o) {
     }
     for (auto i : probes) row.push_back(m.damage[i]);
     for (auto c : injected) row.insert(row.end(), {m.fluid_network.pressure[c], m.fluid_network.cavity_volume[c]});
+    for (const auto& o : pd::classify_interfaces<D>(m))
+      row.insert(row.end(), {double(o.crossed), double(o.dilated), o.crossing_distance, o.opened_length});
     for (const auto& r : p.loads.reactions(m))
       for (int k = 0; k < D; ++k) row.push_back(r[k]);
     row.insert(row.end(), extra.begin(), extra.end());
@@ -267,6 +286,13 @@ Result run_dim(const scene::Scene& s, const Options& o) {
   for (double d : m.damage) res.max_damage = std::max(res.max_damage, d);
   res.steps = p.steps;
   res.time = m.time;
+  const auto outcomes = pd::classify_interfaces<D>(m);
+  for (std::size_t k = 0; k < outcomes.size(); ++k) {
+    const auto& o = outcomes[k];
+    res.interface_outcomes.push_back(o.name());
+    res.notes.push_back(fmt::format("interface {}: {} (broken rock up to {:.3g} mm past it, open and wet along {:.3g} mm of it)", k, o.name(),
+                                    1e3 * o.crossing_distance, 1e3 * o.opened_length));
+  }
   progress.finish(p.steps, m.time, res.final_energy.broken_fraction);
   if (s.output.damage_histogram) {
     std::string png = res.output_dir + "/damage_histogram.png", reason;

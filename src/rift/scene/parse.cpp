@@ -337,6 +337,22 @@ void parse_cracks(R& root, Scene& s) {
   });
 }
 
+void parse_interfaces(R& root, Scene& s) {
+  for_each_entry(root, "interfaces", s.file, [&](R& r, std::size_t) {
+    if (s.method != Method::peridynamics) r.fail("points", "interfaces (pre-existing fractures) are for peridynamics (method = \"peridynamics\")");
+    Interface f;
+    f.where = r.where();
+    f.points = point_list(r, "points", s.dimension, s.dimension == 2 ? 2 : 3);
+    if (s.dimension == 2 && f.points.size() != 2)
+      r.fail("points", "a 2D interface is one straight segment: give its two end points");
+    f.critical_stretch = r.positive("critical_stretch", r.required_number("critical_stretch", "bond stretch at which the interface parts in tension (below the rock's s00)"));
+    f.cohesion = r.non_negative("cohesion", r.number("cohesion", 0.0));
+    f.friction_coefficient = r.non_negative("friction_coefficient", r.required_number("friction_coefficient", "Coulomb friction coefficient mu of the interface (0.89 in Zhou et al. 2008)"));
+    r.finish({"points", "critical_stretch", "cohesion", "friction_coefficient"});
+    s.interfaces.push_back(f);
+  });
+}
+
 void parse_boreholes(R& root, Scene& s) {
   for_each_entry(root, "boreholes", s.file, [&](R& r, std::size_t) {
     if (s.method != Method::peridynamics) r.fail("region", "boreholes are for peridynamics (method = \"peridynamics\")");
@@ -631,6 +647,7 @@ Scene parse_table(const toml::table& tbl, const std::string& file) {
   parse_bodies(root, s);
   parse_cracks(root, s);
   parse_boreholes(root, s);
+  parse_interfaces(root, s);
   parse_boundaries(root, s);
   parse_in_situ_stress(root, s);
   parse_initial_velocity(root, s);
@@ -639,7 +656,7 @@ Scene parse_table(const toml::table& tbl, const std::string& file) {
   parse_mpm(root, s);
   parse_crack_growth(root, s);
   parse_output(root, s);
-  root.finish({"scene", "materials", "regions", "bodies", "cracks", "boreholes", "boundaries", "in_situ_stress", "initial_velocity",
+  root.finish({"scene", "materials", "regions", "bodies", "cracks", "boreholes", "interfaces", "boundaries", "in_situ_stress", "initial_velocity",
                "solver", "contact", "mpm", "crack_growth", "output"});
   return s;
 }

@@ -88,6 +88,20 @@ struct Crack {
   TimeFunction pressure_time;
 };
 
+/// Peridynamics: a pre-existing fracture (a joint, a bedding plane, the paper sheet of Zhou et al.
+/// 2008), a straight segment in 2D or a planar polygon in 3D. The bonds that cross it stay bonds
+/// but follow an interface law (pd/interface_law.hpp): they fail in tension past `critical_stretch`
+/// and in shear when the shear traction on the interface exceeds cohesion + friction_coefficient *
+/// (sigma_n - p); a failed interface bond bears compression only (the faces may open and close),
+/// and fluid that reaches it enters.
+struct Interface {
+  SourceLocation where;
+  std::vector<Point3> points;
+  double critical_stretch = 0.0;      // tension: the bond stretch at which the interface parts
+  double cohesion = 0.0;              // tau_0, Pa
+  double friction_coefficient = 0.0;  // mu
+};
+
 /// Peridynamics: a borehole (or perforation, or any cavity) given by a region. The bodies' lattice
 /// sites inside it hold fluid instead of material, at `pressure` times its time function; the bonds
 /// from the material to those sites carry it (pd/crack_pressure.hpp).
@@ -214,6 +228,7 @@ struct Scene {
   std::vector<Body> bodies;
   std::vector<Crack> cracks;
   std::vector<Borehole> boreholes;
+  std::vector<Interface> interfaces;
   std::vector<Boundary> boundaries;
   InSituStress in_situ;
   std::vector<InitialVelocity> initial_velocities;

@@ -1,0 +1,150 @@
+// Pre-existing fractures (scene::Interface: a joint, a bedding plane, the paper sheet cast into the
+// blocks of Zhou et al. 2008). The bonds that cross one keep the rock's stiffness until the
+// interface law fails; then they bear compression only (bonds.hpp, bond_interface_failed): the
+// faces may open and close again, and the fluid that reaches them enters (fluid_network.hpp).
+// The law of bond i-j, evaluated before each force evaluation with the stresses of the last one:
+//   tension: its stretch exceeds the interface's critical stretch (the rock's s0 still applies);
+//   shear, Mohr-Coulomb (the thesis' EQ 4.1-4.2): |tau| > tau_0 + mu (sigma_n - p), with the
+//   traction t = sigma n of the mean bond-pair stress of i and j (stress.hpp), sigma_n = -n . t the
+//   normal compression, tau = t - (n . t) n, and p the pressure of the fluid at either end (zero
+//   where none reaches).
+// Both ends evaluate the same symmetric test, so each row breaks its own copy of the bond.
+#pragma once
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <stdexcept>
+#include <vector>
+
+#include "rift/core/error.hpp"
+#include "rift/pd/model.hpp"
+#include "rift/pd/stress.hpp"
+#include "rift/parallel/team.hpp"
+#include "rift/scene/scene.hpp"
+
+namespace rift::pd {
+
+namespace interface_detail {
+inline std::array<double, 3> minus(const Point3& a, const Point3& b) { return {a[0] - b[0], a[1] - b[1], a[2] - b[2]}; }
+inline double dot3(const std::array<double, 3>& a, const std::array<double, 3>& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+inline std::array<double, 3> cross3(const std::array<double, 3>& a, const std::array<double, 3>& b) {
+  return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
+}
+inline std::array<double, 3> unit(std::array<double, 3> a) {
+  const double l = std::sqrt(dot3(a, a));
+  for (auto& x : a) x /= l;
+  return a;
+}
+}  // namespace interface_detail
+
+/// The plane, axes and law of a scene interface. 2D: the normal is the segment's direction turned
+/// by +90 degrees; 3D: the polygon's normal by Newell's method, the tangent along its first edge.
+inline InterfaceLaw make_interface_law(const scene::Interface& f, int dimension) {
+  using namespace interface_detail;
+  InterfaceLaw law;
+  law.point = f.points[0];
+  law.polygon = f.points;
+  law.critical_stretch = f.critical_stretch;
+  law.cohesion = f.cohesion;
+  law.friction_coefficient = f.friction_coefficient;
+  law.tangent = unit(minus(f.points[1], f.points[0]));
+  if (dimension == 2) {
+    law.normal = {-law.tangent[1], law.tangent[0], 0.0};
+    law.binormal = {0.0, 0.0, 1.0};
+    law.length = std::sqrt(dot3(minus(f.points[1], f.points[0]), minus(f.points[1], f.points[0])));
+  } else {
+    std::array<double, 3> n{0, 0, 0};
+    for (std::size_t i = 0; i < f.points.size(); ++i) {
+      const auto& a = f.points[i];
+      const auto& b = f.points[(i + 1) % f.points.size()];
+      n[0] += (a[1] - b[1]) * (a[2] + b[2]);
+      n[1] += (a[2] - b[2]) * (a[0] + b[0]);
+      n[2] += (a[0] - b[0]) * (a[1] + b[1]);
+    }
+    law.normal = unit(n);
+    law.binormal = cross3(law.normal, law.tangent);
+  }
+  return law;
+}
+
+/// Laws of the scene's interfaces, the particles with bonds across one, and the side of each
+/// interface the fluid sources are on (the mean position of the particles with pressure bonds).
+template <int D>
+void prepare_interfaces(const scene::Scene& s, Model<D>& m) {
+  InterfaceBonds& ib = m.interface_bonds;
+  ib.laws.clear();
+  for (const auto& f : s.interfaces) ib.laws.push_back(make_interface_law(f, D));
+  ib.particles.clear();
+  if (ib.offset.empty()) return;
+  for (std::size_t i = 0; i < m.size(); ++i)
+    if (ib.offset[i + 1] > ib.offset[i]) ib.particles.push_back(static_cast<std::int32_t>(i));
+  std::array<double, 3> centre{0, 0, 0};
+  std::size_t count = 0;
+  const CrackBonds& w = m.crack_bonds;
+  for (std::size_t i = 0; i + 1 < w.offset.size(); ++i)
+    if (w.offset[i + 1] > w.offset[i]) {
+      for (int k = 0; k < D; ++k) centre[k] += m.reference_position[i][k];
+      ++count;
+    }
+  for (std::size_t f = 0; f < ib.laws.size(); ++f) {
+    auto& law = ib.laws[f];
+    if (count == 0) continue;
+    std::array<double, 3> c = centre;
+    for (auto& x : c) x /= double(count);
+    const double side = interface_detail::dot3(interface_detail::minus(c, law.point), law.normal);
+    law.near_side = side > 0.0 ? 1 : side < 0.0 ? -1 : 0;
+  }
+}
+
+/// The pressure of the fluid at particle i (0 where none reaches).
+template <int D>
+double pore_pressure(const Model<D>& m, std::size_t i) {
+  const FluidNetwork& f = m.fluid_network;
+  if (f.source.empty() || f.source[i] < 0) return 0.0;
+  return f.pressure[static_cast<std::size_t>(f.source[i])];
+}
+
+/// Fails the intact bonds across interfaces whose law is exceeded (see the top of this file).
+template <int D>
+void apply_interface_law(Model<D>& m) {
+  using namespace interface_detail;
+  InterfaceBonds& ib = m.interface_bonds;
+  if (ib.empty()) return;
+  Bonds& b = m.bonds;
+  const auto& rows = ib.particles;
+  std::vector<std::array<double, 9>> stress(rows.size());
+#pragma omp parallel for if(rift::parallel::worth_a_team(rows.size())) schedule(static)
+  for (std::size_t r = 0; r < rows.size(); ++r) {
+    double s[3][3];
+    bond_pair_stress<D>(m, static_cast<std::size_t>(rows[r]), s);
+    for (int p = 0; p < 3; ++p)
+      for (int q = 0; q < 3; ++q) stress[r][3 * p + q] = 0.5 * (s[p][q] + s[q][p]);
+  }
+#pragma omp parallel for if(rift::parallel::worth_a_team(rows.size())) schedule(static)
+  for (std::size_t r = 0; r < rows.size(); ++r) {
+    const auto i = static_cast<std::size_t>(rows[r]);
+    if (!m.constants_of(i).breakable) continue;
+    for (auto q = ib.offset[i]; q < ib.offset[i + 1]; ++q) {
+      const auto k = static_cast<std::size_t>(ib.slot[static_cast<std::size_t>(q)]);
+      if (b.intact[k] != bond_intact) continue;
+      const auto j = static_cast<std::size_t>(b.neighbor[k]);
+      const InterfaceLaw& law = ib.laws[ib.interface[static_cast<std::size_t>(q)]];
+      const double stretch = (norm<D>(m.position[j] - m.position[i]) - b.length[k]) / b.length[k];
+      bool fails = stretch > law.critical_stretch;
+      if (!fails) {
+        // the mirror bond j-i crosses the same interface, so j is in the list
+        const auto rj = static_cast<std::size_t>(std::lower_bound(rows.begin(), rows.end(), static_cast<std::int32_t>(j)) - rows.begin());
+        std::array<double, 3> t{0, 0, 0};
+        for (int p = 0; p < 3; ++p)
+          for (int c = 0; c < 3; ++c) t[p] += 0.5 * (stress[r][3 * p + c] + stress[rj][3 * p + c]) * law.normal[c];
+        const double tn = dot3(t, law.normal);
+        std::array<double, 3> shear{t[0] - tn * law.normal[0], t[1] - tn * law.normal[1], t[2] - tn * law.normal[2]};
+        const double sigma_n = -tn, p = std::max(pore_pressure<D>(m, i), pore_pressure<D>(m, j));
+        fails = std::sqrt(dot3(shear, shear)) > law.cohesion + law.friction_coefficient * std::max(sigma_n - p, 0.0);
+      }
+      if (fails) b.intact[k] = bond_interface_failed;
+    }
+  }
+}
+
+}  // namespace rift::pd

@@ -1,0 +1,118 @@
+// What a hydraulic fracture did at a pre-existing fracture, read off the bonds as Zhou et al. (2008)
+// read their cut blocks (crossed, dilated, arrested):
+//   crossed: a rock bond (not one across the interface) is broken on the far side of the interface
+//     from the fluid sources, at least `crossing_depth` horizons from its plane and within its
+//     extent: the fracture goes on beyond it;
+//   dilated: failed interface bonds that the fluid reaches and that are open, their normal opening
+//     above the interface's critical stretch times the bond length, span at least `dilation_span`
+//     horizons along the interface: the fluid has entered and opened it;
+//   arrested: the interface failed (or rock broke within crossing_depth of it) but neither holds;
+//   not reached: nothing broke at the interface.
+// An interface with no fluid source in the scene has no far side: only "dilated" can be read.
+#pragma once
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <string>
+#include <vector>
+
+#include "rift/geometry/precrack.hpp"
+#include "rift/pd/interface_law.hpp"
+#include "rift/pd/model.hpp"
+
+namespace rift::pd {
+
+struct InterfaceOutcome {
+  bool reached = false, crossed = false, dilated = false;
+  double crossing_distance = 0.0;  // the farthest broken rock bond past the plane, within the extent, m
+  double opened_length = 0.0;      // span of the open, wet failed interface bonds along the interface, m
+
+  std::string name() const {
+    if (crossed && dilated) return "crossed+dilated";
+    if (crossed) return "crossed";
+    if (dilated) return "dilated";
+    return reached ? "arrested" : "not reached";
+  }
+};
+
+inline constexpr double crossing_depth = 2.0;  // horizons past the plane
+inline constexpr double dilation_span = 3.0;   // horizons along the interface
+
+template <int D>
+std::vector<InterfaceOutcome> classify_interfaces(const Model<D>& m) {
+  using namespace interface_detail;
+  const InterfaceBonds& ib = m.interface_bonds;
+  std::vector<InterfaceOutcome> out(ib.laws.size());
+  if (out.empty()) return out;
+  double horizon = 0.0;
+  for (const auto& body : m.bodies) horizon = std::max(horizon, body.constants.horizon);
+  const Bonds& b = m.bonds;
+  const FluidNetwork& net = m.fluid_network;
+  auto wet = [&](std::size_t i) { return !net.source.empty() && net.source[i] >= 0; };
+  auto point_of = [&](const Vec<D>& a, const Vec<D>& c) {
+    Point3 p{0, 0, 0};
+    for (int k = 0; k < D; ++k) p[k] = 0.5 * (a[k] + c[k]);
+    return p;
+  };
+  std::vector<geometry::PreCrack> planes;
+  for (const auto& law : ib.laws) planes.emplace_back(D, law.polygon);
+  // within the extent: the foot of the point on the plane lies on the segment / in the polygon
+  auto within_extent = [&](std::size_t f, const Point3& x, double d) {
+    const auto& law = ib.laws[f];
+    if constexpr (D == 2) {
+      const double t = dot3(minus(x, law.point), law.tangent);
+      return t >= 0.0 && t <= law.length;
+    } else {
+      Point3 through{x[0] - 2.0 * d * law.normal[0], x[1] - 2.0 * d * law.normal[1], x[2] - 2.0 * d * law.normal[2]};
+      return planes[f].cuts(x, through);
+    }
+  };
+  // crossed, and reached by rock broken near the plane
+  for (std::size_t i = 0; i < m.size(); ++i)
+    for (auto k = b.offset[i]; k < b.offset[i + 1]; ++k) {
+      const auto j = static_cast<std::size_t>(b.neighbor[k]);
+      if (j < i || b.intact[k] != bond_broken) continue;
+      const Point3 x = point_of(m.reference_position[i], m.reference_position[j]);
+      for (std::size_t f = 0; f < out.size(); ++f) {
+        const auto& law = ib.laws[f];
+        const double d = dot3(minus(x, law.point), law.normal);
+        if (!within_extent(f, x, d)) continue;
+        if (std::abs(d) < crossing_depth * horizon) out[f].reached = true;
+        if (law.near_side == 0 || d * law.near_side >= 0.0) continue;
+        out[f].crossing_distance = std::max(out[f].crossing_distance, std::abs(d));
+      }
+    }
+  // dilated: span of the open, wet failed interface bonds
+  std::vector<double> lo(out.size(), std::numeric_limits<double>::max()), hi(out.size(), -std::numeric_limits<double>::max());
+  std::vector<double> lo2 = lo, hi2 = hi;
+  for (std::size_t i = 0; i + 1 < ib.offset.size(); ++i)
+    for (auto q = ib.offset[i]; q < ib.offset[i + 1]; ++q) {
+      const auto k = static_cast<std::size_t>(ib.slot[static_cast<std::size_t>(q)]);
+      if (b.intact[k] == bond_intact) continue;
+      const std::size_t f = ib.interface[static_cast<std::size_t>(q)];
+      out[f].reached = true;
+      const auto j = static_cast<std::size_t>(b.neighbor[k]);
+      if (!wet(i) || !wet(j)) continue;
+      const auto& law = ib.laws[f];
+      Point3 xi{0, 0, 0}, u{0, 0, 0};
+      for (int c = 0; c < D; ++c) {
+        xi[c] = m.reference_position[j][c] - m.reference_position[i][c];
+        u[c] = (m.position[j][c] - m.reference_position[j][c]) - (m.position[i][c] - m.reference_position[i][c]);
+      }
+      const double opening = dot3(u, law.normal) * (dot3(xi, law.normal) > 0.0 ? 1.0 : -1.0);
+      if (opening <= law.critical_stretch * b.length[k]) continue;
+      const Point3 x = point_of(m.reference_position[i], m.reference_position[j]);
+      const double t = dot3(minus(x, law.point), law.tangent), t2 = dot3(minus(x, law.point), law.binormal);
+      lo[f] = std::min(lo[f], t), hi[f] = std::max(hi[f], t);
+      lo2[f] = std::min(lo2[f], t2), hi2[f] = std::max(hi2[f], t2);
+    }
+  for (std::size_t f = 0; f < out.size(); ++f) {
+    if (hi[f] >= lo[f]) out[f].opened_length = std::max(hi[f] - lo[f], D == 3 ? hi2[f] - lo2[f] : 0.0);
+    out[f].dilated = out[f].opened_length >= dilation_span * horizon;
+    out[f].crossed = out[f].crossing_distance >= crossing_depth * horizon;
+    out[f].reached = out[f].reached || out[f].crossed;
+  }
+  return out;
+}
+
+}  // namespace rift::pd

@@ -1,0 +1,202 @@
+// Pre-existing fractures ([[interfaces]], pd/interface_law.hpp): the bonds across one fail in shear
+// by Mohr-Coulomb on the interface traction and in tension past the interface's critical stretch;
+// failed, they bear compression only. The outcome reader (pd/interface_outcome.hpp) tells crossed,
+// dilated and arrested apart.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <string>
+
+#include "rift/pd/discretize.hpp"
+#include "rift/pd/fluid_network.hpp"
+#include "rift/pd/forces.hpp"
+#include "rift/pd/interface_law.hpp"
+#include "rift/pd/interface_outcome.hpp"
+#include "rift/scene/parse.hpp"
+
+namespace {
+
+using rift::operator-;
+
+constexpr double E = 10e9, nu = 0.25, spacing = 0.001, horizon = 3.015 * spacing, half = 0.02;
+
+// A 40 x 40 mm plane strain LPS block (rock that does not break), with an interface through its
+// middle from `a` to `b` and whatever `extra` adds.
+rift::scene::Scene block_with_interface(const std::string& a, const std::string& b, const std::string& law, const std::string& extra = "") {
+  const std::string text = R"([scene]
+dimension = 2
+plane = "strain"
+thickness = 0.001
+[materials.rock]
+model = "lps"
+density = 2500.0
+youngs_modulus = 10e9
+poisson_ratio = 0.25
+critical_stretch = 1.0
+[regions.block]
+shape = "box"
+min = [-0.02, -0.02]
+max = [0.02, 0.02]
+[bodies.block]
+material = "rock"
+region = "block"
+spacing = 0.001
+horizon = 3.015
+[solver]
+type = "dynamic_relaxation"
+[[interfaces]]
+points = [)" + a + ", " + b + "]\n" + law + "\n" + extra;
+  return rift::scene::parse_string(text, "interface.toml");
+}
+
+// Puts every particle at x = X + eps X (a homogeneous plane strain), evaluates the forces once with
+// breaking off (dilatations, hence stresses), then the interface law alone.
+void deform_and_apply_law(rift::pd::Model<2>& m, double exx, double eyy) {
+  for (std::size_t i = 0; i < m.size(); ++i) {
+    m.position[i][0] = m.reference_position[i][0] * (1.0 + exx);
+    m.position[i][1] = m.reference_position[i][1] * (1.0 + eyy);
+  }
+  m.bodies[0].constants.breakable = false;
+  rift::pd::compute_forces<2>(m, nullptr, 0.0);
+  m.bodies[0].constants.breakable = true;
+  rift::pd::apply_interface_law<2>(m);
+}
+
+// Interface bonds with both ends two horizons and a spacing inside the block (whole families for
+// them and for their neighbours, whose dilatations enter their stress) that `keep` accepts: how
+// many, and how many failed.
+template <class Keep>
+std::pair<int, int> bulk_interface_bonds(const rift::pd::Model<2>& m, Keep keep) {
+  const auto& ib = m.interface_bonds;
+  int all = 0, failed = 0;
+  auto inside = [&](std::size_t i) {
+    const double margin = half - 2.0 * horizon - spacing;
+    return std::abs(m.reference_position[i][0]) < margin && std::abs(m.reference_position[i][1]) < margin;
+  };
+  for (std::size_t i = 0; i + 1 < ib.offset.size(); ++i)
+    for (auto q = ib.offset[i]; q < ib.offset[i + 1]; ++q) {
+      const auto k = static_cast<std::size_t>(ib.slot[static_cast<std::size_t>(q)]);
+      const auto j = static_cast<std::size_t>(m.bonds.neighbor[k]);
+      if (!inside(i) || !inside(j) || !keep(m.reference_position[j] - m.reference_position[i])) continue;
+      ++all;
+      failed += m.bonds.intact[k] == rift::pd::bond_interface_failed;
+    }
+  return {all, failed};
+}
+
+// Mohr-Coulomb slip (the thesis' EQ 4.1-4.2, tau > tau_0 + mu sigma_n). An interface at alpha = 30
+// degrees to x under uniaxial compression S along y (plane strain: eps_yy = -S (1 - nu^2) / E,
+// eps_xx = S nu (1 + nu) / E) carries sigma_n = S cos^2 alpha and tau = S sin alpha cos alpha, so it
+// slips at S* = tau_0 / (cos alpha (sin alpha - mu cos alpha)) = 4.807 MPa for tau_0 = 1 MPa and
+// mu = 0.3. In the bulk the bond-pair stress of a homogeneous deformation is the applied one, so
+// no bond fails at 0.97 S* and every one fails at 1.03 S*.
+TEST(InterfaceLaw, SlipsWhereTheShearTractionReachesCohesionPlusFriction) {
+  const double alpha = M_PI / 6.0, tau0 = 1e6, mu = 0.3;
+  const double critical = tau0 / (std::cos(alpha) * (std::sin(alpha) - mu * std::cos(alpha)));
+  ASSERT_NEAR(critical, 4.807e6, 1e3);
+  char a[64], b[64];
+  std::snprintf(a, sizeof a, "[%.17g, %.17g]", -0.03 * std::cos(alpha), -0.03 * std::sin(alpha));
+  std::snprintf(b, sizeof b, "[%.17g, %.17g]", 0.03 * std::cos(alpha), 0.03 * std::sin(alpha));
+  for (double factor : {0.97, 1.03}) {
+    auto s = block_with_interface(a, b, "critical_stretch = 1.0\ncohesion = 1e6\nfriction_coefficient = 0.3");
+    auto m = rift::pd::discretize<2>(s);
+    const double S = factor * critical;
+    deform_and_apply_law(m, S * nu * (1 + nu) / E, -S * (1 - nu * nu) / E);
+    const auto [all, failed] = bulk_interface_bonds(m, [](const rift::Vec<2>&) { return true; });
+    ASSERT_GT(all, 100);
+    EXPECT_EQ(failed, factor < 1.0 ? 0 : all) << "at " << factor << " of the slip load";
+  }
+}
+
+// Tension: a horizontal interface under uniaxial tension S across it parts where a bond's stretch
+// passes its critical stretch s_c = 1e-4. The bonds straight across (along y) stretch most, by
+// eps_yy = S (1 - nu^2) / E, so they part at S = E s_c / (1 - nu^2) = 1.067 MPa; the shear test
+// (tau = 0 < tau_0) holds them below it.
+TEST(InterfaceLaw, PartsInTensionAtItsCriticalStretch) {
+  const double critical = E * 1e-4 / (1 - nu * nu);
+  for (double factor : {0.97, 1.03}) {
+    auto s = block_with_interface("[-0.03, 0.0]", "[0.03, 0.0]", "critical_stretch = 1e-4\ncohesion = 1e6\nfriction_coefficient = 0.89");
+    auto m = rift::pd::discretize<2>(s);
+    const double S = factor * critical;
+    deform_and_apply_law(m, -S * nu * (1 + nu) / E, S * (1 - nu * nu) / E);
+    const auto [all, failed] = bulk_interface_bonds(m, [](const rift::Vec<2>& xi) { return std::abs(xi[0]) < 1e-9; });
+    ASSERT_GT(all, 20);
+    EXPECT_EQ(failed, factor < 1.0 ? 0 : all) << "at " << factor << " of the tensile strength";
+    const auto [all_bonds, failed_any] = bulk_interface_bonds(m, [](const rift::Vec<2>&) { return true; });
+    EXPECT_LT(failed_any, all_bonds) << "bonds at a slant stretch less and hold";
+  }
+}
+
+// A failed interface bears compression and nothing in tension: the upper half moved rigidly 1 um
+// away from the lower one feels no force once the interface has failed (it does while intact); moved
+// 1 um into it, it feels exactly the force of the intact interface (every bond across is shorter).
+TEST(InterfaceLaw, FailedInterfaceBearsCompressionOnly) {
+  auto net_force_on_upper_half = [](bool failed, double shift) {
+    auto s = block_with_interface("[-0.03, 0.0]", "[0.03, 0.0]", "critical_stretch = 1.0\ncohesion = 1e9\nfriction_coefficient = 0.0");
+    auto m = rift::pd::discretize<2>(s);
+    if (failed)
+      for (auto k : m.interface_bonds.slot) m.bonds.intact[static_cast<std::size_t>(k)] = rift::pd::bond_interface_failed;
+    for (std::size_t i = 0; i < m.size(); ++i)
+      if (m.reference_position[i][1] > 0) m.position[i][1] += shift;
+    rift::pd::compute_forces<2>(m, nullptr, 0.0);
+    double fy = 0.0;
+    for (std::size_t i = 0; i < m.size(); ++i)
+      if (m.reference_position[i][1] > 0) fy += m.force[i][1] * m.volume[i];
+    return fy;
+  };
+  EXPECT_LT(net_force_on_upper_half(false, 1e-6), -1.0) << "intact: pulled back";
+  EXPECT_NEAR(net_force_on_upper_half(true, 1e-6), 0.0, 1e-12);  // round-off of the rigid shift only
+  const double pushed = net_force_on_upper_half(false, -1e-6);
+  EXPECT_GT(pushed, 1.0);
+  EXPECT_EQ(net_force_on_upper_half(true, -1e-6), pushed);
+}
+
+// The outcome reader. A borehole at (0, -12 mm) below a horizontal interface y = 0 (between lattice
+// rows); a crack is made by hand from the borehole up the line x = 0 (rock bonds across it broken):
+//   stopped 8 mm below the interface -> not reached; up to it, the interface bonds next to it failed -> arrested;
+//   on to y = 10 mm -> crossed (9.5 mm, 3 horizons past the plane; 2 are needed);
+//   up to it, the interface bonds failed over |x| < 8 mm, the fluid let in and the upper half lifted
+//   5 um -> dilated (open and wet along 17 mm, more than 3 horizons).
+TEST(InterfaceOutcome, CrossedDilatedArrestedFromTheBonds) {
+  const std::string hole = R"([regions.hole]
+shape = "cylinder"
+center = [0.0, -0.012]
+radius = 0.0015
+[[boreholes]]
+region = "hole"
+pressure = 1e6
+)";
+  auto outcome = [&](double crack_top, double failed_half_length, double lift) {
+    auto s = block_with_interface("[-0.03, 0.0]", "[0.03, 0.0]", "critical_stretch = 1e-4\nfriction_coefficient = 0.89", hole);
+    auto m = rift::pd::discretize<2>(s);
+    auto& b = m.bonds;
+    for (std::size_t i = 0; i < m.size(); ++i)
+      for (auto k = b.offset[i]; k < b.offset[i + 1]; ++k) {
+        const auto j = static_cast<std::size_t>(b.neighbor[k]);
+        const auto &p = m.reference_position[i], &q = m.reference_position[j];
+        const double y = 0.5 * (p[1] + q[1]);
+        if (p[0] * q[0] < 0 && y > -0.012 && y < crack_top) b.intact[k] = rift::pd::bond_broken;
+      }
+    const auto& ib = m.interface_bonds;
+    for (std::size_t i = 0; i + 1 < ib.offset.size(); ++i)
+      for (auto q = ib.offset[i]; q < ib.offset[i + 1]; ++q)
+        if (std::abs(m.reference_position[i][0]) < failed_half_length)
+          b.intact[static_cast<std::size_t>(ib.slot[static_cast<std::size_t>(q)])] = rift::pd::bond_interface_failed;
+    for (std::size_t i = 0; i < m.size(); ++i)
+      if (m.reference_position[i][1] > 0.0) m.position[i][1] += lift;
+    m.fluid_network.pressure.assign(m.fluid_network.dry.size(), 1e6);
+    rift::pd::update_fluid_network<2>(m);
+    return rift::pd::classify_interfaces<2>(m).at(0);
+  };
+  EXPECT_EQ(outcome(-0.008, 0.0, 0.0).name(), "not reached");
+  EXPECT_EQ(outcome(0.0, 0.002, 0.0).name(), "arrested");
+  const auto crossed = outcome(0.010, 0.002, 0.0);
+  EXPECT_EQ(crossed.name(), "crossed");
+  EXPECT_NEAR(crossed.crossing_distance, 0.0095, 0.001);
+  const auto dilated = outcome(0.0, 0.008, 5e-6);
+  EXPECT_EQ(dilated.name(), "dilated");
+  EXPECT_NEAR(dilated.opened_length, 0.017, 0.0011);  // failed rows |x| <= 7.5 mm, bonds reaching 2 mm on: midpoints to 8.5 mm
+}
+
+}  // namespace
