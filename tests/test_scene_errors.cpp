@@ -115,11 +115,11 @@ const Case cases[] = {
      "boreholes[0].time", "time = { function"},
     {"borehole that touches no material", "", "\n[regions.far]\nshape = \"box\"\nmin = [1.0, 1.0]\nmax = [1.1, 1.1]\n[[boreholes]]\nregion = \"far\"\npressure = 1e6\n",
      "boreholes[0].region", "[[boreholes]]"},
-    {"interface bent in 2D", "", "\n[[interfaces]]\npoints = [[0.0, 0.005], [0.005, 0.006], [0.01, 0.005]]\ncritical_stretch = 1e-4\nfriction_coefficient = 0.89\n",
+    {"interface bent in 2D", "", "\n[[interfaces]]\npoints = [[0.0, 0.005], [0.005, 0.006], [0.01, 0.005]]\ntensile_strength = 1e6\nfriction_coefficient = 0.89\n",
      "interfaces[0].points", "points = [[0.0, 0.005]"},
-    {"interface without a friction coefficient", "", "\n[[interfaces]]\npoints = [[0.0, 0.005], [0.01, 0.005]]\ncritical_stretch = 1e-4\n",
+    {"interface without a friction coefficient", "", "\n[[interfaces]]\npoints = [[0.0, 0.005], [0.01, 0.005]]\ntensile_strength = 1e6\n",
      "interfaces[0].friction_coefficient", ""},
-    {"interface with negative cohesion", "", "\n[[interfaces]]\npoints = [[0.0, 0.005], [0.01, 0.005]]\ncritical_stretch = 1e-4\ncohesion = -1.0\nfriction_coefficient = 0.5\n",
+    {"interface with negative cohesion", "", "\n[[interfaces]]\npoints = [[0.0, 0.005], [0.01, 0.005]]\ntensile_strength = 1e6\ncohesion = -1.0\nfriction_coefficient = 0.5\n",
      "interfaces[0].cohesion", "cohesion = -1.0"},
 };
 
@@ -239,7 +239,7 @@ const MpmCase mpm_cases[] = {
     {"J area term not a boolean", "cell_size = 0.001", "cell_size = 0.001\nj_area_term = \"yes\"", "mpm.j_area_term"},
     {"pressure on an MPM crack", "[solver]", "[[cracks]]\npoints = [[0.0205, 0.0025], [0.01, 0.0025]]\npressure = 1e6\n[solver]", "cracks[0].pressure"},
     {"borehole in mpm", "[solver]", "[[boreholes]]\nregion = \"clamp\"\n[solver]", "boreholes[0].region"},
-    {"interface in mpm", "[solver]", "[[interfaces]]\npoints = [[0.0, 0.0025], [0.01, 0.0025]]\ncritical_stretch = 1e-4\nfriction_coefficient = 0.5\n[solver]", "interfaces[0].points"},
+    {"interface in mpm", "[solver]", "[[interfaces]]\npoints = [[0.0, 0.0025], [0.01, 0.0025]]\ntensile_strength = 1e6\nfriction_coefficient = 0.5\n[solver]", "interfaces[0].points"},
     {"in-situ stress in mpm", "[solver]", "[in_situ_stress]\nsigma_H = -1e6\nsigma_h = -1e6\n[solver]", "in_situ_stress.sigma_H"},
     {"unknown mode partition", "cell_size = 0.001", "cell_size = 0.001\nmode_partition = \"displacement\"", "mpm.mode_partition"},
     {"traction layer thinner than a row of points", "type = \"fixed\"",

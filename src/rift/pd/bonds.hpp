@@ -63,7 +63,7 @@ struct InterfaceLaw {
   std::array<double, 3> tangent{}, binormal{};  // in-plane axes (2D: binormal is z)
   std::vector<std::array<double, 3>> polygon;    // 2D: the segment's end points; 3D: the polygon
   double length = 0.0;                           // 2D: the segment's length
-  double critical_stretch = 0.0, cohesion = 0.0, friction_coefficient = 0.0;
+  double tensile_strength = 0.0, cohesion = 0.0, friction_coefficient = 0.0;  // Pa, Pa, -
   int near_side = 0;  // the side (sign of (x - point) . normal) of the fluid sources; 0 without
 };
 

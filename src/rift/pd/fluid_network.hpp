@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "rift/pd/influence.hpp"
+#include "rift/pd/interface_law.hpp"
 #include "rift/parallel/ordered_sum.hpp"
 #include "rift/pd/model.hpp"
 #include "rift/parallel/team.hpp"
@@ -59,17 +60,29 @@ int pressure_bond_source(const Model<D>& m, std::int64_t k, std::size_t i) {
   return f.source[i];
 }
 
+/// Whether bond k = i-j lets fluid through: broken, or a failed interface whose faces are apart
+/// (positive normal opening; a closed interface, or one that only slides, keeps the fluid out).
+template <int D>
+bool carries_fluid(const Model<D>& m, std::int64_t k, std::size_t i, std::size_t j) {
+  const auto state = m.bonds.intact[static_cast<std::size_t>(k)];
+  if (state == bond_broken) return true;
+  if (state != bond_interface_failed) return false;
+  const InterfaceLaw* law = interface_of_bond<D>(m, i, k);
+  return law && interface_opening<D>(m, i, j, *law) > 0.0;
+}
+
 /// Labels every particle with the pressure source whose fluid reaches it (-1: none), by a search
 /// from the particles next to a source (pressure bonds of a borehole or a pressurized crack) across
-/// broken bonds and the bonds dry pre-cracks cut. Runs again only when bonds broke.
+/// the bonds that carry fluid and the bonds dry pre-cracks cut. Runs again when bonds broke, and
+/// every time while failed interfaces may open or close.
 template <int D>
 void update_fluid_network(Model<D>& m) {
   FluidNetwork& f = m.fluid_network;
   const Bonds& b = m.bonds;
   const CrackBonds& w = m.crack_bonds;
-  const auto broken = static_cast<std::int64_t>(b.intact.size()) -
-                      static_cast<std::int64_t>(std::count(b.intact.begin(), b.intact.end(), bond_intact));
-  if (broken == f.broken_bonds && !f.source.empty()) return;
+  std::int64_t broken = 0, interface_failed = 0;
+  for (const auto state : b.intact) broken += state != bond_intact, interface_failed += state == bond_interface_failed;
+  if (broken == f.broken_bonds && interface_failed == 0 && !f.source.empty()) return;
   f.broken_bonds = broken;
   const std::size_t n = m.size();
   f.source.assign(n, -1);
@@ -89,7 +102,7 @@ void update_fluid_network(Model<D>& m) {
   for (std::size_t q = 0; q < queue.size(); ++q) {
     const std::size_t i = queue[q];
     for (auto k = b.offset[i]; k < b.offset[i + 1]; ++k)
-      if (b.intact[k] != bond_intact) reach(i, static_cast<std::size_t>(b.neighbor[k]));
+      if (carries_fluid<D>(m, k, i, static_cast<std::size_t>(b.neighbor[k]))) reach(i, static_cast<std::size_t>(b.neighbor[k]));
     for (auto k = w.offset[i]; k < w.offset[i + 1]; ++k)
       if (f.dry[w.source[static_cast<std::size_t>(k)]] && w.neighbor[k] >= 0) reach(i, static_cast<std::size_t>(w.neighbor[k]));
   }
@@ -103,8 +116,8 @@ double broken_bond_coefficient(const Model<D>& m, const MaterialConstants& c, st
   return D * influence(c.influence, xi, c.horizon) * m.bonds.volume[k] * (1.0 / whole[i] + 1.0 / whole[j]);
 }
 
-/// Calls f(k, j, coefficient) for each broken bond k = i-j whose two ends the fluid of source s
-/// reaches, with its pressure coefficient d omega V_j (1/m_i + 1/m_j).
+/// Calls f(k, j, coefficient) for each bond k = i-j that carries fluid (carries_fluid) and whose two
+/// ends the fluid of source s reaches, with its pressure coefficient d omega V_j (1/m_i + 1/m_j).
 template <int D, class F>
 void for_each_network_bond(const Model<D>& m, std::size_t i, int s, F&& f) {
   const FluidNetwork& net = m.fluid_network;
@@ -112,9 +125,9 @@ void for_each_network_bond(const Model<D>& m, std::size_t i, int s, F&& f) {
   const Bonds& b = m.bonds;
   const auto& c = m.constants_of(i);
   for (auto k = b.offset[i]; k < b.offset[i + 1]; ++k) {
-    if (b.intact[k] == bond_intact) continue;  // broken bonds and failed interfaces carry the fluid
+    if (b.intact[k] == bond_intact) continue;
     const auto j = static_cast<std::size_t>(b.neighbor[k]);
-    if (net.source[j] == s) f(k, j, broken_bond_coefficient<D>(m, c, k, i, j));
+    if (net.source[j] == s && carries_fluid<D>(m, k, i, j)) f(k, j, broken_bond_coefficient<D>(m, c, k, i, j));
   }
 }
 

@@ -2,13 +2,16 @@
 // blocks of Zhou et al. 2008). The bonds that cross one keep the rock's stiffness until the
 // interface law fails; then they bear compression only (bonds.hpp, bond_interface_failed): the
 // faces may open and close again, and the fluid that reaches them enters (fluid_network.hpp).
-// The law of bond i-j, evaluated before each force evaluation with the stresses of the last one:
-//   tension: its stretch exceeds the interface's critical stretch (the rock's s0 still applies);
-//   shear, Mohr-Coulomb (the thesis' EQ 4.1-4.2): |tau| > tau_0 + mu (sigma_n - p), with the
-//   traction t = sigma n of the mean bond-pair stress of i and j (stress.hpp), sigma_n = -n . t the
-//   normal compression, tau = t - (n . t) n, and p the pressure of the fluid at either end (zero
-//   where none reaches).
-// Both ends evaluate the same symmetric test, so each row breaks its own copy of the bond.
+// The law of bond i-j, evaluated before each force evaluation with the stresses of the last one, on
+// the traction t = sigma n of the mean bond-pair stress of i and j (stress.hpp), its normal
+// compression sigma_n = -n . t, its shear tau = t - (n . t) n, and p the pressure of the fluid at
+// either end (zero where none reaches):
+//   tension: the effective normal stress is a tension above the interface's strength,
+//     p - sigma_n > T (a stress, not a bond stretch: in plane strain a bond can stretch under a
+//     compressive stress, by the Poisson effect of the other in-situ stresses);
+//   shear, Mohr-Coulomb (the thesis' EQ 4.1-4.2): |tau| > tau_0 + mu max(sigma_n - p, 0).
+// The rock's own critical stretch still applies to these bonds. Both ends evaluate the same
+// symmetric test, so each row breaks its own copy of the bond.
 #pragma once
 #include <algorithm>
 #include <array>
@@ -44,7 +47,7 @@ inline InterfaceLaw make_interface_law(const scene::Interface& f, int dimension)
   InterfaceLaw law;
   law.point = f.points[0];
   law.polygon = f.points;
-  law.critical_stretch = f.critical_stretch;
+  law.tensile_strength = f.tensile_strength;
   law.cohesion = f.cohesion;
   law.friction_coefficient = f.friction_coefficient;
   law.tangent = unit(minus(f.points[1], f.points[0]));
@@ -96,6 +99,31 @@ void prepare_interfaces(const scene::Scene& s, Model<D>& m) {
   }
 }
 
+/// The law of the interface that bond k of row i crosses (nullptr for a bond across none).
+template <int D>
+const InterfaceLaw* interface_of_bond(const Model<D>& m, std::size_t i, std::int64_t k) {
+  const InterfaceBonds& ib = m.interface_bonds;
+  if (ib.empty()) return nullptr;
+  const auto first = ib.slot.begin() + ib.offset[i], last = ib.slot.begin() + ib.offset[i + 1];
+  const auto it = std::lower_bound(first, last, k);  // a row's slots ascend
+  if (it == last || *it != k) return nullptr;
+  return &ib.laws[ib.interface[static_cast<std::size_t>(it - ib.slot.begin())]];
+}
+
+/// The normal opening of the failed interface bond k = i-j: the growth of its component along the
+/// interface's normal, (y - xi) . n with n oriented from i to j; positive where the faces are apart,
+/// zero where they only slide.
+template <int D>
+double interface_opening(const Model<D>& m, std::size_t i, std::size_t j, const InterfaceLaw& law) {
+  double grown = 0.0, across = 0.0;
+  for (int c = 0; c < D; ++c) {
+    const double xi = m.reference_position[j][c] - m.reference_position[i][c];
+    grown += (m.position[j][c] - m.position[i][c] - xi) * law.normal[c];
+    across += xi * law.normal[c];
+  }
+  return across > 0.0 ? grown : -grown;
+}
+
 /// The pressure of the fluid at particle i (0 where none reaches).
 template <int D>
 double pore_pressure(const Model<D>& m, std::size_t i) {
@@ -129,20 +157,17 @@ void apply_interface_law(Model<D>& m) {
       if (b.intact[k] != bond_intact) continue;
       const auto j = static_cast<std::size_t>(b.neighbor[k]);
       const InterfaceLaw& law = ib.laws[ib.interface[static_cast<std::size_t>(q)]];
-      const double stretch = (norm<D>(m.position[j] - m.position[i]) - b.length[k]) / b.length[k];
-      bool fails = stretch > law.critical_stretch;
-      if (!fails) {
-        // the mirror bond j-i crosses the same interface, so j is in the list
-        const auto rj = static_cast<std::size_t>(std::lower_bound(rows.begin(), rows.end(), static_cast<std::int32_t>(j)) - rows.begin());
-        std::array<double, 3> t{0, 0, 0};
-        for (int p = 0; p < 3; ++p)
-          for (int c = 0; c < 3; ++c) t[p] += 0.5 * (stress[r][3 * p + c] + stress[rj][3 * p + c]) * law.normal[c];
-        const double tn = dot3(t, law.normal);
-        std::array<double, 3> shear{t[0] - tn * law.normal[0], t[1] - tn * law.normal[1], t[2] - tn * law.normal[2]};
-        const double sigma_n = -tn, p = std::max(pore_pressure<D>(m, i), pore_pressure<D>(m, j));
-        fails = std::sqrt(dot3(shear, shear)) > law.cohesion + law.friction_coefficient * std::max(sigma_n - p, 0.0);
-      }
-      if (fails) b.intact[k] = bond_interface_failed;
+      // the mirror bond j-i crosses the same interface, so j is in the list
+      const auto rj = static_cast<std::size_t>(std::lower_bound(rows.begin(), rows.end(), static_cast<std::int32_t>(j)) - rows.begin());
+      std::array<double, 3> t{0, 0, 0};
+      for (int p = 0; p < 3; ++p)
+        for (int c = 0; c < 3; ++c) t[p] += 0.5 * (stress[r][3 * p + c] + stress[rj][3 * p + c]) * law.normal[c];
+      const double tn = dot3(t, law.normal);
+      const std::array<double, 3> shear{t[0] - tn * law.normal[0], t[1] - tn * law.normal[1], t[2] - tn * law.normal[2]};
+      const double effective = -tn - std::max(pore_pressure<D>(m, i), pore_pressure<D>(m, j));  // sigma_n - p
+      const bool parts = -effective > law.tensile_strength;
+      const bool slips = std::sqrt(dot3(shear, shear)) > law.cohesion + law.friction_coefficient * std::max(effective, 0.0);
+      if (parts || slips) b.intact[k] = bond_interface_failed;
     }
   }
 }

@@ -1,11 +1,12 @@
 // What a hydraulic fracture did at a pre-existing fracture, read off the bonds as Zhou et al. (2008)
 // read their cut blocks (crossed, dilated, arrested):
-//   crossed: a rock bond (not one across the interface) is broken on the far side of the interface
-//     from the fluid sources, at least `crossing_depth` horizons from its plane and within its
-//     extent: the fracture goes on beyond it;
+//   crossed: a rock bond (not one across the interface) that the fluid reaches is broken on the far
+//     side of the interface from the fluid sources, at least `crossing_depth` horizons from its plane
+//     and within its extent: the fracture goes on beyond it (damage no fluid reaches, such as the
+//     corners of a block under in-situ stress, does not count);
 //   dilated: failed interface bonds that the fluid reaches and that are open, their normal opening
-//     above the interface's critical stretch times the bond length, span at least `dilation_span`
-//     horizons along the interface: the fluid has entered and opened it;
+//     above the rock's critical stretch times the bond length (as open as a rock bond that breaks),
+//     span at least `dilation_span` horizons along the interface: the fluid has entered and opened it;
 //   arrested: the interface failed (or rock broke within crossing_depth of it) but neither holds;
 //   not reached: nothing broke at the interface.
 // An interface with no fluid source in the scene has no far side: only "dilated" can be read.
@@ -72,13 +73,14 @@ std::vector<InterfaceOutcome> classify_interfaces(const Model<D>& m) {
     for (auto k = b.offset[i]; k < b.offset[i + 1]; ++k) {
       const auto j = static_cast<std::size_t>(b.neighbor[k]);
       if (j < i || b.intact[k] != bond_broken) continue;
+      const bool fed = wet(i) && wet(j);  // part of the fracture the fluid drives, not stray damage (block corners)
       const Point3 x = point_of(m.reference_position[i], m.reference_position[j]);
       for (std::size_t f = 0; f < out.size(); ++f) {
         const auto& law = ib.laws[f];
         const double d = dot3(minus(x, law.point), law.normal);
         if (!within_extent(f, x, d)) continue;
         if (std::abs(d) < crossing_depth * horizon) out[f].reached = true;
-        if (law.near_side == 0 || d * law.near_side >= 0.0) continue;
+        if (!fed || law.near_side == 0 || d * law.near_side >= 0.0) continue;
         out[f].crossing_distance = std::max(out[f].crossing_distance, std::abs(d));
       }
     }
@@ -94,13 +96,8 @@ std::vector<InterfaceOutcome> classify_interfaces(const Model<D>& m) {
       const auto j = static_cast<std::size_t>(b.neighbor[k]);
       if (!wet(i) || !wet(j)) continue;
       const auto& law = ib.laws[f];
-      Point3 xi{0, 0, 0}, u{0, 0, 0};
-      for (int c = 0; c < D; ++c) {
-        xi[c] = m.reference_position[j][c] - m.reference_position[i][c];
-        u[c] = (m.position[j][c] - m.reference_position[j][c]) - (m.position[i][c] - m.reference_position[i][c]);
-      }
-      const double opening = dot3(u, law.normal) * (dot3(xi, law.normal) > 0.0 ? 1.0 : -1.0);
-      if (opening <= law.critical_stretch * b.length[k]) continue;
+      const double opening = interface_opening<D>(m, i, j, law);
+      if (opening <= m.constants_of(i).critical_stretch * b.length[k]) continue;  // open as far as a rock bond breaks
       const Point3 x = point_of(m.reference_position[i], m.reference_position[j]);
       const double t = dot3(minus(x, law.point), law.tangent), t2 = dot3(minus(x, law.point), law.binormal);
       lo[f] = std::min(lo[f], t), hi[f] = std::max(hi[f], t);

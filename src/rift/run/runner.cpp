@@ -120,9 +120,9 @@ Plan check_dim(const scene::Scene& s, std::ostream& out) {
       const auto& f = s.interfaces[k];
       const auto across = std::count(ib.interface.begin(), ib.interface.end(), static_cast<std::uint16_t>(k)) / 2;
       std::snprintf(line, sizeof line,
-                    "interface %zu    %ld bonds across; tension at stretch %g, shear at %g MPa + %g sigma_n; outcome -> "
+                    "interface %zu    %ld bonds across; parts at %g MPa tension, slips at %g MPa + %g (sigma_n - p); outcome -> "
                     "crossed/dilated_interface_%zu columns of history.csv\n",
-                    k, long(across), f.critical_stretch, f.cohesion / 1e6, f.friction_coefficient, k);
+                    k, long(across), f.tensile_strength / 1e6, f.cohesion / 1e6, f.friction_coefficient, k);
       out << line;
     }
   }

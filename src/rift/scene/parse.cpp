@@ -345,10 +345,10 @@ void parse_interfaces(R& root, Scene& s) {
     f.points = point_list(r, "points", s.dimension, s.dimension == 2 ? 2 : 3);
     if (s.dimension == 2 && f.points.size() != 2)
       r.fail("points", "a 2D interface is one straight segment: give its two end points");
-    f.critical_stretch = r.positive("critical_stretch", r.required_number("critical_stretch", "bond stretch at which the interface parts in tension (below the rock's s00)"));
+    f.tensile_strength = r.non_negative("tensile_strength", r.required_number("tensile_strength", "normal tension at which the interface parts, Pa (below the rock's)"));
     f.cohesion = r.non_negative("cohesion", r.number("cohesion", 0.0));
     f.friction_coefficient = r.non_negative("friction_coefficient", r.required_number("friction_coefficient", "Coulomb friction coefficient mu of the interface (0.89 in Zhou et al. 2008)"));
-    r.finish({"points", "critical_stretch", "cohesion", "friction_coefficient"});
+    r.finish({"points", "tensile_strength", "cohesion", "friction_coefficient"});
     s.interfaces.push_back(f);
   });
 }

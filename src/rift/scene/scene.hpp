@@ -90,14 +90,14 @@ struct Crack {
 
 /// Peridynamics: a pre-existing fracture (a joint, a bedding plane, the paper sheet of Zhou et al.
 /// 2008), a straight segment in 2D or a planar polygon in 3D. The bonds that cross it stay bonds
-/// but follow an interface law (pd/interface_law.hpp): they fail in tension past `critical_stretch`
-/// and in shear when the shear traction on the interface exceeds cohesion + friction_coefficient *
-/// (sigma_n - p); a failed interface bond bears compression only (the faces may open and close),
-/// and fluid that reaches it enters.
+/// but follow an interface law (pd/interface_law.hpp): they fail when the effective normal traction
+/// on the interface is a tension above `tensile_strength`, or when the shear traction exceeds
+/// cohesion + friction_coefficient * (sigma_n - p); a failed interface bond bears compression only
+/// (the faces may open and close), and fluid enters it where it is open.
 struct Interface {
   SourceLocation where;
   std::vector<Point3> points;
-  double critical_stretch = 0.0;      // tension: the bond stretch at which the interface parts
+  double tensile_strength = 0.0;      // T, Pa: the effective normal tension at which the interface parts
   double cohesion = 0.0;              // tau_0, Pa
   double friction_coefficient = 0.0;  // mu
 };
