@@ -11,14 +11,10 @@ namespace rift::pd {
 /// States of a bond (Bonds::intact).
 inline constexpr std::uint8_t bond_broken = 0;
 inline constexpr std::uint8_t bond_intact = 1;
-/// A bond across a pre-existing fracture whose interface law failed (interface_law.hpp): it bears
-/// compression, the faces pressed on each other, and nothing in tension, the faces apart.
+/// A bond across a pre-existing fracture whose interface law failed (interface_law.hpp): no longer
+/// part of the material model; a frictional contact between its two particles instead (normal
+/// force while the faces are pressed on each other, Coulomb friction along them, none apart).
 inline constexpr std::uint8_t bond_interface_failed = 2;
-
-/// Whether a bond in `state` carries force at extension e = |y| - |xi|.
-inline bool bears_load(std::uint8_t state, double e) {
-  return state == bond_intact || (state == bond_interface_failed && e < 0.0);
-}
 
 struct Bonds {
   std::vector<std::int64_t> offset;   // size n+1; row i is [offset[i], offset[i+1])
@@ -74,6 +70,7 @@ struct InterfaceBonds {
   std::vector<std::int64_t> slot;          // the bond's index in Bonds
   std::vector<std::uint16_t> interface;    // the scene's interface
   std::vector<InterfaceLaw> laws;          // per scene interface
+  std::vector<std::array<double, 3>> slip; // per entry: the slip of the failed bond's faces so far (interface_law.hpp)
   std::vector<std::int32_t> particles;     // the particles with a bond across an interface, ascending
 
   bool empty() const { return slot.empty(); }

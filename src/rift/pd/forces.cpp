@@ -4,6 +4,7 @@
 #include <limits>
 
 #include "rift/parallel/ordered_sum.hpp"
+#include "rift/pd/interface_contact.hpp"
 #include "rift/pd/interface_law.hpp"
 #include "rift/pd/lps.hpp"
 #include "rift/pd/pmb.hpp"
@@ -41,6 +42,7 @@ void compute_forces(Model<D>& m, Contact<D>* contact, double history_dt) {
       else state_based_forces<D, I::inverse_distance, true>(m, body);
     }
   }
+  add_interface_contact<D>(m, history_dt > 0.0);  // failed bonds across pre-existing fractures
   if (contact) contact->add_forces(m);
 }
 

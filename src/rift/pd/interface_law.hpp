@@ -1,7 +1,8 @@
 // Pre-existing fractures (scene::Interface: a joint, a bedding plane, the paper sheet cast into the
 // blocks of Zhou et al. 2008). The bonds that cross one keep the rock's stiffness until the
-// interface law fails; then they bear compression only (bonds.hpp, bond_interface_failed): the
-// faces may open and close again, and the fluid that reaches them enters (fluid_network.hpp).
+// interface law fails; then each is a frictional contact (interface_contact.hpp, bonds.hpp
+// bond_interface_failed): the faces press on each other and slide with Coulomb friction, or open,
+// and the fluid that reaches them enters where they are apart (fluid_network.hpp).
 // The law of bond i-j, evaluated before each force evaluation with the stresses of the last one, on
 // the traction t = sigma n of the mean bond-pair stress of i and j (stress.hpp), its normal
 // compression sigma_n = -n . t, its shear tau = t - (n . t) n, and p the pressure of the fluid at
@@ -78,6 +79,7 @@ void prepare_interfaces(const scene::Scene& s, Model<D>& m) {
   ib.laws.clear();
   for (const auto& f : s.interfaces) ib.laws.push_back(make_interface_law(f, D));
   ib.particles.clear();
+  ib.slip.assign(ib.slot.size(), {0.0, 0.0, 0.0});
   if (ib.offset.empty()) return;
   for (std::size_t i = 0; i < m.size(); ++i)
     if (ib.offset[i + 1] > ib.offset[i]) ib.particles.push_back(static_cast<std::int32_t>(i));
@@ -102,12 +104,8 @@ void prepare_interfaces(const scene::Scene& s, Model<D>& m) {
 /// The law of the interface that bond k of row i crosses (nullptr for a bond across none).
 template <int D>
 const InterfaceLaw* interface_of_bond(const Model<D>& m, std::size_t i, std::int64_t k) {
-  const InterfaceBonds& ib = m.interface_bonds;
-  if (ib.empty()) return nullptr;
-  const auto first = ib.slot.begin() + ib.offset[i], last = ib.slot.begin() + ib.offset[i + 1];
-  const auto it = std::lower_bound(first, last, k);  // a row's slots ascend
-  if (it == last || *it != k) return nullptr;
-  return &ib.laws[ib.interface[static_cast<std::size_t>(it - ib.slot.begin())]];
+  const auto q = interface_entry<D>(m, i, k);
+  return q < 0 ? nullptr : &m.interface_bonds.laws[m.interface_bonds.interface[static_cast<std::size_t>(q)]];
 }
 
 /// The normal opening of the failed interface bond k = i-j: the growth of its component along the

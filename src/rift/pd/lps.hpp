@@ -42,19 +42,16 @@ double dilatation_row(Model<D>& m, const MaterialConstants& c, std::size_t i, do
   double s_min = std::numeric_limits<double>::max();
   theta = 0.0, q = 0.0;
   for (auto k = b.offset[i]; k < b.offset[i + 1]; ++k) {
-    if (!b.intact[k]) continue;
+    if (b.intact[k] != bond_intact) continue;
     const auto j = static_cast<std::size_t>(b.neighbor[k]);
     const double r = norm<D>(m.position[j] - xi_pos);
     const double xi = b.length[k];
     const double e = r - xi;
-    if (b.intact[k] == bond_interface_failed) {
-      if (e >= 0.0) continue;  // a failed interface bears compression only
-    } else if (c.breakable && e > xi * std::min(s0_i, m.stretch_limit[j])) {
+    if (c.breakable && e > xi * std::min(s0_i, m.stretch_limit[j])) {
       b.intact[k] = bond_broken;
       continue;
-    } else {
-      s_min = std::min(s_min, e / xi);
     }
+    s_min = std::min(s_min, e / xi);
     theta += b.dilatation_weight[k] * e * b.volume[k];
     if constexpr (Coupling) q += b.correction[k] * influence(Omega, xi, c.horizon) * xi * e * b.volume[k];
   }
@@ -96,13 +93,12 @@ void state_based_forces(Model<D>& m, const BodyInfo& body) {
     const double pressure_i = pressure_factor<D>(kappa, theta_i, a_i, m.dilatation_coupling[i]);
     Vec<D> f{};
     for (auto k = b.offset[i]; k < b.offset[i + 1]; ++k) {
-      if (!b.intact[k]) continue;
+      if (b.intact[k] != bond_intact) continue;
       const auto j = static_cast<std::size_t>(b.neighbor[k]);
       const Vec<D> eta = m.position[j] - xi_pos;
       const double r = norm<D>(eta);
       const double xi = b.length[k];
       const double e = r - xi;
-      if (!bears_load(b.intact[k], e)) continue;
       const double omega = influence(Omega, xi, horizon);
       const double a_j = a_dev / m.weighted_volume[j];
       const double theta_j = m.dilatation[j];
@@ -129,11 +125,10 @@ double state_based_energy_density(const Model<D>& m, const BodyInfo& body, std::
   const double theta = m.dilatation[i], lambda = c.viscous_fraction;
   double dev = 0.0;
   for (auto k = b.offset[i]; k < b.offset[i + 1]; ++k) {
-    if (!b.intact[k]) continue;
+    if (b.intact[k] != bond_intact) continue;
     const auto j = static_cast<std::size_t>(b.neighbor[k]);
     const double xi = b.length[k];
     const double e = norm<D>(m.position[j] - m.position[i]) - xi;
-    if (!bears_load(b.intact[k], e)) continue;
     const double ed = e - theta * xi / D;
     if constexpr (Viscous) {
       const double ev = ed - b.back_extension[k];

@@ -30,20 +30,17 @@ void pmb_forces(Model<D>& m, const BodyInfo& body) {
     Vec<D> f{};
     double s_min = std::numeric_limits<double>::max();
     for (auto k = b.offset[i]; k < b.offset[i + 1]; ++k) {
-      if (!b.intact[k]) continue;
+      if (b.intact[k] != bond_intact) continue;
       const auto j = static_cast<std::size_t>(b.neighbor[k]);
       const Vec<D> eta = m.position[j] - xi_pos;
       const double r = norm<D>(eta);
       const double xi = b.length[k];
       const double s = (r - xi) / xi;
-      if (b.intact[k] == bond_interface_failed) {
-        if (s >= 0.0) continue;  // a failed interface bears compression only
-      } else if (breakable && s > std::min(s0_i, m.stretch_limit[j])) {
+      if (breakable && s > std::min(s0_i, m.stretch_limit[j])) {
         b.intact[k] = bond_broken;
         continue;
-      } else {
-        s_min = std::min(s_min, s);
       }
+      s_min = std::min(s_min, s);
       const double scalar = pmb_bond_force(micromodulus, influence(Omega, xi, horizon), s, b.correction[k], b.mirror_correction[k]) * b.volume[k] / r;
       for (int q = 0; q < D; ++q) f[q] += scalar * eta[q];
     }
@@ -59,11 +56,10 @@ double pmb_energy_density(const Model<D>& m, const BodyInfo& body, std::size_t i
   const Bonds& b = m.bonds;
   double w = 0.0;
   for (auto k = b.offset[i]; k < b.offset[i + 1]; ++k) {
-    if (!b.intact[k]) continue;
+    if (b.intact[k] != bond_intact) continue;
     const auto j = static_cast<std::size_t>(b.neighbor[k]);
     const double xi = b.length[k];
     const double s = (norm<D>(m.position[j] - m.position[i]) - xi) / xi;
-    if (!bears_load(b.intact[k], s)) continue;
     w += influence(c.influence, xi, c.horizon) * s * s * xi * b.volume[k] * b.correction[k];
   }
   return 0.25 * c.micromodulus * w;

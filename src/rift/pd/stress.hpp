@@ -5,11 +5,13 @@
 // density). For a homogeneous deformation in the bulk t_i<j> = t_j<i> and this is the first
 // Piola-Kirchhoff stress, sum_j T_i<j> (x) xi_ij V_j, of the material the model stands for; near
 // free surfaces and cracks, where the family is cut, it is an estimate. Uses the dilatations of the
-// last force evaluation.
+// last force evaluation. A failed interface bond adds 1/2 f (x) xi with f its contact force
+// (interface_contact.hpp).
 #pragma once
 #include <vector>
 
 #include "rift/pd/influence.hpp"
+#include "rift/pd/interface_contact.hpp"
 #include "rift/pd/lps.hpp"
 #include "rift/pd/model.hpp"
 #include "rift/pd/pmb.hpp"
@@ -29,14 +31,21 @@ void bond_pair_stress(const Model<D>& m, std::size_t i, double s[3][3]) {
   const double a_i = a_dev / m.weighted_volume[i];
   const double pressure_i = pressure_factor<D>(c.kappa, m.dilatation[i], a_i, m.dilatation_coupling[i]);
   for (auto k = b.offset[i]; k < b.offset[i + 1]; ++k) {
-    if (!b.intact[k]) continue;
+    if (b.intact[k] == bond_broken) continue;
     const auto j = static_cast<std::size_t>(b.neighbor[k]);
     const Vec<D> eta = m.position[j] - m.position[i];
     const Vec<D> xi_vec = m.reference_position[j] - m.reference_position[i];
+    if (b.intact[k] == bond_interface_failed) {  // a frictional contact (interface_contact.hpp)
+      const auto q = interface_entry<D>(m, i, k);
+      if (q < 0) continue;
+      const Vec<D> f = interface_contact_force<D>(m, i, j, k, static_cast<std::size_t>(q), nullptr);
+      for (int p = 0; p < D; ++p)
+        for (int r = 0; r < D; ++r) s[p][r] += 0.5 * f[p] * xi_vec[r];
+      continue;
+    }
     const double r = norm<D>(eta);
     const double xi = b.length[k];
     const double e = r - xi;
-    if (!bears_load(b.intact[k], e)) continue;
     const double omega = influence(c.influence, xi, c.horizon);
     double pair;
     if (c.model == scene::ModelKind::pmb) {

@@ -71,11 +71,10 @@ void ves_dilatation(Model<D>& m, const BodyInfo& body, double dt) {
     const double s_min = dilatation_row<D, Omega, false>(m, c, i, theta, unused);
     double p = 0.0;
     for (auto k = b.offset[i]; k < b.offset[i + 1]; ++k) {
-      if (!b.intact[k]) continue;
+      if (b.intact[k] != bond_intact) continue;
       const auto j = static_cast<std::size_t>(b.neighbor[k]);
       const double xi = b.length[k];
       const double e = norm<D>(m.position[j] - xi_pos) - xi;
-      if (!bears_load(b.intact[k], e)) continue;
       const double ed = e - theta * xi / D;
       double eb = b.back_extension[k];
       if (advance) {

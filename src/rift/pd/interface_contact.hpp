@@ -1,0 +1,104 @@
+// A failed interface bond (bonds.hpp, bond_interface_failed) is a frictional contact between its two
+// particles, in the frame of the interface: with n its normal oriented from i to j and
+// delta = (x_j - x_i) - (X_j - X_i) the jump of their displacements, delta_n = delta . n opens the
+// faces (> 0: apart, no force) or presses them together (< 0), and the tangential jump less the slip
+// s so far is the elastic part, capped by Coulomb friction:
+//   g_n = -delta_n,  g_t = delta - delta_n n - s,  |g_t| <= mu g_n (past it the excess becomes slip),
+//   f_i = k (delta_n n + g_t),  k = c omega(|xi|) V_j cos^2 / |xi|,
+// c the PMB micromodulus equivalent to the rock's moduli (material_constants.hpp) and cos = xi . n /
+// |xi|: the stiffness along n of the bond. A block sliding on a failed interface thus carries mu
+// times its normal force. While the faces are apart the slip follows the tangential jump.
+#pragma once
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdint>
+
+#include "rift/pd/influence.hpp"
+#include "rift/pd/model.hpp"
+#include "rift/parallel/team.hpp"
+
+namespace rift::pd {
+
+/// The entry of the interface bonds that is bond k of row i, or -1 (rows list their slots ascending).
+template <int D>
+std::int64_t interface_entry(const Model<D>& m, std::size_t i, std::int64_t k) {
+  const InterfaceBonds& ib = m.interface_bonds;
+  if (ib.empty()) return -1;
+  const auto first = ib.slot.begin() + ib.offset[i], last = ib.slot.begin() + ib.offset[i + 1];
+  const auto it = std::lower_bound(first, last, k);
+  return it != last && *it == k ? static_cast<std::int64_t>(it - ib.slot.begin()) : -1;
+}
+
+/// Force density on particle i from its failed interface bond k = i-j, interface entry q; with
+/// `slip_update` the Coulomb return writes the entry's new slip there.
+template <int D>
+Vec<D> interface_contact_force(const Model<D>& m, std::size_t i, std::size_t j, std::int64_t k, std::size_t q,
+                               std::array<double, 3>* slip_update) {
+  const InterfaceBonds& ib = m.interface_bonds;
+  const InterfaceLaw& law = ib.laws[ib.interface[q]];
+  const auto& c = m.constants_of(i);
+  const auto kk = static_cast<std::size_t>(k);
+  const double length = m.bonds.length[kk];
+  const double stiffness = c.equivalent_micromodulus * influence(c.influence, length, c.horizon) * m.bonds.volume[kk] / length;
+  std::array<double, 3> n{0, 0, 0}, delta{0, 0, 0};
+  double across = 0.0;
+  for (int a = 0; a < D; ++a) {
+    const double xi = m.reference_position[j][a] - m.reference_position[i][a];
+    delta[a] = m.position[j][a] - m.position[i][a] - xi;
+    across += xi * law.normal[a];
+  }
+  for (int a = 0; a < 3; ++a) n[a] = across > 0.0 ? law.normal[a] : -law.normal[a];
+  const double k_n = stiffness * (across / length) * (across / length);  // the bond's stiffness along n
+  double delta_n = 0.0;
+  for (int a = 0; a < 3; ++a) delta_n += delta[a] * n[a];
+  std::array<double, 3> slip = ib.slip[q];
+  Vec<D> f{};
+  if (delta_n >= 0.0) {  // faces apart: no force, the slip follows
+    for (int a = 0; a < 3; ++a) slip[a] = delta[a] - delta_n * n[a];
+    if (slip_update) *slip_update = slip;
+    return f;
+  }
+  std::array<double, 3> g{0, 0, 0};
+  double g_t = 0.0;
+  for (int a = 0; a < 3; ++a) {
+    g[a] = delta[a] - delta_n * n[a] - slip[a];
+    g_t += g[a] * g[a];
+  }
+  g_t = std::sqrt(g_t);
+  const double limit = law.friction_coefficient * -delta_n;
+  if (g_t > limit) {
+    const double keep = limit / g_t;
+    for (int a = 0; a < 3; ++a) {
+      slip[a] += (1.0 - keep) * g[a];
+      g[a] *= keep;
+    }
+  }
+  if (slip_update) *slip_update = slip;
+  for (int a = 0; a < D; ++a) f[a] = k_n * (delta_n * n[a] + g[a]);
+  return f;
+}
+
+/// Adds the contact forces of the failed interface bonds to m.force (each row its own); with `slide`
+/// (a step of explicit dynamics) their slips advance, otherwise (dynamic relaxation, whose iterations
+/// are no physical path) they are held, as the viscoelastic history is, and the friction is the
+/// capped elastic force from the held slip: path-independent, so the iterations converge.
+template <int D>
+void add_interface_contact(Model<D>& m, bool slide) {
+  InterfaceBonds& ib = m.interface_bonds;
+  if (ib.empty()) return;
+  const auto& rows = ib.particles;
+#pragma omp parallel for if(rift::parallel::worth_a_team(rows.size())) schedule(static)
+  for (std::size_t r = 0; r < rows.size(); ++r) {
+    const auto i = static_cast<std::size_t>(rows[r]);
+    for (auto q = ib.offset[i]; q < ib.offset[i + 1]; ++q) {
+      const auto k = ib.slot[static_cast<std::size_t>(q)];
+      if (m.bonds.intact[static_cast<std::size_t>(k)] != bond_interface_failed) continue;
+      const auto j = static_cast<std::size_t>(m.bonds.neighbor[static_cast<std::size_t>(k)]);
+      const Vec<D> f = interface_contact_force<D>(m, i, j, k, static_cast<std::size_t>(q), slide ? &ib.slip[static_cast<std::size_t>(q)] : nullptr);
+      for (int a = 0; a < D; ++a) m.force[i][a] += f[a];
+    }
+  }
+}
+
+}  // namespace rift::pd
