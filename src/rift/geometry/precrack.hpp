@@ -12,6 +12,8 @@ class PreCrack {
   /// True when the segment p -> q crosses the crack.
   bool cuts(const Point3& p, const Point3& q) const;
   void bounds(Point3& lo, Point3& hi) const;
+  /// 3D: the polygon's normal by Newell's method (not normalized; its length is twice the area).
+  const Point3& normal() const { return normal_; }
 
  private:
   int dimension_;

@@ -17,10 +17,10 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <stdexcept>
 #include <vector>
 
-#include "rift/core/error.hpp"
+#include "rift/geometry/precrack.hpp"
+#include "rift/pd/interface_contact.hpp"
 #include "rift/pd/model.hpp"
 #include "rift/pd/stress.hpp"
 #include "rift/parallel/team.hpp"
@@ -29,16 +29,10 @@
 namespace rift::pd {
 
 namespace interface_detail {
-inline std::array<double, 3> minus(const Point3& a, const Point3& b) { return {a[0] - b[0], a[1] - b[1], a[2] - b[2]}; }
-inline double dot3(const std::array<double, 3>& a, const std::array<double, 3>& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
-inline std::array<double, 3> cross3(const std::array<double, 3>& a, const std::array<double, 3>& b) {
+inline Point3 cross3(const Point3& a, const Point3& b) {
   return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
 }
-inline std::array<double, 3> unit(std::array<double, 3> a) {
-  const double l = std::sqrt(dot3(a, a));
-  for (auto& x : a) x /= l;
-  return a;
-}
+inline Point3 unit(const Point3& a) { return (1.0 / norm<3>(a)) * a; }
 }  // namespace interface_detail
 
 /// The plane, axes and law of a scene interface. 2D: the normal is the segment's direction turned
@@ -51,21 +45,14 @@ inline InterfaceLaw make_interface_law(const scene::Interface& f, int dimension)
   law.tensile_strength = f.tensile_strength;
   law.cohesion = f.cohesion;
   law.friction_coefficient = f.friction_coefficient;
-  law.tangent = unit(minus(f.points[1], f.points[0]));
+  const Point3 edge = f.points[1] - f.points[0];
+  law.tangent = unit(edge);
   if (dimension == 2) {
     law.normal = {-law.tangent[1], law.tangent[0], 0.0};
     law.binormal = {0.0, 0.0, 1.0};
-    law.length = std::sqrt(dot3(minus(f.points[1], f.points[0]), minus(f.points[1], f.points[0])));
+    law.length = norm<3>(edge);
   } else {
-    std::array<double, 3> n{0, 0, 0};
-    for (std::size_t i = 0; i < f.points.size(); ++i) {
-      const auto& a = f.points[i];
-      const auto& b = f.points[(i + 1) % f.points.size()];
-      n[0] += (a[1] - b[1]) * (a[2] + b[2]);
-      n[1] += (a[2] - b[2]) * (a[0] + b[0]);
-      n[2] += (a[0] - b[0]) * (a[1] + b[1]);
-    }
-    law.normal = unit(n);
+    law.normal = unit(geometry::PreCrack(3, f.points).normal());
     law.binormal = cross3(law.normal, law.tangent);
   }
   return law;
@@ -96,7 +83,7 @@ void prepare_interfaces(const scene::Scene& s, Model<D>& m) {
     if (count == 0) continue;
     std::array<double, 3> c = centre;
     for (auto& x : c) x /= double(count);
-    const double side = interface_detail::dot3(interface_detail::minus(c, law.point), law.normal);
+    const double side = dot<3>(c - law.point, law.normal);
     law.near_side = side > 0.0 ? 1 : side < 0.0 ? -1 : 0;
   }
 }
@@ -133,7 +120,6 @@ double pore_pressure(const Model<D>& m, std::size_t i) {
 /// Fails the intact bonds across interfaces whose law is exceeded (see the top of this file).
 template <int D>
 void apply_interface_law(Model<D>& m) {
-  using namespace interface_detail;
   InterfaceBonds& ib = m.interface_bonds;
   if (ib.empty()) return;
   Bonds& b = m.bonds;
@@ -160,11 +146,11 @@ void apply_interface_law(Model<D>& m) {
       std::array<double, 3> t{0, 0, 0};
       for (int p = 0; p < 3; ++p)
         for (int c = 0; c < 3; ++c) t[p] += 0.5 * (stress[r][3 * p + c] + stress[rj][3 * p + c]) * law.normal[c];
-      const double tn = dot3(t, law.normal);
+      const double tn = dot<3>(t, law.normal);
       const std::array<double, 3> shear{t[0] - tn * law.normal[0], t[1] - tn * law.normal[1], t[2] - tn * law.normal[2]};
       const double effective = -tn - std::max(pore_pressure<D>(m, i), pore_pressure<D>(m, j));  // sigma_n - p
       const bool parts = -effective > law.tensile_strength;
-      const bool slips = std::sqrt(dot3(shear, shear)) > law.cohesion + law.friction_coefficient * std::max(effective, 0.0);
+      const bool slips = norm<3>(shear) > law.cohesion + law.friction_coefficient * std::max(effective, 0.0);
       if (parts || slips) b.intact[k] = bond_interface_failed;
     }
   }

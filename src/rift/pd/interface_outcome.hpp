@@ -41,7 +41,6 @@ inline constexpr double dilation_span = 3.0;   // horizons along the interface
 
 template <int D>
 std::vector<InterfaceOutcome> classify_interfaces(const Model<D>& m) {
-  using namespace interface_detail;
   const InterfaceBonds& ib = m.interface_bonds;
   std::vector<InterfaceOutcome> out(ib.laws.size());
   if (out.empty()) return out;
@@ -61,7 +60,7 @@ std::vector<InterfaceOutcome> classify_interfaces(const Model<D>& m) {
   auto within_extent = [&](std::size_t f, const Point3& x, double d) {
     const auto& law = ib.laws[f];
     if constexpr (D == 2) {
-      const double t = dot3(minus(x, law.point), law.tangent);
+      const double t = dot<3>(x - law.point, law.tangent);
       return t >= 0.0 && t <= law.length;
     } else {
       Point3 through{x[0] - 2.0 * d * law.normal[0], x[1] - 2.0 * d * law.normal[1], x[2] - 2.0 * d * law.normal[2]};
@@ -77,7 +76,7 @@ std::vector<InterfaceOutcome> classify_interfaces(const Model<D>& m) {
       const Point3 x = point_of(m.reference_position[i], m.reference_position[j]);
       for (std::size_t f = 0; f < out.size(); ++f) {
         const auto& law = ib.laws[f];
-        const double d = dot3(minus(x, law.point), law.normal);
+        const double d = dot<3>(x - law.point, law.normal);
         if (!within_extent(f, x, d)) continue;
         if (std::abs(d) < crossing_depth * horizon) out[f].reached = true;
         if (!fed || law.near_side == 0 || d * law.near_side >= 0.0) continue;
@@ -99,7 +98,7 @@ std::vector<InterfaceOutcome> classify_interfaces(const Model<D>& m) {
       const double opening = interface_opening<D>(m, i, j, law);
       if (opening <= m.constants_of(i).critical_stretch * b.length[k]) continue;  // open as far as a rock bond breaks
       const Point3 x = point_of(m.reference_position[i], m.reference_position[j]);
-      const double t = dot3(minus(x, law.point), law.tangent), t2 = dot3(minus(x, law.point), law.binormal);
+      const double t = dot<3>(x - law.point, law.tangent), t2 = dot<3>(x - law.point, law.binormal);
       lo[f] = std::min(lo[f], t), hi[f] = std::max(hi[f], t);
       lo2[f] = std::min(lo2[f], t2), hi2[f] = std::max(hi2[f], t2);
     }
