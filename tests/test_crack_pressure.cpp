@@ -13,6 +13,7 @@
 #include "rift/pd/fluid_network.hpp"
 #include "rift/run/simulation.hpp"
 #include "rift/scene/parse.hpp"
+#include "rock_scene.hpp"
 
 namespace {
 
@@ -28,7 +29,7 @@ TEST(CrackPressure, CutBondsPutTheTractionOnEachFace) {
     const double dx = 0.001, p = 2e6, n = 24, h = 16;
     std::ostringstream s;
     s << "[scene]\ndimension = " << dim << "\n" << (dim == 2 ? "plane = \"strain\"\nthickness = 0.001\n" : "")
-      << "[materials.rock]\nmodel = \"lps\"\ndensity = 2500.0\nyoungs_modulus = 10e9\npoisson_ratio = 0.25\n"
+      << rift::test::rock_material()
       << "[regions.block]\nshape = \"box\"\nmin = [0.0, 0.0" << (dim == 3 ? ", -0.008]" : "]") << "\nmax = [" << n * dx << ", "
       << (dim == 3 ? std::to_string(n * dx) + ", 0.008]" : std::to_string(h * dx) + "]") << "\n"
       << "[bodies.block]\nmaterial = \"rock\"\nregion = \"block\"\nspacing = 0.001\nhorizon = 3.015\n"
@@ -84,8 +85,7 @@ TEST(CrackPressure, BoreholeSitesPushTheWallWithThePressure) {
   const double p = 3e6;
   for (const bool flat : {true, false}) {
     std::ostringstream s;
-    s << "[scene]\ndimension = 2\nplane = \"strain\"\nthickness = 0.001\n"
-      << "[materials.rock]\nmodel = \"lps\"\ndensity = 2500.0\nyoungs_modulus = 10e9\npoisson_ratio = 0.25\n"
+    s << rift::test::plane_strain_rock()
       << "[regions.block]\nshape = \"box\"\nmin = [0.0, 0.0]\nmax = [0.024, 0.016]\n"
       << (flat ? "[regions.hole]\nshape = \"box\"\nmin = [-1.0, 0.008]\nmax = [1.0, 1.0]\n"
                : "[regions.hole]\nshape = \"cylinder\"\ncenter = [0.012, 0.008]\nradius = 0.004\n")
@@ -118,16 +118,7 @@ TEST(CrackPressure, BoreholeSitesPushTheWallWithThePressure) {
 namespace {
 
 // The 2D block of the first test (plane strain LPS, 24 x 16 spacings, sites at (i + 1/2) mm).
-const std::string block_24_by_16 = R"([scene]
-dimension = 2
-plane = "strain"
-thickness = 0.001
-[materials.rock]
-model = "lps"
-density = 2500.0
-youngs_modulus = 10e9
-poisson_ratio = 0.25
-[regions.block]
+const std::string block_24_by_16 = rift::test::plane_strain_rock() + R"([regions.block]
 shape = "box"
 min = [0.0, 0.0]
 max = [0.024, 0.016]
@@ -212,16 +203,7 @@ namespace {
 // g V0 p / G within 10% (measured 0.96: the staircase wall at a / spacing = 10 and the square).
 TEST(InjectedFluid, PressureFollowsTheMassBalanceOfTheBorehole) {
   const double a = 0.01, t = 0.001, G = 4e9, K_f = 2e8, nu = 0.25, injected = 1.66e-9;
-  const std::string text = R"([scene]
-dimension = 2
-plane = "strain"
-thickness = 0.001
-[materials.rock]
-model = "lps"
-density = 2500.0
-youngs_modulus = 10e9
-poisson_ratio = 0.25
-[regions.block]
+  const std::string text = rift::test::plane_strain_rock() + R"([regions.block]
 shape = "box"
 min = [-0.05, -0.05]
 max = [0.05, 0.05]

@@ -8,6 +8,7 @@
 #include "rift/pd/stress.hpp"
 #include "rift/run/simulation.hpp"
 #include "rift/scene/parse.hpp"
+#include "rock_scene.hpp"
 
 namespace {
 
@@ -20,17 +21,7 @@ namespace {
 TEST(InSituStress, EquilibriumUnderTheFarFieldStressesBreaksNoBond) {
   const double E = 10e9, nu = 0.25, sigma_H = -10e6, sigma_h = -2e6;
   for (const char* axis : {"x", "y"}) {
-    const std::string text = std::string(R"([scene]
-dimension = 2
-plane = "strain"
-thickness = 0.001
-[materials.rock]
-model = "lps"
-density = 2500.0
-youngs_modulus = 10e9
-poisson_ratio = 0.25
-critical_stretch = 1e-4
-[regions.block]
+    const std::string text = rift::test::plane_strain_rock("critical_stretch = 1e-4\n") + std::string(R"([regions.block]
 shape = "box"
 min = [-0.02, -0.02]
 max = [0.02, 0.02]

@@ -14,6 +14,7 @@
 #include "rift/pd/interface_law.hpp"
 #include "rift/pd/interface_outcome.hpp"
 #include "rift/scene/parse.hpp"
+#include "rock_scene.hpp"
 
 namespace {
 
@@ -25,17 +26,7 @@ constexpr double E = 10e9, nu = 0.25, spacing = 0.001, horizon = 3.015 * spacing
 // middle from `a` to `b` and whatever `extra` adds.
 rift::scene::Scene block_with_interface(const std::string& a, const std::string& b, const std::string& law, const std::string& extra = "",
                                         const std::string& rock_critical_stretch = "1.0") {
-  const std::string text = R"([scene]
-dimension = 2
-plane = "strain"
-thickness = 0.001
-[materials.rock]
-model = "lps"
-density = 2500.0
-youngs_modulus = 10e9
-poisson_ratio = 0.25
-critical_stretch = )" + rock_critical_stretch + R"(
-[regions.block]
+  const std::string text = rift::test::plane_strain_rock("critical_stretch = " + rock_critical_stretch + "\n") + R"([regions.block]
 shape = "box"
 min = [-0.02, -0.02]
 max = [0.02, 0.02]
