@@ -47,6 +47,7 @@ Result mpm_denp(const Settings&);
 Result mpm_crack_growth(const Settings&);
 Result hf_sneddon(const Settings&);
 Result hf_kirsch(const Settings&);
+Result hf_breakdown(const Settings&);
 
 struct Entry {
   const char* name;

@@ -22,6 +22,7 @@ const std::vector<Entry>& all_cases() {
       {"mpm_crack_growth", mpm_crack_growth},
       {"hf_sneddon", hf_sneddon},
       {"hf_kirsch", hf_kirsch},
+      {"hf_breakdown", hf_breakdown},
   };
   return cases;
 }
