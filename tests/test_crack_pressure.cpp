@@ -277,3 +277,74 @@ end_time = 1e-6
 }
 
 }  // namespace
+
+namespace {
+
+// Breakthrough (pd/fluid_network.hpp): a 50 mm block with a 5 mm borehole fed at a constant rate
+// and a dry pre-crack from its wall toward the right face. Reaching the face, the crack opens the
+// cavity to the outside: the injected fluid escapes, the pressure is zero and the escaped volume is
+// the mass balance's surplus, V0 + Q t - V, to round-off. Stopping 10 mm short of the face, the
+// cavity stays closed and the fluid is pressurized. The particles taken for the outer surface
+// (whole-family weighted volume under 0.65 of a full family's; 0.57 on a face here, 0.73 a row deeper) are the block's outermost row and,
+// within a horizon of a corner, the row inside it; none deeper.
+TEST(InjectedFluid, BreakthroughToTheOuterSurfaceVentsTheFluid) {
+  const double injected = 1e-10;
+  for (const double crack_end : {0.03, 0.015}) {
+    char crack[128];
+    std::snprintf(crack, sizeof crack, "[[cracks]]\npoints = [[0.004, 0.0], [%g, 0.0]]\n", crack_end);
+    std::string text = rift::test::plane_strain_rock() + R"([regions.block]
+shape = "box"
+min = [-0.025, -0.025]
+max = [0.025, 0.025]
+[regions.hole]
+shape = "cylinder"
+center = [0.0, 0.0]
+radius = 0.005
+[bodies.block]
+material = "rock"
+region = "block"
+spacing = 0.001
+horizon = 3.015
+[[boreholes]]
+region = "hole"
+injection_rate = 1e-10
+fluid_bulk_modulus = 2e8
+[solver]
+type = "dynamic_relaxation"
+)";
+    text += crack;
+    auto scene = rift::scene::parse_string(text, "breakthrough.toml");
+    rift::run::Simulation<2> sim(scene);
+    auto& m = sim.model;
+    const auto& fluid = m.fluid_network;
+    std::size_t outer_row = 0;
+    for (std::size_t i = 0; i < m.size(); ++i) {
+      const auto& x = m.reference_position[i];
+      const double depth = 0.025 - std::max(std::abs(x[0]), std::abs(x[1]));  // from the nearest face
+      const double from_corner = std::hypot(0.025 - std::abs(x[0]), 0.025 - std::abs(x[1]));
+      if (depth < 0.001) {
+        EXPECT_TRUE(fluid.outer_surface[i]) << x[0] << ", " << x[1];
+        ++outer_row;
+      } else if (depth > 0.002 || from_corner > 0.003015 + 0.0015) {
+        EXPECT_FALSE(fluid.outer_surface[i]) << x[0] << ", " << x[1];
+      }
+    }
+    EXPECT_EQ(outer_row, 4u * 49u);  // the 50 x 50 lattice's outermost row
+    rift::pd::DynamicRelaxation<2> dr(m);
+    dr.relax(m, sim.loads, sim.contact_ptr(), 1.0, 3000, 1e-6);
+    sim.loads.apply_body_forces(m, 1.0);
+    const std::size_t source = scene.cracks.size();  // the borehole
+    const double surplus = fluid.reference_volume[source] + injected - fluid.cavity_volume[source];
+    if (crack_end > 0.025) {
+      EXPECT_TRUE(fluid.vented[source]);
+      EXPECT_EQ(fluid.pressure[source], 0.0);
+      EXPECT_NEAR(fluid.escaped_volume[source] / surplus, 1.0, 1e-9);
+    } else {
+      EXPECT_FALSE(fluid.vented[source]);
+      EXPECT_GT(fluid.pressure[source], 1e5);
+      EXPECT_EQ(fluid.escaped_volume[source], 0.0);
+    }
+  }
+}
+
+}  // namespace

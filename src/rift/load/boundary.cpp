@@ -103,12 +103,16 @@ void Boundaries<D>::apply_body_forces(pd::Model<D>& m, double t) const {
       continue;
     }
     // mass balance of a lumped compressible fluid: the fluid's volume at zero pressure, V0 (1 + p0 / K_f)
-    // + Q t, fills the cavity V at p = K_f (V_fluid / V - 1); no tension (the fluid cavitates)
+    // + Q t, less what escaped, fills the cavity V at p = K_f (V_fluid / V - 1); no tension (the fluid
+    // cavitates). Open to the outer surface, the cavity keeps the fluid it holds at zero pressure and
+    // the rest escapes.
     const double reference = fluid.reference_volume[c];
     const double volume = reference + pd::cavity_volume_change<D>(m, static_cast<int>(c));
-    const double fluid_volume = reference * (1.0 + src.pressure / src.fluid_bulk_modulus) + src.injection_rate * t;
+    const double injected = reference * (1.0 + src.pressure / src.fluid_bulk_modulus) + src.injection_rate * t;
+    fluid.escaped_volume.resize(pressure_sources_.size(), 0.0);
+    if (fluid.vented[c]) fluid.escaped_volume[c] = std::max(fluid.escaped_volume[c], injected - volume);
     fluid.cavity_volume[c] = volume;
-    fluid.pressure[c] = std::max(0.0, src.fluid_bulk_modulus * (fluid_volume / volume - 1.0));
+    fluid.pressure[c] = std::max(0.0, src.fluid_bulk_modulus * ((injected - fluid.escaped_volume[c]) / volume - 1.0));
   }
   pd::add_crack_pressure<D>(m, fluid.pressure);
   pd::add_network_pressure<D>(m, fluid.pressure);

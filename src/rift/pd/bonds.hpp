@@ -82,11 +82,14 @@ struct FluidNetwork {
   std::vector<int> source;                    // per particle: the source whose fluid reaches it, -1 none
   std::vector<double> whole_weighted_volume;  // per particle: m over its whole family, uncorrected
   std::int64_t broken_bonds = -1;             // broken bonds when the labels were last made
+  std::vector<std::uint8_t> outer_surface;    // per particle: on the body's outer free surface (fluid_network.hpp)
   // per pressure source (the scene's cracks, then its boreholes)
   std::vector<std::uint8_t> dry;         // a crack without pressure of its own: its cut bonds carry a fluid that reaches them
   std::vector<double> reference_volume;  // the cavity's volume in the reference state (a borehole's lattice sites)
   std::vector<double> pressure;          // the last pressure applied, Pa
   std::vector<double> cavity_volume;     // the last cavity volume (injected sources), m^3
+  std::vector<std::uint8_t> vented;      // the fluid reaches the outer surface: it escapes (breakthrough)
+  std::vector<double> escaped_volume;    // injected fluid that escaped while vented (at zero pressure), m^3
 };
 
 }  // namespace rift::pd

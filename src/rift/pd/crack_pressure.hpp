@@ -31,6 +31,7 @@ void prepare_crack_pressure(Model<D>& m) {
   // whole-family weighted volumes, kept for the bonds that break later (fluid_network.hpp)
   m.fluid_network.whole_weighted_volume = whole_family_weighted_volumes<D>(m);
   const auto& whole = m.fluid_network.whole_weighted_volume;
+  m.fluid_network.outer_surface = outer_surface_particles<D>(m, whole);
   w.coefficient.assign(w.neighbor.size(), 0.0);
   for (std::size_t i = 0; i < m.size(); ++i) {
     const auto& c = m.constants_of(i);
