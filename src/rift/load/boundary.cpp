@@ -110,7 +110,7 @@ void Boundaries<D>::apply_body_forces(pd::Model<D>& m, double t) const {
     const double volume = reference + pd::cavity_volume_change<D>(m, static_cast<int>(c));
     const double injected = reference * (1.0 + src.pressure / src.fluid_bulk_modulus) + src.injection_rate * t;
     fluid.escaped_volume.resize(pressure_sources_.size(), 0.0);
-    if (fluid.vented[c]) fluid.escaped_volume[c] = std::max(fluid.escaped_volume[c], injected - volume);
+    if (c < fluid.vented.size() && fluid.vented[c]) fluid.escaped_volume[c] = std::max(fluid.escaped_volume[c], injected - volume);
     fluid.cavity_volume[c] = volume;
     fluid.pressure[c] = std::max(0.0, src.fluid_bulk_modulus * ((injected - fluid.escaped_volume[c]) / volume - 1.0));
   }
