@@ -191,6 +191,21 @@ end_time = 1e-6
 
 namespace {
 
+/// A square block of the rock, `half` on each side of the origin, 1 mm spacing, with a borehole of
+/// radius `radius` at its centre fed at `rate` (m^3/s) with a fluid of bulk modulus 2e8 Pa, solved by
+/// dynamic relaxation.
+std::string block_with_injected_borehole(double half, double radius, double rate) {
+  char text[640];
+  std::snprintf(text, sizeof text,
+                "[regions.block]\nshape = \"box\"\nmin = [%g, %g]\nmax = [%g, %g]\n"
+                "[regions.hole]\nshape = \"cylinder\"\ncenter = [0.0, 0.0]\nradius = %g\n"
+                "[bodies.block]\nmaterial = \"rock\"\nregion = \"block\"\nspacing = 0.001\nhorizon = 3.015\n"
+                "[[boreholes]]\nregion = \"hole\"\ninjection_rate = %g\nfluid_bulk_modulus = 2e8\n"
+                "[solver]\ntype = \"dynamic_relaxation\"\n",
+                -half, -half, half, half, radius, rate);
+  return rift::test::plane_strain_rock() + text;
+}
+
 // Injection into a borehole (a = 10 mm, 100 mm square, plane strain LPS, E = 10 GPa, nu = 0.25,
 // G = 4 GPa) of a compliant fluid (K_f = 200 MPa), volume Q t = 1.66e-9 m^3 into the 1 mm slab,
 // static by dynamic relaxation. Mass balance of the lumped fluid: V0 + Q t = V (1 + p / K_f), with
@@ -203,28 +218,7 @@ namespace {
 // g V0 p / G within 10% (measured 0.96: the staircase wall at a / spacing = 10 and the square).
 TEST(InjectedFluid, PressureFollowsTheMassBalanceOfTheBorehole) {
   const double a = 0.01, t = 0.001, G = 4e9, K_f = 2e8, nu = 0.25, injected = 1.66e-9;
-  const std::string text = rift::test::plane_strain_rock() + R"([regions.block]
-shape = "box"
-min = [-0.05, -0.05]
-max = [0.05, 0.05]
-[regions.hole]
-shape = "cylinder"
-center = [0.0, 0.0]
-radius = 0.01
-[bodies.block]
-material = "rock"
-region = "block"
-spacing = 0.001
-horizon = 3.015
-[[boreholes]]
-region = "hole"
-injection_rate = 1.66e-9
-fluid_bulk_modulus = 2e8
-[solver]
-type = "dynamic_relaxation"
-tolerance = 1e-8
-max_iterations = 50000
-)";
+  const std::string text = block_with_injected_borehole(0.05, a, injected) + "tolerance = 1e-8\nmax_iterations = 50000\n";
   auto scene = rift::scene::parse_string(text, "injection.toml");
   rift::run::Simulation<2> sim(scene);
   auto& m = sim.model;
@@ -285,33 +279,14 @@ namespace {
 // cavity to the outside: the injected fluid escapes, the pressure is zero and the escaped volume is
 // the mass balance's surplus, V0 + Q t - V, to round-off. Stopping 10 mm short of the face, the
 // cavity stays closed and the fluid is pressurized. The particles taken for the outer surface
-// (whole-family weighted volume under 0.65 of a full family's; 0.57 on a face here, 0.73 a row deeper) are the block's outermost row and,
-// within a horizon of a corner, the row inside it; none deeper.
+// (whole-family weighted volume under 0.65 of a full family's; 0.57 on a face here, 0.73 a row
+// deeper) are the block's outermost row and, within a horizon of a corner, the row inside it.
 TEST(InjectedFluid, BreakthroughToTheOuterSurfaceVentsTheFluid) {
   const double injected = 1e-10;
   for (const double crack_end : {0.03, 0.015}) {
     char crack[128];
     std::snprintf(crack, sizeof crack, "[[cracks]]\npoints = [[0.004, 0.0], [%g, 0.0]]\n", crack_end);
-    std::string text = rift::test::plane_strain_rock() + R"([regions.block]
-shape = "box"
-min = [-0.025, -0.025]
-max = [0.025, 0.025]
-[regions.hole]
-shape = "cylinder"
-center = [0.0, 0.0]
-radius = 0.005
-[bodies.block]
-material = "rock"
-region = "block"
-spacing = 0.001
-horizon = 3.015
-[[boreholes]]
-region = "hole"
-injection_rate = 1e-10
-fluid_bulk_modulus = 2e8
-[solver]
-type = "dynamic_relaxation"
-)";
+    std::string text = block_with_injected_borehole(0.025, 0.005, injected);
     text += crack;
     auto scene = rift::scene::parse_string(text, "breakthrough.toml");
     rift::run::Simulation<2> sim(scene);
