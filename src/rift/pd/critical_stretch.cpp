@@ -66,8 +66,7 @@ double separation_work_per_stretch2(const MaterialConstants& mc) {
   auto radial = [&](double xi) { return d == 3 ? 2.0 * pi * xi * xi : t * xi; };
   auto omega = [&](double xi) { return influence(mc.influence, xi, delta); };
   const bool lps = mc.state_based();
-  const double m = d == 3 ? 4.0 * pi * influence_moment(mc.influence, delta, 4)
-                          : 2.0 * pi * t * influence_moment(mc.influence, delta, 3);
+  const double m = family_moment(d, mc.influence, delta, t, 2);
   const double alpha = mc.lps_deviatoric_coefficient() / m;
 
   // Strain energy density at height z above the plane for opening v, with s0 = 1: crossing bonds

@@ -57,13 +57,10 @@ inline constexpr double outer_surface_fraction = 0.65;
 
 template <int D>
 std::vector<std::uint8_t> outer_surface_particles(const Model<D>& m, const std::vector<double>& whole) {
-  constexpr double pi = 3.14159265358979323846;
   std::vector<std::uint8_t> outer(m.size(), 0);
   for (std::size_t i = 0; i < m.size(); ++i) {
     const auto& c = m.constants_of(i);
-    const double full = D == 3 ? 4.0 * pi * influence_moment(c.influence, c.horizon, 4)
-                               : 2.0 * pi * c.thickness * influence_moment(c.influence, c.horizon, 3);
-    outer[i] = whole[i] < outer_surface_fraction * full ? 1 : 0;
+    outer[i] = whole[i] < outer_surface_fraction * family_moment(D, c.influence, c.horizon, c.thickness, 2) ? 1 : 0;
   }
   return outer;
 }

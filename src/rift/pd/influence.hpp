@@ -17,4 +17,12 @@ inline double influence_moment(scene::Influence kind, double horizon, int p) {
   return kind == scene::Influence::constant ? dp1 / (p + 1) : d * dp1 / d / p;
 }
 
+/// The continuum moment  int_ball omega(|xi|) |xi|^p dV  over a whole family: 3D 4 pi int omega r^(p+2) dr,
+/// 2D (a slab of `thickness`) 2 pi t int omega r^(p+1) dr. With p = 2 the weighted volume m of a
+/// family cut by no surface (Silling et al. 2007, eq. 38).
+inline double family_moment(int dimension, scene::Influence kind, double horizon, double thickness, int p) {
+  constexpr double pi = 3.14159265358979323846;
+  return dimension == 3 ? 4.0 * pi * influence_moment(kind, horizon, 2 + p) : 2.0 * pi * thickness * influence_moment(kind, horizon, 1 + p);
+}
+
 }  // namespace rift::pd

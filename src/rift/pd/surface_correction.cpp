@@ -13,8 +13,6 @@ namespace rift::pd {
 
 namespace {
 
-constexpr double pi = 3.14159265358979323846;
-
 /// Exponents (p, q, r) of the even degree-4 monomials in D variables: n_x^4, n_x^2 n_y^2, ...
 template <int D>
 std::vector<std::array<int, 3>> quartic_exponents() {
@@ -67,8 +65,7 @@ void apply_surface_correction(Model<D>& m) {
     if (!c.surface_correction) continue;
     const int p = c.model == scene::ModelKind::pmb ? 1 : 2;  // weight |xi|^p of the energy moment
     // continuum moment int_ball omega |xi|^p dV
-    const double full = D == 3 ? 4.0 * pi * influence_moment(c.influence, c.horizon, 2 + p)
-                               : 2.0 * pi * c.thickness * influence_moment(c.influence, c.horizon, 1 + p);
+    const double full = family_moment(D, c.influence, c.horizon, c.thickness, p);
 #pragma omp parallel for if(rift::parallel::worth_a_team(body.last - body.first)) schedule(dynamic, 64)
     for (std::size_t i = body.first; i < body.last; ++i) {
       Eigen::MatrixXd A = Eigen::MatrixXd::Zero(na, na);
