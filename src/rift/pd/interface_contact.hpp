@@ -30,6 +30,34 @@ std::int64_t interface_entry(const Model<D>& m, std::size_t i, std::int64_t k) {
   return it != last && *it == k ? static_cast<std::int64_t>(it - ib.slot.begin()) : -1;
 }
 
+/// Bond i-j across an interface in the interface's frame: the jump of its ends' displacements
+/// delta = (x_j - x_i) - (X_j - X_i), the interface normal n oriented from i to j, the reference
+/// bond's component along the interface's own normal (across = xi . normal) and the normal opening
+/// delta . n (> 0: the faces apart; 0 where they only slide).
+struct InterfaceJump {
+  std::array<double, 3> delta{}, n{};
+  double across = 0.0, opening = 0.0;
+};
+
+template <int D>
+InterfaceJump interface_jump(const Model<D>& m, std::size_t i, std::size_t j, const InterfaceLaw& law) {
+  InterfaceJump g;
+  for (int a = 0; a < D; ++a) {
+    const double xi = m.reference_position[j][a] - m.reference_position[i][a];
+    g.delta[a] = m.position[j][a] - m.position[i][a] - xi;
+    g.across += xi * law.normal[a];
+  }
+  for (int a = 0; a < 3; ++a) g.n[a] = g.across > 0.0 ? law.normal[a] : -law.normal[a];
+  for (int a = 0; a < 3; ++a) g.opening += g.delta[a] * g.n[a];
+  return g;
+}
+
+/// The normal opening of the failed interface bond i-j (interface_jump).
+template <int D>
+double interface_opening(const Model<D>& m, std::size_t i, std::size_t j, const InterfaceLaw& law) {
+  return interface_jump<D>(m, i, j, law).opening;
+}
+
 /// Force density on particle i from its failed interface bond k = i-j, interface entry q; with
 /// `slip_update` the Coulomb return writes the entry's new slip there.
 template <int D>
@@ -41,17 +69,11 @@ Vec<D> interface_contact_force(const Model<D>& m, std::size_t i, std::size_t j, 
   const auto kk = static_cast<std::size_t>(k);
   const double length = m.bonds.length[kk];
   const double stiffness = c.equivalent_micromodulus * influence(c.influence, length, c.horizon) * m.bonds.volume[kk] / length;
-  std::array<double, 3> n{0, 0, 0}, delta{0, 0, 0};
-  double across = 0.0;
-  for (int a = 0; a < D; ++a) {
-    const double xi = m.reference_position[j][a] - m.reference_position[i][a];
-    delta[a] = m.position[j][a] - m.position[i][a] - xi;
-    across += xi * law.normal[a];
-  }
-  for (int a = 0; a < 3; ++a) n[a] = across > 0.0 ? law.normal[a] : -law.normal[a];
-  const double k_n = stiffness * (across / length) * (across / length);  // the bond's stiffness along n
-  double delta_n = 0.0;
-  for (int a = 0; a < 3; ++a) delta_n += delta[a] * n[a];
+  const InterfaceJump jump = interface_jump<D>(m, i, j, law);
+  const auto& delta = jump.delta;
+  const auto& n = jump.n;
+  const double delta_n = jump.opening;
+  const double k_n = stiffness * (jump.across / length) * (jump.across / length);  // the bond's stiffness along n
   std::array<double, 3> slip = ib.slip[q];
   Vec<D> f{};
   if (delta_n >= 0.0) {  // faces apart: no force, the slip follows

@@ -95,20 +95,6 @@ const InterfaceLaw* interface_of_bond(const Model<D>& m, std::size_t i, std::int
   return q < 0 ? nullptr : &m.interface_bonds.laws[m.interface_bonds.interface[static_cast<std::size_t>(q)]];
 }
 
-/// The normal opening of the failed interface bond k = i-j: the growth of its component along the
-/// interface's normal, (y - xi) . n with n oriented from i to j; positive where the faces are apart,
-/// zero where they only slide.
-template <int D>
-double interface_opening(const Model<D>& m, std::size_t i, std::size_t j, const InterfaceLaw& law) {
-  double grown = 0.0, across = 0.0;
-  for (int c = 0; c < D; ++c) {
-    const double xi = m.reference_position[j][c] - m.reference_position[i][c];
-    grown += (m.position[j][c] - m.position[i][c] - xi) * law.normal[c];
-    across += xi * law.normal[c];
-  }
-  return across > 0.0 ? grown : -grown;
-}
-
 /// The pressure of the fluid at particle i (0 where none reaches).
 template <int D>
 double pore_pressure(const Model<D>& m, std::size_t i) {
