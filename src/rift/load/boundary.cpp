@@ -96,6 +96,7 @@ void Boundaries<D>::apply_body_forces(pd::Model<D>& m, double t) const {
   auto& fluid = m.fluid_network;
   fluid.pressure.assign(pressure_sources_.size(), 0.0);
   fluid.cavity_volume.resize(pressure_sources_.size(), 0.0);
+  fluid.escaped_volume.resize(pressure_sources_.size(), 0.0);
   for (std::size_t c = 0; c < pressure_sources_.size(); ++c) {
     const auto& src = pressure_sources_[c];
     if (!src.injected) {
@@ -109,7 +110,6 @@ void Boundaries<D>::apply_body_forces(pd::Model<D>& m, double t) const {
     const double reference = fluid.reference_volume[c];
     const double volume = reference + pd::cavity_volume_change<D>(m, static_cast<int>(c));
     const double injected = reference * (1.0 + src.pressure / src.fluid_bulk_modulus) + src.injection_rate * t;
-    fluid.escaped_volume.resize(pressure_sources_.size(), 0.0);
     if (c < fluid.vented.size() && fluid.vented[c]) fluid.escaped_volume[c] = std::max(fluid.escaped_volume[c], injected - volume);
     fluid.cavity_volume[c] = volume;
     fluid.pressure[c] = std::max(0.0, src.fluid_bulk_modulus * ((injected - fluid.escaped_volume[c]) / volume - 1.0));
