@@ -168,6 +168,64 @@ TEST(InterfaceLaw, FailedInterfaceIsAFrictionalContact) {
   EXPECT_NEAR(held[0] / held[1], 0.0, 1e-9);
 }
 
+// The opening of a failed interface's faces leaves out the strain of the rock on either side
+// (pd/bulk_strain.hpp, interface_contact.hpp interface_opening). Under the homogeneous strain
+// eps_xx = -2e-4, eps_yy = -4e-4, eps_xy = 6.3e-4 (the shear of a 30 degree interface under 13 / 3 MPa),
+// the correspondence strain of every particle is eps to round-off (a homogeneous deformation is
+// exact on cut families too), so the faces of a failed 30 degree interface do not open anywhere:
+// |opening| < 1e-9 of the bond's length. The bonds themselves stretch along n by up to
+// eps_nn xi_n + eps_nt xi_t, more than a breaking rock bond's 1e-4 |xi|: read as an opening, that let
+// the fluid into interfaces that had only slipped. Lifting the upper half 10 um along y then opens
+// each bond's faces by 10 um n_y = 8.66 um (every bond's ends then part: no contact presses them).
+TEST(InterfaceLaw, FaceOpeningLeavesOutTheStrainOfTheRock) {
+  const double alpha = M_PI / 6.0, exx = -2e-4, eyy = -4e-4, exy = 6.3e-4;
+  char a[64], b[64];
+  std::snprintf(a, sizeof a, "[%.17g, %.17g]", -0.03 * std::cos(alpha), -0.03 * std::sin(alpha));
+  std::snprintf(b, sizeof b, "[%.17g, %.17g]", 0.03 * std::cos(alpha), 0.03 * std::sin(alpha));
+  auto s = block_with_interface(a, b, "tensile_strength = 1e9\ncohesion = 1e9\nfriction_coefficient = 0.89");
+  auto m = rift::pd::discretize<2>(s);
+  auto& ib = m.interface_bonds;
+  for (auto k : ib.slot) m.bonds.intact[static_cast<std::size_t>(k)] = rift::pd::bond_interface_failed;
+  auto place = [&](double lift) {
+    for (std::size_t i = 0; i < m.size(); ++i) {
+      const auto& X = m.reference_position[i];
+      const bool upper = X[1] * std::cos(alpha) - X[0] * std::sin(alpha) > 0.0;
+      m.position[i][0] = X[0] + exx * X[0] + exy * X[1];
+      m.position[i][1] = X[1] + exy * X[0] + eyy * X[1] + (upper ? lift : 0.0);
+    }
+    rift::pd::apply_interface_law<2>(m);
+  };
+  place(0.0);
+  ASSERT_EQ(ib.strain.size(), ib.particles.size());
+  double worst_strain = 0.0;
+  for (const auto& e : ib.strain)
+    worst_strain = std::max({worst_strain, std::abs(e[0] - exx), std::abs(e[4] - eyy), std::abs(e[1] - exy), std::abs(e[3] - exy)});
+  EXPECT_LT(worst_strain, 1e-12);
+  const double n_y = std::cos(alpha);
+  for (double lift : {0.0, 1e-5}) {
+    if (lift > 0.0) place(lift);
+    double worst = 0.0, largest_stretch = 0.0;
+    int bonds = 0;
+    for (std::size_t r = 0; r < ib.particles.size(); ++r) {
+      const auto i = static_cast<std::size_t>(ib.particles[r]);
+      for (auto q = ib.offset[i]; q < ib.offset[i + 1]; ++q) {
+        const auto k = static_cast<std::size_t>(ib.slot[static_cast<std::size_t>(q)]);
+        const auto j = static_cast<std::size_t>(m.bonds.neighbor[k]);
+        const auto& law = ib.laws[0];
+        const auto jump = rift::pd::interface_jump<2>(m, i, j, law);
+        largest_stretch = std::max(largest_stretch, jump.normal_stretch / m.bonds.length[k]);
+        worst = std::max(worst, std::abs(rift::pd::interface_opening<2>(m, i, j, law) - lift * n_y) / m.bonds.length[k]);
+        ++bonds;
+      }
+    }
+    ASSERT_GT(bonds, 200);
+    EXPECT_LT(worst, 1e-9) << "lift " << lift;
+    if (lift == 0.0) {
+      EXPECT_GT(largest_stretch, 1e-4);
+    }
+  }
+}
+
 // The outcome reader. A borehole at (0, -12 mm) below a horizontal interface y = 0 (between lattice
 // rows); a crack is made by hand from the borehole up the line x = 0 (rock bonds across it broken):
 //   stopped 8 mm below the interface -> not reached; up to it, the interface bonds next to it failed -> arrested;

@@ -1,7 +1,7 @@
 // A failed interface bond (bonds.hpp, bond_interface_failed) is a frictional contact between its two
 // particles, in the frame of the interface: with n its normal oriented from i to j and
-// delta = (x_j - x_i) - (X_j - X_i) the jump of their displacements, delta_n = delta . n opens the
-// faces (> 0: apart, no force) or presses them together (< 0), and the tangential jump less the slip
+// delta = (x_j - x_i) - (X_j - X_i) the jump of their displacements, delta_n = delta . n stretches
+// the bond (> 0: no force) or presses its ends together (< 0), and the tangential jump less the slip
 // s so far is the elastic part, capped by Coulomb friction:
 //   g_n = -delta_n,  g_t = delta - delta_n n - s,  |g_t| <= mu g_n (past it the excess becomes slip),
 //   f_i = k (delta_n n + g_t),  k = c omega(|xi|) V_j cos^2 / |xi|,
@@ -32,30 +32,53 @@ std::int64_t interface_entry(const Model<D>& m, std::size_t i, std::int64_t k) {
 
 /// Bond i-j across an interface in the interface's frame: the jump of its ends' displacements
 /// delta = (x_j - x_i) - (X_j - X_i), the interface normal n oriented from i to j, the reference
-/// bond's component along the interface's own normal (across = xi . normal) and the normal opening
-/// delta . n (> 0: the faces apart; 0 where they only slide).
+/// bond's component along the interface's own normal (across = xi . normal) and the bond's normal
+/// stretch delta . n (< 0 presses its ends together).
 struct InterfaceJump {
-  std::array<double, 3> delta{}, n{};
-  double across = 0.0, opening = 0.0;
+  std::array<double, 3> xi{}, delta{}, n{};
+  double across = 0.0, normal_stretch = 0.0;
 };
 
 template <int D>
 InterfaceJump interface_jump(const Model<D>& m, std::size_t i, std::size_t j, const InterfaceLaw& law) {
   InterfaceJump g;
   for (int a = 0; a < D; ++a) {
-    const double xi = m.reference_position[j][a] - m.reference_position[i][a];
-    g.delta[a] = m.position[j][a] - m.position[i][a] - xi;
-    g.across += xi * law.normal[a];
+    g.xi[a] = m.reference_position[j][a] - m.reference_position[i][a];
+    g.delta[a] = m.position[j][a] - m.position[i][a] - g.xi[a];
+    g.across += g.xi[a] * law.normal[a];
   }
   for (int a = 0; a < 3; ++a) g.n[a] = g.across > 0.0 ? law.normal[a] : -law.normal[a];
-  for (int a = 0; a < 3; ++a) g.opening += g.delta[a] * g.n[a];
+  for (int a = 0; a < 3; ++a) g.normal_stretch += g.delta[a] * g.n[a];
   return g;
 }
 
-/// The normal opening of the failed interface bond i-j (interface_jump).
+/// The row of particle i in the interface bonds' particle list (-1: none).
+template <int D>
+std::int64_t interface_row(const Model<D>& m, std::size_t i) {
+  const auto& rows = m.interface_bonds.particles;
+  const auto it = std::lower_bound(rows.begin(), rows.end(), static_cast<std::int32_t>(i));
+  return it != rows.end() && *it == static_cast<std::int32_t>(i) ? static_cast<std::int64_t>(it - rows.begin()) : -1;
+}
+
+/// The normal opening of the faces at the failed interface bond i-j, (delta - eps xi) . n with eps
+/// the mean strain of the rock around i and j (bulk_strain.hpp, as the interface law last refreshed
+/// it): the bond also stretches with the rock on either side, by eps_nn xi_n + eps_nt xi_t, which
+/// in a sheared block exceeds a breaking rock bond's stretch while the faces stay shut. Where the
+/// contact presses the bond's ends together (delta . n < 0) the faces touch: the opening is at most 0.
+/// > 0: the faces apart; 0 where they only slide.
 template <int D>
 double interface_opening(const Model<D>& m, std::size_t i, std::size_t j, const InterfaceLaw& law) {
-  return interface_jump<D>(m, i, j, law).opening;
+  const InterfaceJump g = interface_jump<D>(m, i, j, law);
+  double opening = g.normal_stretch;
+  const auto& strain = m.interface_bonds.strain;
+  const auto ri = interface_row<D>(m, i), rj = interface_row<D>(m, j);
+  if (ri >= 0 && rj >= 0 && strain.size() == m.interface_bonds.particles.size()) {
+    const auto& ei = strain[static_cast<std::size_t>(ri)];
+    const auto& ej = strain[static_cast<std::size_t>(rj)];
+    for (int a = 0; a < 3; ++a)
+      for (int c = 0; c < 3; ++c) opening -= g.n[a] * 0.5 * (ei[3 * a + c] + ej[3 * a + c]) * g.xi[c];
+  }
+  return g.normal_stretch < 0.0 ? std::min(opening, 0.0) : opening;
 }
 
 /// Force density on particle i from its failed interface bond k = i-j, interface entry q; with
@@ -72,11 +95,11 @@ Vec<D> interface_contact_force(const Model<D>& m, std::size_t i, std::size_t j, 
   const InterfaceJump jump = interface_jump<D>(m, i, j, law);
   const auto& delta = jump.delta;
   const auto& n = jump.n;
-  const double delta_n = jump.opening;
+  const double delta_n = jump.normal_stretch;
   const double k_n = stiffness * (jump.across / length) * (jump.across / length);  // the bond's stiffness along n
   std::array<double, 3> slip = ib.slip[q];
   Vec<D> f{};
-  if (delta_n >= 0.0) {  // faces apart: no force, the slip follows
+  if (delta_n >= 0.0) {  // ends not pressed together: no force, the slip follows
     for (int a = 0; a < 3; ++a) slip[a] = delta[a] - delta_n * n[a];
     if (slip_update) *slip_update = slip;
     return f;

@@ -3,7 +3,8 @@
 // interface law fails; then each is a frictional contact (interface_contact.hpp, bonds.hpp
 // bond_interface_failed): the faces press on each other and slide with Coulomb friction, or open,
 // and the fluid that reaches them enters where they are apart (fluid_network.hpp).
-// The law of bond i-j, evaluated before each force evaluation with the stresses of the last one, on
+// The law of bond i-j, evaluated before each force evaluation with the stresses of the last one (and
+// refreshing the strain of the rock beside the interface that its opening is measured against), on
 // the traction t = sigma n of the mean bond-pair stress of i and j (stress.hpp), its normal
 // compression sigma_n = -n . t, its shear tau = t - (n . t) n, and p the pressure of the fluid at
 // either end (zero where none reaches):
@@ -20,6 +21,7 @@
 #include <vector>
 
 #include "rift/geometry/precrack.hpp"
+#include "rift/pd/bulk_strain.hpp"
 #include "rift/pd/interface_contact.hpp"
 #include "rift/pd/model.hpp"
 #include "rift/pd/stress.hpp"
@@ -111,12 +113,14 @@ void apply_interface_law(Model<D>& m) {
   Bonds& b = m.bonds;
   const auto& rows = ib.particles;
   std::vector<std::array<double, 9>> stress(rows.size());
+  ib.strain.resize(rows.size());
 #pragma omp parallel for if(rift::parallel::worth_a_team(rows.size())) schedule(static)
   for (std::size_t r = 0; r < rows.size(); ++r) {
     double s[3][3];
     bond_pair_stress<D>(m, static_cast<std::size_t>(rows[r]), s);
     for (int p = 0; p < 3; ++p)
       for (int q = 0; q < 3; ++q) stress[r][3 * p + q] = 0.5 * (s[p][q] + s[q][p]);
+    ib.strain[r] = bulk_strain<D>(m, static_cast<std::size_t>(rows[r]));
   }
 #pragma omp parallel for if(rift::parallel::worth_a_team(rows.size())) schedule(static)
   for (std::size_t r = 0; r < rows.size(); ++r) {

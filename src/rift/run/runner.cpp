@@ -152,6 +152,11 @@ void write_snapshot(io::FieldWriter& w, pd::Model<D>& m, const scene::Scene& s) 
     else if (f == "dilatation") w.write(f, m.dilatation, 1);
     else if (f == "stress") w.write(f, pd::particle_stress<D>(m), 6);  // xx, yy, zz, xy, yz, xz
     else if (f == "weighted_volume") w.write(f, m.weighted_volume, 1);
+    else if (f == "fluid_pressure") {  // of the injected or pressurized fluid that reaches the particle
+      std::vector<double> p(m.size());
+      for (std::size_t i = 0; i < m.size(); ++i) p[i] = pd::pore_pressure<D>(m, i);
+      w.write(f, p, 1);
+    }
     else if (f == "volume") w.write(f, m.volume, 1);
     else if (f == "body") {
       std::vector<double> b(m.size());

@@ -567,7 +567,7 @@ void parse_contact(R& root, Scene& s) {
 
 const std::vector<std::string>& field_names(Method method) {
   static const std::vector<std::string> pd{"displacement", "velocity", "damage", "dilatation", "stress", "strain_energy_density",
-                                            "weighted_volume", "volume", "body"};
+                                            "weighted_volume", "volume", "body", "fluid_pressure"};
   static const std::vector<std::string> mpm{"displacement", "velocity", "stress", "strain_energy_density",
                                              "equivalent_plastic_strain", "volume", "body"};
   return method == Method::mpm ? mpm : pd;
