@@ -18,6 +18,7 @@
 #include <vector>
 
 #include "rift/geometry/precrack.hpp"
+#include "rift/pd/fluid_network.hpp"
 #include "rift/pd/interface_law.hpp"
 #include "rift/pd/model.hpp"
 
@@ -95,8 +96,7 @@ std::vector<InterfaceOutcome> classify_interfaces(const Model<D>& m) {
       const auto j = static_cast<std::size_t>(b.neighbor[k]);
       if (!wet(i) || !wet(j)) continue;
       const auto& law = ib.laws[f];
-      const double opening = interface_opening<D>(m, i, j, law);
-      if (opening <= m.constants_of(i).critical_stretch * b.length[k]) continue;  // open as far as a rock bond breaks
+      if (!interface_faces_apart<D>(m, static_cast<std::int64_t>(k), i, j, law)) continue;  // open as far as a rock bond breaks
       const Point3 x = point_of(m.reference_position[i], m.reference_position[j]);
       const double t = dot<3>(x - law.point, law.tangent), t2 = dot<3>(x - law.point, law.binormal);
       lo[f] = std::min(lo[f], t), hi[f] = std::max(hi[f], t);
