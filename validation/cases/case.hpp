@@ -48,6 +48,7 @@ Result mpm_crack_growth(const Settings&);
 Result hf_sneddon(const Settings&);
 Result hf_kirsch(const Settings&);
 Result hf_breakdown(const Settings&);
+Result hf_kgd_toughness(const Settings&);
 Result hf_injection_rate(const Settings&);
 
 struct Entry {

@@ -23,6 +23,7 @@ const std::vector<Entry>& all_cases() {
       {"hf_sneddon", hf_sneddon},
       {"hf_kirsch", hf_kirsch},
       {"hf_breakdown", hf_breakdown},
+      {"hf_kgd_toughness", hf_kgd_toughness},
       {"hf_injection_rate", hf_injection_rate},
   };
   return cases;
