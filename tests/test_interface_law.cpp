@@ -226,6 +226,59 @@ TEST(InterfaceLaw, FaceOpeningLeavesOutTheStrainOfTheRock) {
   }
 }
 
+// The fluid weakens an interface (p in the law) only where it is inside it: at a particle with an
+// interface bond that holds fluid (interface_law.hpp pressure_in_interface). A horizontal interface
+// (T = 1 MPa) is pressed by S = 3 MPa across it, and every particle is wet at p = 5 MPa, as the
+// broken bonds of a fracture wet every particle within a horizon of it. With p - sigma_n = 2 MPa > T
+// the law would part the whole interface if the fluid next to it counted; it parts none. With the
+// interface bonds over |x| < 3 mm broken (the fracture has reached it there), the bonds at the
+// particles that hold those part, and none whose ends are a horizon away from them.
+TEST(InterfaceLaw, FluidWeakensTheInterfaceOnlyInsideIt) {
+  auto s = block_with_interface("[-0.03, 0.0]", "[0.03, 0.0]", "tensile_strength = 1e6\ncohesion = 1e6\nfriction_coefficient = 0.89");
+  auto m = rift::pd::discretize<2>(s);
+  const double S = 3e6, p = 5e6;
+  auto& ib = m.interface_bonds;
+  auto wet_and_apply = [&](double broken_half_width) {
+    for (std::size_t i = 0; i < m.size(); ++i) {
+      m.position[i][0] = m.reference_position[i][0] * (1.0 + S * nu * (1 + nu) / E);
+      m.position[i][1] = m.reference_position[i][1] * (1.0 - S * (1 - nu * nu) / E);
+    }
+    for (std::size_t i = 0; i + 1 < ib.offset.size(); ++i)
+      for (auto q = ib.offset[i]; q < ib.offset[i + 1]; ++q) {
+        const auto k = static_cast<std::size_t>(ib.slot[static_cast<std::size_t>(q)]);
+        const auto j = static_cast<std::size_t>(m.bonds.neighbor[k]);
+        const bool broken = std::abs(m.reference_position[i][0]) < broken_half_width && std::abs(m.reference_position[j][0]) < broken_half_width;
+        m.bonds.intact[k] = broken ? rift::pd::bond_broken : rift::pd::bond_intact;
+      }
+    m.fluid_network.source.assign(m.size(), -1);
+    m.bodies[0].constants.breakable = false;
+    rift::pd::compute_forces<2>(m, nullptr, 0.0);
+    m.bodies[0].constants.breakable = true;
+    m.fluid_network.source.assign(m.size(), 0);
+    m.fluid_network.pressure.assign(1, p);
+    rift::pd::apply_interface_law<2>(m);
+  };
+  wet_and_apply(0.0);
+  const auto [all, failed] = bulk_interface_bonds(m, [](const rift::Vec<2>&) { return true; });
+  ASSERT_GT(all, 100);
+  EXPECT_EQ(failed, 0) << "fluid beside an intact interface";
+  wet_and_apply(0.003);
+  int near = 0, near_failed = 0, far_failed = 0;
+  for (std::size_t i = 0; i + 1 < ib.offset.size(); ++i)
+    for (auto q = ib.offset[i]; q < ib.offset[i + 1]; ++q) {
+      const auto k = static_cast<std::size_t>(ib.slot[static_cast<std::size_t>(q)]);
+      const auto j = static_cast<std::size_t>(m.bonds.neighbor[k]);
+      if (m.bonds.intact[k] == rift::pd::bond_broken) continue;
+      const double xi = std::abs(m.reference_position[i][0]), xj = std::abs(m.reference_position[j][0]);
+      const bool failed_bond = m.bonds.intact[k] == rift::pd::bond_interface_failed;
+      if (xi < 0.003 || xj < 0.003) ++near, near_failed += failed_bond;
+      if (xi > 0.003 + horizon && xj > 0.003 + horizon && xi < half - 2 * horizon && xj < half - 2 * horizon) far_failed += failed_bond;
+    }
+  ASSERT_GT(near, 10);
+  EXPECT_EQ(near_failed, near) << "bonds at particles whose interface bonds hold fluid";
+  EXPECT_EQ(far_failed, 0);
+}
+
 // The outcome reader. A borehole at (0, -12 mm) below a horizontal interface y = 0 (between lattice
 // rows); a crack is made by hand from the borehole up the line x = 0 (rock bonds across it broken):
 //   stopped 8 mm below the interface -> not reached; up to it, the interface bonds next to it failed -> arrested;

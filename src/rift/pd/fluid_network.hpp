@@ -78,15 +78,6 @@ int pressure_bond_source(const Model<D>& m, std::int64_t k, std::size_t i) {
   return f.source[i];
 }
 
-/// Whether the faces of the failed interface bond k = i-j are apart: their normal opening
-/// (interface_opening) passes the stretch at which a rock bond of its length breaks, s0 |xi|. A
-/// closed interface, or one that only slides (its faces then part and press by round-off about 0),
-/// keeps the fluid out. The outcome reader calls the same faces open (dilated).
-template <int D>
-bool interface_faces_apart(const Model<D>& m, std::int64_t k, std::size_t i, std::size_t j, const InterfaceLaw& law) {
-  return interface_opening<D>(m, i, j, law) > m.constants_of(i).critical_stretch * m.bonds.length[static_cast<std::size_t>(k)];
-}
-
 /// Whether bond k = i-j lets fluid through: broken, or a failed interface whose faces are apart.
 template <int D>
 bool carries_fluid(const Model<D>& m, std::int64_t k, std::size_t i, std::size_t j) {

@@ -81,6 +81,15 @@ double interface_opening(const Model<D>& m, std::size_t i, std::size_t j, const 
   return g.normal_stretch < 0.0 ? std::min(opening, 0.0) : opening;
 }
 
+/// Whether the faces of the failed interface bond k = i-j are apart: their normal opening
+/// (interface_opening above) passes the stretch at which a rock bond of its length breaks, s0 |xi|. A
+/// closed interface, or one that only slides (its faces then part and press by round-off about 0),
+/// keeps the fluid out. The outcome reader calls the same faces open (dilated).
+template <int D>
+bool interface_faces_apart(const Model<D>& m, std::int64_t k, std::size_t i, std::size_t j, const InterfaceLaw& law) {
+  return interface_opening<D>(m, i, j, law) > m.constants_of(i).critical_stretch * m.bonds.length[static_cast<std::size_t>(k)];
+}
+
 /// Force density on particle i from its failed interface bond k = i-j, interface entry q; with
 /// `slip_update` the Coulomb return writes the entry's new slip there.
 template <int D>

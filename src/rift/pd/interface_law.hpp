@@ -6,8 +6,8 @@
 // The law of bond i-j, evaluated before each force evaluation with the stresses of the last one (and
 // refreshing the strain of the rock beside the interface that its opening is measured against), on
 // the traction t = sigma n of the mean bond-pair stress of i and j (stress.hpp), its normal
-// compression sigma_n = -n . t, its shear tau = t - (n . t) n, and p the pressure of the fluid at
-// either end (zero where none reaches):
+// compression sigma_n = -n . t, its shear tau = t - (n . t) n, and p the pressure of the fluid in
+// the interface at either end (pressure_in_interface; zero where none is in it):
 //   tension: the effective normal stress is a tension above the interface's strength,
 //     p - sigma_n > T (a stress, not a bond stretch: in plane strain a bond can stretch under a
 //     compressive stress, by the Poisson effect of the other in-situ stresses);
@@ -105,6 +105,27 @@ double pore_pressure(const Model<D>& m, std::size_t i) {
   return f.pressure[static_cast<std::size_t>(f.source[i])];
 }
 
+/// The pressure of the fluid inside the interface at particle i: its pore pressure where one of its
+/// interface bonds holds fluid (broken, or failed with the faces apart, and wet at both ends), else
+/// 0. Fluid in a crack that merely passes within a horizon of the interface (its broken bonds wet
+/// every particle within a horizon of it) does not act on the interface's faces.
+template <int D>
+double pressure_in_interface(const Model<D>& m, std::size_t i) {
+  const FluidNetwork& f = m.fluid_network;
+  const InterfaceBonds& ib = m.interface_bonds;
+  if (f.source.empty() || f.source[i] < 0) return 0.0;
+  for (auto q = ib.offset[i]; q < ib.offset[i + 1]; ++q) {
+    const auto k = ib.slot[static_cast<std::size_t>(q)];
+    const auto state = m.bonds.intact[static_cast<std::size_t>(k)];
+    if (state == bond_intact) continue;
+    const auto j = static_cast<std::size_t>(m.bonds.neighbor[static_cast<std::size_t>(k)]);
+    if (f.source[j] != f.source[i]) continue;
+    if (state == bond_broken || interface_faces_apart<D>(m, k, i, j, ib.laws[ib.interface[static_cast<std::size_t>(q)]]))
+      return f.pressure[static_cast<std::size_t>(f.source[i])];
+  }
+  return 0.0;
+}
+
 /// Fails the intact bonds across interfaces whose law is exceeded (see the top of this file).
 template <int D>
 void apply_interface_law(Model<D>& m) {
@@ -113,6 +134,7 @@ void apply_interface_law(Model<D>& m) {
   Bonds& b = m.bonds;
   const auto& rows = ib.particles;
   std::vector<std::array<double, 9>> stress(rows.size());
+  std::vector<double> pressure(rows.size());
   ib.strain.resize(rows.size());
 #pragma omp parallel for if(rift::parallel::worth_a_team(rows.size())) schedule(static)
   for (std::size_t r = 0; r < rows.size(); ++r) {
@@ -121,6 +143,7 @@ void apply_interface_law(Model<D>& m) {
     for (int p = 0; p < 3; ++p)
       for (int q = 0; q < 3; ++q) stress[r][3 * p + q] = 0.5 * (s[p][q] + s[q][p]);
     ib.strain[r] = bulk_strain<D>(m, static_cast<std::size_t>(rows[r]));
+    pressure[r] = pressure_in_interface<D>(m, static_cast<std::size_t>(rows[r]));
   }
 #pragma omp parallel for if(rift::parallel::worth_a_team(rows.size())) schedule(static)
   for (std::size_t r = 0; r < rows.size(); ++r) {
@@ -138,7 +161,7 @@ void apply_interface_law(Model<D>& m) {
         for (int c = 0; c < 3; ++c) t[p] += 0.5 * (stress[r][3 * p + c] + stress[rj][3 * p + c]) * law.normal[c];
       const double tn = dot<3>(t, law.normal);
       const std::array<double, 3> shear{t[0] - tn * law.normal[0], t[1] - tn * law.normal[1], t[2] - tn * law.normal[2]};
-      const double effective = -tn - std::max(pore_pressure<D>(m, i), pore_pressure<D>(m, j));  // sigma_n - p
+      const double effective = -tn - std::max(pressure[r], pressure[rj]);  // sigma_n - p
       const bool parts = -effective > law.tensile_strength;
       const bool slips = norm<3>(shear) > law.cohesion + law.friction_coefficient * std::max(effective, 0.0);
       if (parts || slips) b.intact[k] = bond_interface_failed;
