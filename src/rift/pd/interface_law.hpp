@@ -106,9 +106,12 @@ double pore_pressure(const Model<D>& m, std::size_t i) {
 }
 
 /// The pressure of the fluid inside the interface at particle i: its pore pressure where one of its
-/// interface bonds holds fluid (broken, or failed with the faces apart, and wet at both ends), else
-/// 0. Fluid in a crack that merely passes within a horizon of the interface (its broken bonds wet
-/// every particle within a horizon of it) does not act on the interface's faces.
+/// failed interface bonds holds fluid (faces apart, wet at both ends), else 0. Fluid in a fracture
+/// that comes within a horizon of the interface (its broken bonds wet every particle within a
+/// horizon of it, and some of them cross the interface's plane) acts on the interface through the
+/// pressure on those bonds, not as a pore pressure of the interface's bonds: at a 90-degree
+/// interface it took the fluid pressure off the normal stress of every bond of the particles a
+/// horizon short of it, and the interface slipped around the fracture's tip.
 template <int D>
 double pressure_in_interface(const Model<D>& m, std::size_t i) {
   const FluidNetwork& f = m.fluid_network;
@@ -116,11 +119,10 @@ double pressure_in_interface(const Model<D>& m, std::size_t i) {
   if (f.source.empty() || f.source[i] < 0) return 0.0;
   for (auto q = ib.offset[i]; q < ib.offset[i + 1]; ++q) {
     const auto k = ib.slot[static_cast<std::size_t>(q)];
-    const auto state = m.bonds.intact[static_cast<std::size_t>(k)];
-    if (state == bond_intact) continue;
+    if (m.bonds.intact[static_cast<std::size_t>(k)] != bond_interface_failed) continue;
     const auto j = static_cast<std::size_t>(m.bonds.neighbor[static_cast<std::size_t>(k)]);
     if (f.source[j] != f.source[i]) continue;
-    if (state == bond_broken || interface_faces_apart<D>(m, k, i, j, ib.laws[ib.interface[static_cast<std::size_t>(q)]]))
+    if (interface_faces_apart<D>(m, k, i, j, ib.laws[ib.interface[static_cast<std::size_t>(q)]]))
       return f.pressure[static_cast<std::size_t>(f.source[i])];
   }
   return 0.0;
