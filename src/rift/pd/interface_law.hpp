@@ -161,8 +161,9 @@ void apply_interface_law(Model<D>& m) {
     const auto i = static_cast<std::size_t>(rows[r]);
     ib.strain[r] = bulk_strain<D>(m, i);
     stress[r] = rock_stress<D>(m.constants_of(i), ib.strain[r]);
-    pressure[r] = pressure_in_interface<D>(m, i);
   }
+#pragma omp parallel for if(rift::parallel::worth_a_team(rows.size())) schedule(static)
+  for (std::size_t r = 0; r < rows.size(); ++r) pressure[r] = pressure_in_interface<D>(m, static_cast<std::size_t>(rows[r]));  // reads both ends' strains
 #pragma omp parallel for if(rift::parallel::worth_a_team(rows.size())) schedule(static)
   for (std::size_t r = 0; r < rows.size(); ++r) {
     const auto i = static_cast<std::size_t>(rows[r]);

@@ -1,0 +1,202 @@
+// Hydraulic fracture validation 5: a hydraulic fracture meets a pre-existing fracture, the ten
+// tri-axial tests of Zhou et al. (2008) as the thesis tabulates them (003_a918a6800360952d.txt,
+// Table 4.2; ../shared/reference/zhou2008_crossing_tests.csv). A 2D horizontal section through
+// the borehole of the 300 mm cement/sand block (plane strain, sigma_v out of plane; E = 8.402 GPa,
+// nu = 0.23 from zhou2008_block_properties.csv), LPS rock, a 3 mm borehole with a 24 mm pre-crack
+// along sigma_H (the perforation's direction), fluid injected at 3e-9 m^3/s into the 1 mm slab,
+// in-situ stresses sigma_H along x and sigma_h along y brought to equilibrium first, then dynamic
+// relaxation load steps. The pre-existing fracture is an interface through (75 mm, 0) at the test's
+// approach angle to the fracture's path, clipped a few spacings inside the block: tensile strength
+// 1 MPa, no cohesion, friction 0.89 (Zhou's direct shear tests). One parameter set for every row:
+// the calibration is the rock's critical stretch, 3.3e-4 (T0 = E s0 / (1 - nu^2) about 2.9 MPa; a
+// cement mortar's, where G0 = 50 J/m^2 would give 1.1e-3 and 9 MPa). The outcome is read at the end
+// of the run (pd/interface_outcome.hpp). The case writes zhou_crossing.csv with the columns
+// test, approach_angle_deg, sigma_H_MPa, sigma_h_MPa, outcome_experiment, outcome_thesis_pd,
+// outcome_rift (and the second horizon's), and the damage of each run as zhou_crossing_<test>.csv
+// (x, y, damage) for the panel validation/run draws.
+#include <array>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <string>
+#include <vector>
+
+#include "case.hpp"
+#include "rift/pd/dynamic_relaxation.hpp"
+#include "rift/pd/forces.hpp"
+#include "rift/pd/interface_outcome.hpp"
+#include "rift/run/simulation.hpp"
+#include "rift/scene/parse.hpp"
+
+namespace rift::validation {
+
+namespace {
+
+struct ZhouTest {
+  const char* test;
+  double angle_deg, sigma_H, sigma_h;  // MPa, compression positive
+  const char* experiment;              // "" where the row has no experiment
+  const char* thesis;
+};
+
+// zhou2008_crossing_tests.csv
+const std::array<ZhouTest, 10> zhou_tests{{
+    {"2-1", 90, 10, 5, "crossed", ""},
+    {"2-2", 90, 10, 3, "crossed", ""},
+    {"2-4", 60, 10, 3, "crossed", "crossed"},
+    {"2-6", 60, 13, 3, "crossed", "crossed"},
+    {"S-1", 60, 15, 0, "crossed", "crossed"},
+    {"2-8", 60, 8, 5, "dilated", "crossed+dilated"},
+    {"S-2", 45, 8, 5, "", "dilated"},
+    {"2-3", 30, 10, 5, "dilated", ""},
+    {"2-5", 30, 8, 5, "dilated", ""},
+    {"2-7", 30, 13, 3, "arrested", "arrested"},
+}};
+
+std::string zhou_scene(const ZhouTest& t, double spacing) {
+  const double a = t.angle_deg * M_PI / 180.0, distance = 0.075;
+  const double half = 0.15 - 3.0 * spacing;  // the interface ends this far inside the block
+  auto reach = [&](double along_x) {          // how far along the interface to the block's edge
+    const double by_y = std::sin(a) > 1e-9 ? half / std::sin(a) : 1e9;
+    const double by_x = std::abs(std::cos(a)) > 1e-9 ? along_x / std::abs(std::cos(a)) : 1e9;
+    return std::min(by_y, by_x);
+  };
+  const double up = reach(half - distance), down = reach(half + distance);
+  const double x0 = distance - down * std::cos(a), y0 = -down * std::sin(a);
+  const double x1 = distance + up * std::cos(a), y1 = up * std::sin(a);
+  char text[2400];
+  std::snprintf(text, sizeof text, R"([scene]
+name = "zhou_%s"
+dimension = 2
+plane = "strain"
+thickness = 0.001
+[materials.rock]
+model = "lps"
+density = 2300.0
+youngs_modulus = 8.402e9
+poisson_ratio = 0.23
+critical_stretch = 3.3e-4
+[regions.block]
+shape = "box"
+min = [-0.15, -0.15]
+max = [0.15, 0.15]
+[regions.hole]
+shape = "cylinder"
+center = [0.0, 0.0]
+radius = 0.003
+[bodies.rock]
+material = "rock"
+region = "block"
+spacing = %.17g
+horizon = 3.015
+lattice_origin = [%.17g, 0.0]
+[[cracks]]
+points = [[-0.012, 0.0], [0.012, 0.0]]
+[[boreholes]]
+region = "hole"
+injection_rate = 3e-9
+fluid_bulk_modulus = 2.2e9
+[[interfaces]]
+points = [[%.9f, %.9f], [%.9f, %.9f]]
+tensile_strength = 1e6
+cohesion = 0.0
+friction_coefficient = 0.89
+[in_situ_stress]
+sigma_H = %.17g
+sigma_h = %.17g
+[solver]
+type = "dynamic_relaxation"
+end_time = 2.0
+load_steps = 40
+max_iterations = 6000
+tolerance = 1e-5
+)",
+                t.test, spacing, -0.5 * spacing, x0, y0, x1, y1, -t.sigma_H * 1e6, -t.sigma_h * 1e6);
+  return text;
+}
+
+struct ZhouRun {
+  pd::InterfaceOutcome outcome;
+  int unconverged = 0;
+};
+
+ZhouRun run_zhou(const ZhouTest& t, double spacing, const std::string& damage_csv) {
+  const auto s = scene::parse_string(zhou_scene(t, spacing), "zhou.toml");
+  run::Simulation<2> sim(s);
+  auto& m = sim.model;
+  sim.equilibrate_in_situ(s.in_situ);
+  pd::DynamicRelaxation<2> dr(m);
+  ZhouRun out;
+  for (long step = 1; step <= sim.steps; ++step) {
+    const double time = s.solver.end_time * double(step) / double(sim.steps);
+    const auto r = dr.relax(m, sim.loads, sim.contact_ptr(), time, s.solver.max_iterations, s.solver.tolerance);
+    out.unconverged += r.converged ? 0 : 1;
+  }
+  pd::update_damage<2>(m);
+  out.outcome = pd::classify_interfaces<2>(m).at(0);
+  if (!damage_csv.empty()) {
+    std::ofstream f(damage_csv);
+    f << "x,y,damage\n";
+    for (std::size_t i = 0; i < m.size(); ++i)
+      if (m.damage[i] > 0.05) f << m.reference_position[i][0] << "," << m.reference_position[i][1] << "," << m.damage[i] << "\n";
+  }
+  return out;
+}
+
+}  // namespace
+
+Result hf_zhou_crossing(const Settings& settings) {
+  // two horizons at horizon / spacing = 3.015 (quick: the coarse one and a coarser one)
+  const std::array<double, 2> spacings = settings.quick ? std::array<double, 2>{0.003, 0.002} : std::array<double, 2>{0.002, 0.0015};
+  std::vector<std::array<std::string, 2>> outcomes;
+  int matched = 0, with_experiment = 0, unconverged = 0;
+  bool both_agree = true;
+  for (const auto& t : zhou_tests) {
+    std::array<std::string, 2> o;
+    for (std::size_t h = 0; h < 2; ++h) {
+      std::string csv;
+      if (!settings.output_dir.empty() && h == 0) csv = settings.output_dir + "/zhou_crossing_" + t.test + ".csv";
+      const auto r = run_zhou(t, spacings[h], csv);
+      o[h] = r.outcome.name();
+      unconverged += r.unconverged;
+    }
+    if (*t.experiment) {
+      ++with_experiment;
+      if (o[0] == t.experiment && o[1] == t.experiment) ++matched;
+    }
+    both_agree = both_agree && o[0] == o[1];
+    outcomes.push_back(o);
+  }
+  if (!settings.output_dir.empty()) {
+    std::ofstream f(settings.output_dir + "/zhou_crossing.csv");
+    char header[200];
+    std::snprintf(header, sizeof header, "test,approach_angle_deg,sigma_H_MPa,sigma_h_MPa,outcome_experiment,outcome_thesis_pd,outcome_rift,outcome_rift_horizon_%.3gmm\n",
+                  3.015 * spacings[1] * 1e3);
+    f << header;
+    for (std::size_t k = 0; k < zhou_tests.size(); ++k) {
+      const auto& t = zhou_tests[k];
+      f << t.test << "," << t.angle_deg << "," << t.sigma_H << "," << t.sigma_h << "," << t.experiment << "," << t.thesis << ","
+        << outcomes[k][0] << "," << outcomes[k][1] << "\n";
+    }
+  }
+  std::string table;
+  for (std::size_t k = 0; k < zhou_tests.size(); ++k) {
+    const auto& t = zhou_tests[k];
+    table += (k ? "; " : "") + std::string(t.test) + " " + (*t.experiment ? t.experiment : "-") + " -> " + outcomes[k][0] + " / " + outcomes[k][1];
+  }
+  Result r;
+  r.name = "hf_zhou_crossing";
+  r.measured = matched;
+  r.reference = with_experiment;
+  r.tolerance = 0.0;
+  r.unit = "tests whose outcome matches the experiment at both horizons";
+  char tail[300];
+  std::snprintf(tail, sizeof tail, " (experiment -> rift at horizon %.3g / %.3g mm); the two horizons agree on every row: %s; load steps without equilibrium: %d",
+                3.015 * spacings[0] * 1e3, 3.015 * spacings[1] * 1e3, both_agree ? "yes" : "NO", unconverged);
+  r.details = table + tail;
+  r.source = "Zhou et al. (2008) tri-axial hydraulic fracturing tests (thesis Table 4.2)";
+  r.decide();
+  return r;
+}
+
+}  // namespace rift::validation
