@@ -9,17 +9,17 @@
 //   l: the mean of the two wings' reach, the farthest particle within 1.5 spacings of the crack line
 //      with damage above 0.3;
 //   w0: the inlet opening from an elliptic fit w^2 = w0^2 - B x^2 of the opening over
-//      3 mm <= |x| <= 0.7 l (each face's displacement extrapolated from the two rows next to it, as in
-//      hf_sneddon; the borehole and the tip are left out);
+//      3 mm <= |x| <= 0.7 l (read at the faces, crack_face_opening.hpp; the borehole and the tip
+//      are left out);
 //   p: the fluid's pressure.
 // The finite block makes the crack longer than in an infinite one (about +8% on K at t = 1 s,
 // l / W = 0.17). Measured (1 mm, horizon 3.015 mm): see validation/report.md.
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <map>
 
 #include "case.hpp"
+#include "crack_face_opening.hpp"
 #include "rift/pd/dynamic_relaxation.hpp"
 #include "rift/pd/forces.hpp"
 #include "rift/run/simulation.hpp"
@@ -54,22 +54,19 @@ KgdState read_kgd(const pd::Model<2>& m, double spacing, double pressure) {
   k.broken_bonds = pd::summarize<2>(m).broken_bonds;
   k.pressure = pressure;
   double right = 0.0, left = 0.0;
-  std::map<std::pair<long, long>, double> uy;
   for (std::size_t q = 0; q < m.size(); ++q) {
     const auto& X = m.reference_position[q];
-    const long i = std::lround(X[0] / spacing), j = std::lround(X[1] / spacing);
-    uy[{i, j}] = m.position[q][1] - X[1];
     if (std::abs(X[1] - 0.5 * spacing) <= 1.5 * spacing && m.damage[q] > 0.3) right = std::max(right, X[0]), left = std::min(left, X[0]);
   }
   k.half_length = 0.5 * (right - left);
+  const CrackFaceOpening opening(m, spacing, 0.0);
   // least squares of w^2 = A - B x^2
   double n = 0, sx = 0, sy = 0, sxx = 0, sxy = 0;
   const long reach = std::lround(0.7 * k.half_length / spacing);
   for (long i = -reach; i <= reach; ++i) {
     const double x = i * spacing;
     if (std::abs(x) < 0.003) continue;
-    const auto at = [&](long j) { const auto it = uy.find({i, j}); return it == uy.end() ? 0.0 : it->second; };
-    const double w = (1.5 * at(1) - 0.5 * at(2)) - (1.5 * at(0) - 0.5 * at(-1));
+    const double w = opening.at(i, 1);
     const double X2 = x * x, Y = w * w;
     n += 1, sx += X2, sy += Y, sxx += X2 * X2, sxy += X2 * Y;
   }

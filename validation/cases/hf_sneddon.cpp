@@ -3,15 +3,15 @@
 // (pd/crack_pressure.hpp), no growth, adaptive dynamic relaxation. The opening
 //   w(x) = 4 (1 - nu^2) p / E sqrt(a^2 - x^2)   (Sneddon 1946; plane strain)
 // is read at the crack faces: each face's displacement extrapolated linearly from the two lattice
-// rows next to it (at dx/2 and 3 dx/2). Its L2 error over |x| <= 0.9 a must be within 5% and the
+// rows next to it (at dx/2 and 3 dx/2; crack_face_opening.hpp). Its L2 error over |x| <= 0.9 a must be within 5% and the
 // crack volume int w dx within 3% of 2 pi (1 - nu^2) p a^2 / E, both at horizon 3.015 mm (1 mm
 // spacing), and both errors must fall as the horizon shrinks at horizon / spacing = 3.015:
 // 6.03, 3.015, 1.5075 mm (quick: 6.03 and 3.015 mm). The finite plate (20 a wide) adds about 0.6%.
 #include <cmath>
 #include <cstdio>
-#include <map>
 
 #include "case.hpp"
+#include "crack_face_opening.hpp"
 #include "rift/pd/dynamic_relaxation.hpp"
 #include "rift/run/simulation.hpp"
 #include "rift/scene/parse.hpp"
@@ -36,18 +36,13 @@ Opening sneddon(double spacing) {
   auto& m = sim.model;
   pd::DynamicRelaxation<2> dr(m);
   const auto relax = dr.relax(m, sim.loads, sim.contact_ptr(), s.solver.end_time, s.solver.max_iterations, s.solver.tolerance);
-  // u_y by lattice site (i, j): sites at ((i + 1/2) dx, (j + 1/2) dx)
-  std::map<std::pair<long, long>, double> uy;
-  for (std::size_t k = 0; k < m.size(); ++k)
-    uy[{std::lround(m.reference_position[k][0] / spacing - 0.5), std::lround(m.reference_position[k][1] / spacing - 0.5)}] =
-        m.position[k][1] - m.reference_position[k][1];
+  const CrackFaceOpening opening(m, spacing, 0.5);  // sites at ((i + 1/2) dx, (j + 1/2) dx), the crack on y = 0
   const double scale = 4.0 * (1.0 - nu * nu) * p / E;
   double err2 = 0.0, ref2 = 0.0, volume = 0.0, centre = 0.0;
   const long half = std::lround(a / spacing);
   for (long i = -half; i < half; ++i) {
     const double x = (i + 0.5) * spacing;
-    const double upper = 1.5 * uy[{i, 0}] - 0.5 * uy[{i, 1}], lower = 1.5 * uy[{i, -1}] - 0.5 * uy[{i, -2}];
-    const double w = upper - lower, exact = scale * std::sqrt(a * a - x * x);
+    const double w = opening.at(i, 0), exact = scale * std::sqrt(a * a - x * x);
     volume += w * spacing;
     if (i == 0) centre = w / exact;
     if (std::abs(x) <= 0.9 * a) err2 += (w - exact) * (w - exact), ref2 += exact * exact;

@@ -18,7 +18,6 @@
 #include <vector>
 
 #include "rift/geometry/precrack.hpp"
-#include "rift/pd/fluid_network.hpp"
 #include "rift/pd/interface_law.hpp"
 #include "rift/pd/model.hpp"
 
