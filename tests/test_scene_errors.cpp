@@ -121,6 +121,10 @@ const Case cases[] = {
      "interfaces[0].friction_coefficient", ""},
     {"interface with negative cohesion", "", "\n[[interfaces]]\npoints = [[0.0, 0.005], [0.01, 0.005]]\ntensile_strength = 1e6\ncohesion = -1.0\nfriction_coefficient = 0.5\n",
      "interfaces[0].cohesion", "cohesion = -1.0"},
+    {"unknown breaking mode", "type = \"explicit\"\nend_time = 1e-6", "type = \"dynamic_relaxation\"\nbreaking = \"after\"", "solver.breaking",
+     "breaking = \"after\""},
+    {"breaking passes while bonds break during the iterations", "type = \"explicit\"\nend_time = 1e-6",
+     "type = \"dynamic_relaxation\"\nmax_breaking_passes = 3", "solver.max_breaking_passes", "max_breaking_passes = 3"},
 };
 
 class SceneErrors : public ::testing::TestWithParam<Case> {};

@@ -71,7 +71,7 @@ Result hf_breakdown(const Settings&) {
   for (long step = 1; step <= sim.steps; ++step) {
     const double t = s.solver.end_time * double(step) / double(sim.steps);
     const double before = pressure(s.solver.end_time * double(step - 1) / double(sim.steps));
-    const auto r = dr.relax(m, sim.loads, sim.contact_ptr(), t, s.solver.max_iterations, s.solver.tolerance);
+    const auto r = sim.relax(dr, s.solver, t);
     pd::update_damage<2>(m);
     const auto extent = damage_extent(m, 1.5 * a);
     if (first_break == 0.0 && pd::summarize<2>(m).broken_bonds > 0) first_break = 0.5 * (before + pressure(t));

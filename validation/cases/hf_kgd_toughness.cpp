@@ -103,7 +103,7 @@ Result hf_kgd_toughness(const Settings& settings) {
   int unconverged = 0;
   for (long step = 1; step <= steps; ++step) {
     const double t = s.solver.end_time * double(step) / double(steps);
-    const auto r = dr.relax(m, sim.loads, sim.contact_ptr(), t, s.solver.max_iterations, s.solver.tolerance);
+    const auto r = sim.relax(dr, s.solver, t);
     unconverged += r.converged ? 0 : 1;
     if (step == steps / 2 || step == steps) {
       pd::update_damage<2>(m);

@@ -132,7 +132,7 @@ ZhouRun run_zhou(const ZhouTest& t, double spacing, const std::string& damage_cs
   const std::size_t source = s.cracks.size();  // the borehole's fluid
   for (long step = 1; step <= sim.steps; ++step) {
     const double time = s.solver.end_time * double(step) / double(sim.steps);
-    const auto r = dr.relax(m, sim.loads, sim.contact_ptr(), time, s.solver.max_iterations, s.solver.tolerance);
+    const auto r = sim.relax(dr, s.solver, time);
     // the test ends when the fracture reaches the block's faces and the fluid escapes, as the
     // laboratory test did (its pressure lost): the outcome is that of the last load step before
     if (m.fluid_network.vented.at(source)) break;

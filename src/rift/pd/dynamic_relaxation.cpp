@@ -94,6 +94,41 @@ RelaxationResult DynamicRelaxation<D>::relax(Model<D>& m, const load::Boundaries
   return result;
 }
 
+namespace {
+// bonds and interface bonds no longer intact
+template <int D>
+std::size_t failed_bonds(const Model<D>& m) {
+  std::size_t failed = 0;
+  const auto& intact = m.bonds.intact;
+#pragma omp parallel for if(rift::parallel::worth_a_team(intact.size())) schedule(static) reduction(+ : failed)
+  for (std::size_t k = 0; k < intact.size(); ++k) failed += intact[k] != bond_intact;
+  return failed;
+}
+}  // namespace
+
+template <int D>
+RelaxationResult DynamicRelaxation<D>::relax_breaking_at_equilibrium(Model<D>& m, const load::Boundaries<D>& loads,
+                                                                      Contact<D>* contact, double t, int max_iterations,
+                                                                      double tolerance, int max_passes) {
+  RelaxationResult total;
+  total.breaking_passes = 0;
+  for (int pass = 0; pass < max_passes; ++pass) {
+    RelaxationResult r;
+    {
+      HeldBreaking<D> held(m);
+      r = relax(m, loads, contact, t, max_iterations, tolerance);
+    }
+    total.iterations += r.iterations;
+    total.residual = r.residual;
+    total.converged = r.converged;
+    ++total.breaking_passes;
+    const std::size_t before = failed_bonds<D>(m);
+    compute_forces<D>(m, contact);  // breaks what is past its limit at this equilibrium
+    if (failed_bonds<D>(m) == before) break;
+  }
+  return total;
+}
+
 template class DynamicRelaxation<2>;
 template class DynamicRelaxation<3>;
 

@@ -12,6 +12,25 @@ struct RelaxationResult {
   int iterations = 0;
   double residual = 0.0;  // ||internal + external force|| / ||load||
   bool converged = false;
+  int breaking_passes = 1;  // equilibria of the load step (relax_breaking_at_equilibrium)
+};
+
+/// Holds every bond of the model (no bond or interface bond may break) while it lives.
+template <int D>
+class HeldBreaking {
+ public:
+  explicit HeldBreaking(Model<D>& m) : m_(m) {
+    for (auto& b : m_.bodies) breakable_.push_back(b.constants.breakable), b.constants.breakable = false;
+  }
+  ~HeldBreaking() {
+    for (std::size_t b = 0; b < m_.bodies.size(); ++b) m_.bodies[b].constants.breakable = breakable_[b];
+  }
+  HeldBreaking(const HeldBreaking&) = delete;
+  HeldBreaking& operator=(const HeldBreaking&) = delete;
+
+ private:
+  Model<D>& m_;
+  std::vector<bool> breakable_;
 };
 
 template <int D>
@@ -21,6 +40,12 @@ class DynamicRelaxation {
   /// Relax to equilibrium for the loads at time t (positions of displacement BCs set first).
   RelaxationResult relax(Model<D>& m, const load::Boundaries<D>& loads, Contact<D>* contact, double t,
                          int max_iterations, double tolerance);
+  /// Quasi-static growth: relax with every bond held, break the bonds past their limits at that
+  /// equilibrium, and relax again, until an equilibrium breaks nothing (or max_passes equilibria).
+  /// No bond breaks in the transients of a load step, where the loads (an injected fluid's
+  /// pressure, say) have not yet found the deformation they belong to.
+  RelaxationResult relax_breaking_at_equilibrium(Model<D>& m, const load::Boundaries<D>& loads, Contact<D>* contact, double t,
+                                                 int max_iterations, double tolerance, int max_passes);
 
  private:
   std::vector<double> fictitious_density_;  // lambda_ii (eq. 10), time step 1

@@ -94,8 +94,10 @@ Plan check_dim(const scene::Scene& s, std::ostream& out) {
     std::snprintf(line, sizeof line, ", used %.4g s\nsteps        %ld (explicit, end time %.4g s)\n", plan.time_step, plan.steps,
                   s.solver.end_time);
   } else {
-    std::snprintf(line, sizeof line, "\nsteps        %d load steps of dynamic relaxation (at most %d iterations each, tolerance %g)\n",
-                  s.solver.load_steps, s.solver.max_iterations, s.solver.tolerance);
+    const bool at_equilibrium = s.solver.breaking == scene::Solver::Breaking::at_equilibrium;
+    std::snprintf(line, sizeof line, "\nsteps        %d load steps of dynamic relaxation (at most %d iterations each, tolerance %g; bonds break %s)\n",
+                  s.solver.load_steps, s.solver.max_iterations, s.solver.tolerance,
+                  at_equilibrium ? "at each equilibrium" : "during the iterations");
   }
   out << line;
   if (s.in_situ.enabled) {
@@ -213,7 +215,9 @@ Result run_dim(const scene::Scene& s, const Options& o) {
   const char* comp[3] = {"x", "y", "z"};
   for (const auto& r : p.loads.reaction_names())
     for (int k = 0; k < D; ++k) columns.push_back("reaction_" + r + "_" + comp[k]);
+  const bool at_equilibrium = s.solver.breaking == scene::Solver::Breaking::at_equilibrium;
   if (s.solver.kind == scene::SolverKind::dynamic_relaxation) columns.insert(columns.end(), {"iterations", "residual"});
+  if (s.solver.kind == scene::SolverKind::dynamic_relaxation && at_equilibrium) columns.push_back("breaking_passes");
   io::History history(res.output_dir + "/history.csv", columns);
   res.history_csv = history.path();
 
@@ -276,8 +280,10 @@ Result run_dim(const scene::Scene& s, const Options& o) {
     write_snapshot<D>(fields, m, s);
     for (long step = 1; step <= p.steps; ++step) {
       const double t = s.solver.end_time * double(step) / double(p.steps);
-      auto r = dr.relax(m, p.loads, p.contact_ptr(), t, s.solver.max_iterations, s.solver.tolerance);
-      auto e = history_row(step, {double(r.iterations), r.residual});
+      auto r = p.relax(dr, s.solver, t);
+      std::vector<double> extra{double(r.iterations), r.residual};
+      if (at_equilibrium) extra.push_back(double(r.breaking_passes));
+      auto e = history_row(step, extra);
       write_snapshot<D>(fields, m, s);
       progress.update(step, m.time, e.broken_fraction, true);
       if (!r.converged && !o.quiet)

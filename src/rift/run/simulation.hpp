@@ -35,12 +35,10 @@ struct Simulation {
   /// The in-situ stage ([in_situ_stress]): static equilibrium under the far-field stresses and
   /// every other load at t = 0, with no bond allowed to break; the run starts from it at rest.
   pd::RelaxationResult equilibrate_in_situ(const scene::InSituStress& in_situ) {
-    std::vector<bool> breakable;
-    for (auto& b : model.bodies) breakable.push_back(b.constants.breakable), b.constants.breakable = false;
+    pd::HeldBreaking<D> held(model);
     const auto initial_velocity = model.velocity;
     pd::DynamicRelaxation<D> dr(model);
     auto r = dr.relax(model, loads, contact_ptr(), 0.0, in_situ.max_iterations, in_situ.tolerance);
-    for (std::size_t b = 0; b < model.bodies.size(); ++b) model.bodies[b].constants.breakable = breakable[b];
     model.velocity = initial_velocity;
     return r;
   }
@@ -50,6 +48,13 @@ struct Simulation {
     loads.apply_body_forces(model, model.time);
   }
   void step() { pd::velocity_verlet_step<D>(model, loads, contact_ptr(), dt); }
+  /// One load step of dynamic relaxation at time t, bonds breaking as [solver] breaking says.
+  pd::RelaxationResult relax(pd::DynamicRelaxation<D>& dr, const scene::Solver& solver, double t) {
+    if (solver.breaking == scene::Solver::Breaking::at_equilibrium)
+      return dr.relax_breaking_at_equilibrium(model, loads, contact_ptr(), t, solver.max_iterations, solver.tolerance,
+                                              solver.max_breaking_passes);
+    return dr.relax(model, loads, contact_ptr(), t, solver.max_iterations, solver.tolerance);
+  }
 };
 
 }  // namespace rift::run

@@ -474,7 +474,14 @@ void parse_solver(R& root, Scene& s) {
       v.max_iterations = static_cast<int>(*n);
     }
     if (auto tol = r.number("tolerance")) v.tolerance = r.positive("tolerance", *tol);
-    allowed.insert(allowed.end(), {"load_steps", "max_iterations", "tolerance"});
+    if (auto b = r.choice("breaking", {"during", "at_equilibrium"}))
+      v.breaking = *b == "at_equilibrium" ? Solver::Breaking::at_equilibrium : Solver::Breaking::during;
+    if (auto n = r.integer("max_breaking_passes")) {
+      if (*n < 1) r.fail("max_breaking_passes", "must be >= 1");
+      if (v.breaking != Solver::Breaking::at_equilibrium) r.fail("max_breaking_passes", "only with breaking = \"at_equilibrium\"");
+      v.max_breaking_passes = static_cast<int>(*n);
+    }
+    allowed.insert(allowed.end(), {"load_steps", "max_iterations", "tolerance", "breaking", "max_breaking_passes"});
   }
   if (s.method == Method::mpm && v.kind == SolverKind::dynamic_relaxation)
     r.fail("type", "the material point method runs explicit dynamics; use [mpm] damping to reach a static answer");

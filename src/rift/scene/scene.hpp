@@ -161,6 +161,10 @@ struct Solver {
   int load_steps = 1;
   int max_iterations = 20000;
   double tolerance = 1e-6;
+  /// When bonds may break: in every iteration (`during`), or only at each equilibrium, relaxing
+  /// again until a pass breaks nothing (`at_equilibrium`: quasi-static growth, no transients).
+  enum class Breaking { during, at_equilibrium } breaking = Breaking::during;
+  int max_breaking_passes = 200;  // at_equilibrium: equilibria per load step
 };
 
 struct Contact {
