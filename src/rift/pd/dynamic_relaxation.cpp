@@ -125,6 +125,7 @@ RelaxationResult DynamicRelaxation<D>::relax_breaking_at_equilibrium(Model<D>& m
     const std::size_t before = failed_bonds<D>(m);
     compute_forces<D>(m, contact);  // breaks what is past its limit at this equilibrium
     if (failed_bonds<D>(m) == before) break;
+    total.converged = false;  // bonds broke after the last equilibrium (if the passes run out here)
   }
   return total;
 }

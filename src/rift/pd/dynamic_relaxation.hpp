@@ -41,7 +41,8 @@ class DynamicRelaxation {
   RelaxationResult relax(Model<D>& m, const load::Boundaries<D>& loads, Contact<D>* contact, double t,
                          int max_iterations, double tolerance);
   /// Quasi-static growth: relax with every bond held, break the bonds past their limits at that
-  /// equilibrium, and relax again, until an equilibrium breaks nothing (or max_passes equilibria).
+  /// equilibrium, and relax again, until an equilibrium breaks nothing (or max_passes equilibria;
+  /// then converged is false).
   /// No bond breaks in the transients of a load step, where the loads (an injected fluid's
   /// pressure, say) have not yet found the deformation they belong to.
   RelaxationResult relax_breaking_at_equilibrium(Model<D>& m, const load::Boundaries<D>& loads, Contact<D>* contact, double t,
