@@ -10,9 +10,10 @@
 // 1 MPa, no cohesion, friction 0.89 (Zhou's direct shear tests). One parameter set for every row:
 // the calibration is the rock's critical stretch s00 = 3.5e-4 (T0 = E s0 / (1 - nu^2) about 3.1 MPa;
 // a cement mortar's, where G0 = 50 J/m^2 would give 1.1e-3 and 9 MPa), with the thesis' alpha = 0.1
-// (its Table 4.3; s0 = s00 - alpha s_min, as LAMMPS peri): without it a stretch criterion breaks the
-// block of S-1 under 15 / 0 MPa, whose plane strain Poisson stretch (5.0e-4) exceeds s00 with no
-// tensile stress anywhere; with it the limit there is 5.2e-4. The outcome is read at the end
+// (its Table 4.3; s0 = s00 - alpha s_min, as LAMMPS peri). A stretch criterion is at odds with S-1
+// (15 / 0 MPa): its plane strain Poisson stretch, 5.0e-4, exceeds s00 with no tensile stress
+// anywhere. alpha = 0.1 lifts the limit there to 5.2e-4 only, too little: the block still breaks
+// throughout in the first load step (alpha = 0.25 keeps it whole but arrests 2-1). The outcome is read at the end
 // of the run, or at the last load step before the fracture reaches the block's faces and the fluid
 // escapes (the laboratory test ended there, its pressure lost; pd/interface_outcome.hpp). The case writes zhou_crossing.csv with the columns
 // test, approach_angle_deg, sigma_H_MPa, sigma_h_MPa, outcome_experiment, outcome_thesis_pd,
