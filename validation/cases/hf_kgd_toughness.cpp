@@ -53,10 +53,13 @@ double bonds_per_metre_of_cut(const pd::Model<2>& m, double spacing, double x_co
 }
 
 // The crack lies between lattice rows 0 (y = 0) and 1 (y = spacing), sites at (i, j) * spacing.
-KgdState read_kgd(const pd::Model<2>& m, double spacing, double pressure) {
+// `dissipated`: the fluid's work so far, less the strain energy of the summary.
+KgdState read_kgd(const pd::Model<2>& m, double spacing, double pressure, double work) {
   KgdState k;
   k.time = m.time;
-  k.broken_bonds = pd::summarize<2>(m).broken_bonds;
+  const auto summary = pd::summarize<2>(m);
+  k.broken_bonds = summary.broken_bonds;
+  k.dissipated = work - summary.strain;
   k.pressure = pressure;
   double right = 0.0, left = 0.0;
   for (std::size_t q = 0; q < m.size(); ++q) {
@@ -118,8 +121,7 @@ Result hf_kgd_toughness(const Settings& settings) {
     last_pressure = pressure, last_volume = volume;
     if (step == steps / 2 || step == steps) {
       pd::update_damage<2>(m);
-      read.push_back(read_kgd(m, spacing, pressure));
-      read.back().dissipated = work - pd::summarize<2>(m).strain;
+      read.push_back(read_kgd(m, spacing, pressure, work));
     }
   }
   // bonds broken per metre of growth against a straight cut's: the work the growing crack dissipates
