@@ -18,6 +18,11 @@
 // energy dissipated; over the new crack area 2 dl t it is the toughness the model really has, in units
 // of G0 (1 for a crack that grows at K_Ic). With it, a short crack is told apart from a wrong
 // elastic or fluid response: l / l_KGD = (G_diss / G0)^(-1/3) for a crack that obeys LEFM.
+// Why the crack is too tough (tests/test_crack_tip_initiation.cpp): a sharp cut in a pure K field
+// starts at 0.97 K_Ic, but the fluid's pressure on the faces is, near the tip, a uniform compression
+// p on top of the singular field (Sneddon's crack = remote tension less p everywhere). The tip bonds
+// span a horizon, so it shortens them: at p = 4.8 K_Ic m^-1/2 (2 mm, t = 0.5 s) the cut needs
+// 1.32 K_Ic. LEFM's KGD is the limit horizon / l -> 0; the term falls only as sqrt(horizon / l).
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
