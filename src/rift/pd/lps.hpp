@@ -12,6 +12,7 @@
 #pragma once
 #include <algorithm>
 #include <limits>
+#include <vector>
 
 #include "rift/pd/influence.hpp"
 #include "rift/pd/model.hpp"
@@ -80,36 +81,49 @@ void lps_dilatation(Model<D>& m, const BodyInfo& body) {
 /// Second pass of the LPS and of its viscoelastic variant (ves.hpp, Viscous: the deviatoric
 /// extension of each end less lambda times its back extension): f_i = sum_j (t_i<j> + t_j<i>) V_j
 /// along the deformed bond.
+/// What the force pass reads of a neighbour, packed in one record per particle (one cache line
+/// instead of four arrays): its position, p_j, a_j and theta_j.
+template <int D>
+struct ForceStateInputs {
+  Vec<D> position;
+  double pressure, a, theta;
+};
+
 template <int D, scene::Influence Omega, bool Viscous>
 void state_based_forces(Model<D>& m, const BodyInfo& body) {
   const auto& c = body.constants;
   const Bonds& b = m.bonds;
   const double horizon = c.horizon, kappa = c.kappa, a_dev = c.lps_deviatoric_coefficient(), lambda = c.viscous_fraction;
+  // bonds join particles of one body (bodies meet through contact only)
+  // (the calling thread's buffer: the team writes and reads it through `in`)
+  static thread_local std::vector<ForceStateInputs<D>> inputs;
+  inputs.resize(m.size());
+  ForceStateInputs<D>* const in = inputs.data();
+#pragma omp parallel for if(rift::parallel::worth_a_team(body.last - body.first)) schedule(static)
+  for (std::size_t j = body.first; j < body.last; ++j) {
+    const double a_j = m.weighted_volume[j] > 0.0 ? a_dev / m.weighted_volume[j] : 0.0;
+    in[j] = {m.position[j], pressure_factor<D>(kappa, m.dilatation[j], a_j, m.dilatation_coupling[j]), a_j, m.dilatation[j]};
+  }
 #pragma omp parallel for if(rift::parallel::worth_a_team(body.last - body.first)) schedule(static)
   for (std::size_t i = body.first; i < body.last; ++i) {
-    const Vec<D> xi_pos = m.position[i];
-    const double a_i = a_dev / m.weighted_volume[i];
-    const double theta_i = m.dilatation[i];
-    const double pressure_i = pressure_factor<D>(kappa, theta_i, a_i, m.dilatation_coupling[i]);
+    const ForceStateInputs<D> own = in[i];
     Vec<D> f{};
     for (auto k = b.offset[i]; k < b.offset[i + 1]; ++k) {
       if (b.intact[k] != bond_intact) continue;
-      const auto j = static_cast<std::size_t>(b.neighbor[k]);
-      const Vec<D> eta = m.position[j] - xi_pos;
+      const ForceStateInputs<D>& other = in[b.neighbor[k]];
+      const Vec<D> eta = other.position - own.position;
       const double r = norm<D>(eta);
       const double xi = b.length[k];
       const double e = r - xi;
       const double omega = influence(Omega, xi, horizon);
-      const double a_j = a_dev / m.weighted_volume[j];
-      const double theta_j = m.dilatation[j];
-      const double pressure_j = pressure_factor<D>(kappa, theta_j, a_j, m.dilatation_coupling[j]);
-      double dev_i = e - theta_i * xi / D, dev_j = e - theta_j * xi / D;
+      double dev_i = e - own.theta * xi / D, dev_j = e - other.theta * xi / D;
       if constexpr (Viscous) {
+        const auto j = static_cast<std::size_t>(b.neighbor[k]);
         dev_i -= lambda * b.back_extension[k];
         dev_j -= lambda * b.back_extension[static_cast<std::size_t>(b.offset[j]) + b.mirror_slot[k]];
       }
-      const double t_i = force_state(b.dilatation_weight[k], pressure_i, a_i, b.correction[k], omega, dev_i);
-      const double t_j = force_state(b.mirror_dilatation_weight[k], pressure_j, a_j, b.mirror_correction[k], omega, dev_j);
+      const double t_i = force_state(b.dilatation_weight[k], own.pressure, own.a, b.correction[k], omega, dev_i);
+      const double t_j = force_state(b.mirror_dilatation_weight[k], other.pressure, other.a, b.mirror_correction[k], omega, dev_j);
       const double scalar = (t_i + t_j) * b.volume[k] / r;
       for (int q = 0; q < D; ++q) f[q] += scalar * eta[q];
     }
