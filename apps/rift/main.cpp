@@ -4,6 +4,7 @@
 //   rift --version
 // Exit status: 0 success, 1 physics failure during a run, 2 bad input (nothing written).
 #include <CLI/CLI.hpp>
+#include <fmt/format.h>
 #include <omp.h>
 
 #include <algorithm>
@@ -52,8 +53,12 @@ int main(int argc, char** argv) {
       std::printf("rift: %ld steps, t = %.6g s, kinetic energy %.6g J, strain energy %.6g J, broken bonds %lld, max damage %.3f\n",
                   r.steps, r.time, r.final_energy.kinetic, r.final_energy.strain, static_cast<long long>(r.final_energy.broken_bonds),
                   r.max_damage);
-    std::printf("rift: loop time %.6g s (%.4g s per step, %d threads)\n", r.loop_seconds, r.loop_seconds / double(std::max(1L, r.steps)),
-                omp_get_max_threads());
+    const double per_second = r.loop_seconds > 0.0 ? 1.0 / r.loop_seconds : 0.0;
+    std::string rate = scene.method == rift::scene::Method::mpm
+                           ? fmt::format("{:.4g} M particle-steps/s", 1e-6 * r.particle_steps * per_second)
+                           : fmt::format("{:.4g} M bonds/s", 1e-6 * r.bond_updates * per_second);
+    std::printf("rift: loop time %.6g s (%.4g s per step, %d threads; %s)\n", r.loop_seconds, r.loop_seconds / double(std::max(1L, r.steps)),
+                omp_get_max_threads(), rate.c_str());
     std::printf("results in %s/\n  fields   %s (open in ParaView)\n  history  %s\n", r.output_dir.c_str(), r.fields_xdmf.c_str(),
                 r.history_csv.c_str());
     for (const auto& [what, path] : r.files) std::printf("  %-8s %s\n", what.c_str(), path.c_str());

@@ -52,7 +52,7 @@ double dilatation_row(Model<D>& m, const MaterialConstants& c, std::size_t i, do
       b.intact[k] = bond_broken;
       continue;
     }
-    s_min = std::min(s_min, e / xi);
+    if (e < s_min * xi * (1.0 + 1e-9)) s_min = std::min(s_min, e / xi);  // divide only for a candidate
     theta += b.dilatation_weight[k] * e * b.volume[k];
     if constexpr (Coupling) q += b.correction[k] * influence(Omega, xi, c.horizon) * xi * e * b.volume[k];
   }

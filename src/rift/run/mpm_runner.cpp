@@ -196,6 +196,7 @@ Result run_dim(const scene::Scene& s, const Options& o) {
     const bool sample = (step - 1) * s.output.history_count >= next_history * r.steps;
     if (sample) r.solver.measure_energy();
     r.solver.step(m, r.dt);
+    res.particle_steps += double(m.particles.size());
     if constexpr (D == 2)
       if (propagation) res.crack_growth_events += propagation->check(m, r.solver, step);
     if (sample) {

@@ -263,6 +263,7 @@ Result run_dim(const scene::Scene& s, const Options& o) {
     long next_snapshot = 1, next_history = 1;
     for (long step = 1; step <= p.steps; ++step) {
       p.step();
+      res.bond_updates += double(m.bonds.size());
       const bool snap = step * s.output.count >= next_snapshot * p.steps;
       const bool hist = step * s.output.history_count >= next_history * p.steps;
       if (hist) {
@@ -281,6 +282,7 @@ Result run_dim(const scene::Scene& s, const Options& o) {
     for (long step = 1; step <= p.steps; ++step) {
       const double t = s.solver.end_time * double(step) / double(p.steps);
       auto r = p.relax(dr, s.solver, t);
+      res.bond_updates += double(r.iterations) * double(m.bonds.size());
       std::vector<double> extra{double(r.iterations), r.residual};
       if (at_equilibrium) extra.push_back(double(r.breaking_passes));
       auto e = history_row(step, extra);

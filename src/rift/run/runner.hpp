@@ -33,6 +33,9 @@ struct Result {
   long steps = 0;
   double time = 0.0;
   double loop_seconds = 0.0;  // wall time of the step loop (with outputs)
+  /// Work done in the loop: PD, directed bonds times force evaluations (steps, or dynamic relaxation
+  /// iterations); MPM, material points times steps.
+  double bond_updates = 0.0, particle_steps = 0.0;
   pd::EnergySummary final_energy;
   double max_damage = 0.0;
   long crack_growth_events = 0;  // MPM: crack particles added by propagation
