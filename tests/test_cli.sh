@@ -46,9 +46,10 @@ reactions = ["left"]
 probes = [[0.0101, 0.0041], [0.019, 0.009]]
 SCENE
 "$rift" --version | grep -q '^rift '
-"$rift" check "$tmp/plate.toml" | grep -q 'bytes/bond'
+"$rift" check "$tmp/plate.toml" | grep -q 'bytes/directed bond'
 "$rift" run "$tmp/plate.toml" -o "$tmp/out" --threads 2 > "$tmp/run.log"
 grep -q "damage   $tmp/out/damage.png" "$tmp/run.log"
+grep -q "M bonds/s)" "$tmp/run.log"  # throughput at the end of the run
 test -s "$tmp/out/fields.h5"
 test -s "$tmp/out/damage.png"
 test "$(wc -l < "$tmp/out/history.csv")" -eq 7  # header, initial state, 5 rows

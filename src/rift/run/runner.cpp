@@ -82,11 +82,13 @@ Plan check_dim(const scene::Scene& s, std::ostream& out) {
                   c.horizon / c.spacing, c.breakable ? std::to_string(c.critical_stretch).c_str() : "unbreakable");
     out << line;
   }
-  std::snprintf(line, sizeof line, "particles    %zu\nbonds        %lld (%.1f per particle)\n", plan.particles,
-                static_cast<long long>(plan.bonds), plan.particles ? 2.0 * double(plan.bonds) / double(plan.particles) : 0.0);
+  std::snprintf(line, sizeof line, "particles    %zu\nbonds        %lld (%lld directed, %.1f per particle)\n", plan.particles,
+                static_cast<long long>(plan.bonds), 2LL * static_cast<long long>(plan.bonds),
+                plan.particles ? 2.0 * double(plan.bonds) / double(plan.particles) : 0.0);
   out << line;
-  std::snprintf(line, sizeof line, "memory       %.0f bytes/particle, %.0f bytes/bond, %.1f MB in all\n", plan.bytes_per_particle,
-                plan.bytes_per_bond, (plan.bytes_per_particle * double(plan.particles) + plan.bytes_per_bond * double(plan.bonds)) / 1e6);
+  // both directions of a bond are stored (bonds.hpp): per directed bond, half of a bond's bytes
+  std::snprintf(line, sizeof line, "memory       %.0f bytes/particle, %.0f bytes/directed bond, %.1f MB in all\n", plan.bytes_per_particle,
+                0.5 * plan.bytes_per_bond, (plan.bytes_per_particle * double(plan.particles) + plan.bytes_per_bond * double(plan.bonds)) / 1e6);
   out << line;
   std::snprintf(line, sizeof line, "time step    stable %.4g s", plan.stable_time_step);
   out << line;
