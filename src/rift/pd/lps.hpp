@@ -11,6 +11,7 @@
 // dilatation (and P), then forces. Uncorrected in 3D: t = (3K - 5G) theta omega |xi| / m + 15 G omega e / m.
 #pragma once
 #include <algorithm>
+#include <cmath>
 #include <limits>
 #include <vector>
 
@@ -52,7 +53,8 @@ double dilatation_row(Model<D>& m, const MaterialConstants& c, std::size_t i, do
       b.intact[k] = bond_broken;
       continue;
     }
-    if (e < s_min * xi * (1.0 + 1e-9)) s_min = std::min(s_min, e / xi);  // divide only for a candidate
+    // divide only for a candidate: e / xi < s_min up to the rounding of s_min xi (either sign)
+    if (const double bound = s_min * xi; e < bound + std::abs(bound) * 1e-12) s_min = std::min(s_min, e / xi);
     theta += b.dilatation_weight[k] * e * b.volume[k];
     if constexpr (Coupling) q += b.correction[k] * influence(Omega, xi, c.horizon) * xi * e * b.volume[k];
   }
@@ -78,24 +80,24 @@ void lps_dilatation(Model<D>& m, const BodyInfo& body) {
   }
 }
 
-/// Second pass of the LPS and of its viscoelastic variant (ves.hpp, Viscous: the deviatoric
-/// extension of each end less lambda times its back extension): f_i = sum_j (t_i<j> + t_j<i>) V_j
-/// along the deformed bond.
-/// What the force pass reads of a neighbour, packed in one record per particle (one cache line
-/// instead of four arrays): its position, p_j, a_j and theta_j.
+/// What the force pass reads of a neighbour, packed in one record per particle instead of four
+/// arrays: its position, p_j, a_j and theta_j.
 template <int D>
 struct ForceStateInputs {
   Vec<D> position;
   double pressure, a, theta;
 };
 
+/// Second pass of the LPS and of its viscoelastic variant (ves.hpp, Viscous: the deviatoric
+/// extension of each end less lambda times its back extension): f_i = sum_j (t_i<j> + t_j<i>) V_j
+/// along the deformed bond.
 template <int D, scene::Influence Omega, bool Viscous>
 void state_based_forces(Model<D>& m, const BodyInfo& body) {
   const auto& c = body.constants;
   const Bonds& b = m.bonds;
   const double horizon = c.horizon, kappa = c.kappa, a_dev = c.lps_deviatoric_coefficient(), lambda = c.viscous_fraction;
-  // bonds join particles of one body (bodies meet through contact only)
-  // (the calling thread's buffer: the team writes and reads it through `in`)
+  // bonds join particles of one body (bodies meet through contact only); the buffer is the calling
+  // thread's, which the team writes and reads through `in`
   static thread_local std::vector<ForceStateInputs<D>> inputs;
   inputs.resize(m.size());
   ForceStateInputs<D>* const in = inputs.data();
