@@ -83,7 +83,7 @@ double initiation_toughness(const std::string& material_keys) {
     for (auto k = m.bonds.offset[i]; k < m.bonds.offset[i + 1]; ++k) {
       const auto j = static_cast<std::size_t>(m.bonds.neighbor[k]);
       const double dx = m.position[j][0] - m.position[i][0], dy = m.position[j][1] - m.position[i][1];
-      s_max = std::max(s_max, std::hypot(dx, dy) / m.bonds.length[k] - 1.0);
+      s_max = std::max(s_max, std::hypot(dx, dy) / m.bonds.length(k) - 1.0);
     }
   }
   return m.bodies[0].constants.critical_stretch / s_max;

@@ -77,7 +77,11 @@ TEST(SurfaceCorrection, FactorsStayPositive) {
         auto s = rift::scene::parse_string(scene, "f.toml");
         float lo = 1e9f, hi = -1e9f;
         auto scan = [&](const auto& m) {
-          for (float f : m.bonds.correction) lo = std::min(lo, f), hi = std::max(hi, f);
+          for (std::size_t i = 0; i < m.size(); ++i)
+            for (auto k = m.bonds.offset[i]; k < m.bonds.offset[i + 1]; ++k) {
+              const float f = m.bonds.correction(i, k);
+              lo = std::min(lo, f), hi = std::max(hi, f);
+            }
         };
         if (dim == 2) scan(rift::pd::discretize<2>(s));
         else scan(rift::pd::discretize<3>(s));

@@ -213,8 +213,8 @@ TEST(InterfaceLaw, FaceOpeningLeavesOutTheStrainOfTheRock) {
         const auto j = static_cast<std::size_t>(m.bonds.neighbor[k]);
         const auto& law = ib.laws[0];
         const auto jump = rift::pd::interface_jump<2>(m, i, j, law);
-        largest_stretch = std::max(largest_stretch, jump.normal_stretch / m.bonds.length[k]);
-        worst = std::max(worst, std::abs(rift::pd::interface_opening<2>(m, i, j, law) - lift * n_y) / m.bonds.length[k]);
+        largest_stretch = std::max(largest_stretch, jump.normal_stretch / m.bonds.length(k));
+        worst = std::max(worst, std::abs(rift::pd::interface_opening<2>(m, i, j, law) - lift * n_y) / m.bonds.length(k));
         ++bonds;
       }
     }

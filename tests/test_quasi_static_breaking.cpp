@@ -42,7 +42,7 @@ double largest_stretch(const rift::pd::Model<2>& m) {
       if (m.bonds.intact[k] != rift::pd::bond_intact) continue;
       const auto j = static_cast<std::size_t>(m.bonds.neighbor[k]);
       const double dx = m.position[j][0] - m.position[i][0], dy = m.position[j][1] - m.position[i][1];
-      largest = std::max(largest, std::hypot(dx, dy) / m.bonds.length[k] - 1.0);
+      largest = std::max(largest, std::hypot(dx, dy) / m.bonds.length(k) - 1.0);
     }
   return largest;
 }

@@ -93,7 +93,7 @@ struct Reference {
 
 // rift's ves forces equal the independent evaluation over three steps of a changing deformation
 // (lambda = 0.4, tau = 2 dt: the back extensions move a lot per step); tolerance 2e-7 of the largest
-// force, the single-precision bond volumes (as tests/test_lammps_forces.cpp).
+// force: rift stores the dilatation weights and the extension histories in single precision (6e-8).
 TEST(Viscoelastic, ForcesMatchAnIndependentEvaluationOverSteps) {
   const double lambda = 0.4, dt = 1e-7, tau = 2e-7;
   const int edge = 8;

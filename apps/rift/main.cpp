@@ -6,6 +6,7 @@
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
 #include <omp.h>
+#include <sys/resource.h>
 
 #include <algorithm>
 #include <cstdio>
@@ -59,6 +60,10 @@ int main(int argc, char** argv) {
                            : fmt::format("{:.4g} M bonds/s", 1e-6 * r.bond_updates * per_second);
     std::printf("rift: loop time %.6g s (%.4g s per step, %d threads; %s)\n", r.loop_seconds, r.loop_seconds / double(std::max(1L, r.steps)),
                 omp_get_max_threads(), rate.c_str());
+    // peak resident memory of the process (getrusage: kilobytes on Linux), for the memory targets
+    rusage usage{};
+    getrusage(RUSAGE_SELF, &usage);
+    std::printf("rift: peak memory %.1f MiB\n", double(usage.ru_maxrss) / 1024.0);
     std::printf("results in %s/\n  fields   %s (open in ParaView)\n  history  %s\n", r.output_dir.c_str(), r.fields_xdmf.c_str(),
                 r.history_csv.c_str());
     for (const auto& [what, path] : r.files) std::printf("  %-8s %s\n", what.c_str(), path.c_str());

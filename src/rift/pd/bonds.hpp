@@ -16,24 +16,59 @@ inline constexpr std::uint8_t bond_intact = 1;
 /// force while the faces are pressed on each other, Coulomb friction along them, none apart).
 inline constexpr std::uint8_t bond_interface_failed = 2;
 
+/// One lattice offset of a body's family (discretize.cpp). Every bond with this offset has the same
+/// reference vector, length and neighbour volume share, so a bond stores only the offset's index.
+struct FamilyOffset {
+  std::array<double, 3> xi{};  // reference bond vector x_j - x_i (z = 0 in 2D)
+  double length = 0.0;         // |xi| (double: no spurious stretch)
+  double volume = 0.0;         // V_j times the partial-volume fraction of j inside the horizon of i
+  std::uint32_t mirror = 0;    // the offset -xi: the bond j-i of the bond i-j
+};
+
+/// What one particle's influence function makes of one family offset (surface_correction.hpp).
+struct BondFactors {
+  float correction = 1.0f;         // g_i: the particle's influence-function factor (1 when off)
+  float dilatation_weight = 0.0f;  // b_ij: theta_i = sum b_ij e_ij V_j (LPS and VES only)
+};
+
 struct Bonds {
-  std::vector<std::int64_t> offset;   // size n+1; row i is [offset[i], offset[i+1])
-  std::vector<std::int32_t> neighbor; // j
-  std::vector<double> length;         // |xi|, reference bond length (double: no spurious stretch)
-  std::vector<float> volume;          // V_j * partial-volume fraction of j inside the horizon of i
-  std::vector<float> correction;      // surface correction: i's influence-function factor (1 when off)
-  std::vector<float> mirror_correction;  // the same factor of j for this bond
-  // LPS only (empty otherwise): theta_i = sum dilatation_weight e, see surface_correction.hpp
-  std::vector<float> dilatation_weight, mirror_dilatation_weight;
-  std::vector<std::uint8_t> intact;   // bond_intact, bond_broken (never heals) or bond_interface_failed
+  std::vector<std::int64_t> offset;    // size n+1; row i is [offset[i], offset[i+1])
+  std::vector<std::int32_t> neighbor;  // j
+  std::vector<std::uint16_t> family;   // the bond's lattice offset, an index into `families`
+  std::vector<std::uint8_t> intact;    // bond_intact, bond_broken (never heals) or bond_interface_failed
+  std::vector<FamilyOffset> families;  // every body's family offsets, body after body
+  // The factors of particle i's side of its bonds: factors[factor_row[i] + family[k]]. Particles
+  // whose family is whole (no surface, crack or borehole cuts it) have equal factors and share one
+  // row per body; the others own one.
+  std::vector<std::int64_t> factor_row;
+  std::vector<BondFactors> factors;
   // VES only (empty otherwise), per directed bond i-j: i's deviatoric extension and back extension
-  // after the last step (Mitchell 2011), and the slot of the bond j-i in row j
-  std::vector<double> deviatoric_extension, back_extension;
+  // after the last step (Mitchell 2011; stored in single precision, 6e-8 relative rounding), and the
+  // slot of the bond j-i in row j
+  std::vector<float> deviatoric_extension, back_extension;
   std::vector<std::uint16_t> mirror_slot;
 
   std::int64_t size() const { return static_cast<std::int64_t>(neighbor.size()); }
-  static constexpr std::size_t bytes_per_bond() {
-    return sizeof(std::int32_t) + sizeof(double) + 3 * sizeof(float) + sizeof(std::uint8_t);
+  const FamilyOffset& family_of(std::int64_t k) const { return families[family[static_cast<std::size_t>(k)]]; }
+  double length(std::int64_t k) const { return family_of(k).length; }
+  double volume(std::int64_t k) const { return family_of(k).volume; }
+  /// The factors of i's side of bond k of row i, and of j's side (the bond j-i).
+  const BondFactors& factors_of(std::size_t i, std::int64_t k) const {
+    return factors[static_cast<std::size_t>(factor_row[i] + family[static_cast<std::size_t>(k)])];
+  }
+  const BondFactors& mirror_factors_of(std::size_t j, std::int64_t k) const {
+    return factors[static_cast<std::size_t>(factor_row[j] + family_of(k).mirror)];
+  }
+  float correction(std::size_t i, std::int64_t k) const { return factors_of(i, k).correction; }
+  float mirror_correction(std::size_t j, std::int64_t k) const { return mirror_factors_of(j, k).correction; }
+  /// Bytes held per directed bond: the arrays above with one entry per bond, and the factor rows
+  /// and family offsets spread over the bonds.
+  double bytes_per_directed_bond() const {
+    if (neighbor.empty()) return 0.0;
+    const double per_bond = sizeof(std::int32_t) + sizeof(std::uint16_t) + sizeof(std::uint8_t) +
+                            (back_extension.empty() ? 0.0 : 2.0 * sizeof(float) + sizeof(std::uint16_t));
+    const double tables = double(factors.size() * sizeof(BondFactors) + families.size() * sizeof(FamilyOffset));
+    return per_bond + tables / double(neighbor.size());
   }
 };
 

@@ -34,7 +34,7 @@ std::array<double, 9> bulk_strain(const Model<D>& m, std::size_t i) {
       xi[p] = m.reference_position[j][p] - m.reference_position[i][p];
       eta[p] = m.position[j][p] - m.position[i][p];
     }
-    const double w = influence(c.influence, b.length[k], c.horizon) * b.volume[k];
+    const double w = influence(c.influence, b.length(k), c.horizon) * b.volume(k);
     K += w * xi * xi.transpose();
     N += w * eta * xi.transpose();
   }

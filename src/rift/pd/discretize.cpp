@@ -132,8 +132,8 @@ void build_bonds(const scene::Scene& s, Model<D>& m, const std::vector<std::arra
   }
   std::vector<geometry::PreCrack> interfaces;
   for (const auto& f : s.interfaces) interfaces.emplace_back(D, f.points);
-  std::vector<std::vector<std::int32_t>> nb(n);
-  std::vector<std::vector<float>> frac(n);
+  Bonds& b = m.bonds;
+  b.offset.assign(n + 1, 0);
   // bonds across pre-existing fractures (interface_law.hpp): their place in row i and the interface
   std::vector<std::vector<std::pair<std::uint32_t, std::uint16_t>>> across(n);
   // pressure bonds (crack_pressure.hpp): bonds the cracks cut (when the scene has a fluid) and bonds
@@ -152,10 +152,29 @@ void build_bonds(const scene::Scene& s, Model<D>& m, const std::vector<std::arra
     wet_m[i].push_back(fluid_m);
   };
   for (std::size_t bi = 0; bi < m.bodies.size(); ++bi) {
-    const auto& info = m.bodies[bi];
+    auto& info = m.bodies[bi];
     const auto& body = s.bodies[bi];
     const double h = info.constants.horizon / info.constants.spacing;
     auto offsets = family_offsets(D, h, body.partial_volume);
+    // the body's family offsets, with the index of each one's reverse
+    const std::size_t first_family = m.bonds.families.size();
+    info.first_family = first_family;
+    info.family_count = offsets.size();
+    if (first_family + offsets.size() > std::numeric_limits<std::uint16_t>::max() + std::size_t{1})
+      throw SceneError(body.where, "bodies." + body.name + ".horizon",
+                       "the bodies' families have more than 65536 lattice offsets in all; use fewer spacings per horizon");
+    const double site_volume = std::pow(body.spacing, D) * (D == 2 ? s.thickness : 1.0);
+    for (const auto& off : offsets) {
+      FamilyOffset f;
+      for (int k = 0; k < D; ++k) f.xi[static_cast<std::size_t>(k)] = off.o[static_cast<std::size_t>(k)] * body.spacing;
+      f.length = std::sqrt(f.xi[0] * f.xi[0] + f.xi[1] * f.xi[1] + f.xi[2] * f.xi[2]);
+      f.volume = site_volume * off.fraction;
+      m.bonds.families.push_back(f);
+    }
+    for (std::size_t a = 0; a < offsets.size(); ++a)
+      for (std::size_t c = 0; c < offsets.size(); ++c)
+        if (offsets[c].o[0] == -offsets[a].o[0] && offsets[c].o[1] == -offsets[a].o[1] && offsets[c].o[2] == -offsets[a].o[2])
+          m.bonds.families[first_family + a].mirror = static_cast<std::uint32_t>(first_family + c);
     // boreholes: bonds to their lattice sites carry the fluid pressure; a fluid site's weighted
     // volume is that of a whole family
     const auto region = geometry::Region::build(s, body.region);
@@ -164,7 +183,6 @@ void build_bonds(const scene::Scene& s, Model<D>& m, const std::vector<std::arra
     std::vector<geometry::Region> holes;
     for (const auto& hole : s.boreholes) holes.push_back(geometry::Region::build(s, hole.region));
     double whole_family = 0.0;
-    const double site_volume = std::pow(body.spacing, D) * (D == 2 ? s.thickness : 1.0);
     for (const auto& off : offsets) {
       double r2 = 0.0;
       for (int k = 0; k < D; ++k) r2 += double(off.o[k]) * off.o[k];
@@ -212,8 +230,10 @@ void build_bonds(const scene::Scene& s, Model<D>& m, const std::vector<std::arra
       return boxes;
     };
     const auto near = grown_boxes(cracks), near_interfaces = grown_boxes(interfaces);
-#pragma omp parallel for if(rift::parallel::worth_a_team(info.last - info.first)) schedule(dynamic, 256)
-    for (std::size_t i = info.first; i < info.last; ++i) {
+    // i's family: counted (fill false), or written at b.offset[i] with its pressure bonds and the
+    // bonds across interfaces recorded (fill true); returns the number of bonds
+    auto row = [&](std::size_t i, bool fill) {
+      std::int64_t count = 0;
       const auto& li = lattice_index[i];
       Point3 pi{0, 0, 0};
       for (int k = 0; k < D; ++k) pi[k] = m.reference_position[i][k];
@@ -227,12 +247,13 @@ void build_bonds(const scene::Scene& s, Model<D>& m, const std::vector<std::arra
         return list;
       };
       const auto cutting = within(near), crossing = within(near_interfaces);
-      for (const auto& off : offsets) {
+      for (std::size_t a = 0; a < offsets.size(); ++a) {
+        const auto& off = offsets[a];
         long x = li[0] + off.o[0], y = li[1] + off.o[1], z = li[2] + off.o[2];
         const bool in_box = !(x < lo[0] || x > hi[0] || y < lo[1] || y > hi[1] || z < lo[2] || z > hi[2]);
         std::int32_t j = in_box ? map[cell(x, y, z)] : -1;
         if (j < 0) {
-          if (holes.empty()) continue;
+          if (!fill || holes.empty()) continue;
           const Point3 site = lattice_site<D>(body, x, y, z);
           // inside the body's bounds: the body's region may be the block with the hole cut out
           bool inside = true;
@@ -255,7 +276,7 @@ void build_bonds(const scene::Scene& s, Model<D>& m, const std::vector<std::arra
             if (!cracks[c].cuts(pi, pj)) continue;
             // with a fluid in the scene, a cut bond carries its crack's pressure or, for a crack
             // without one, the fluid that reaches it (fluid_network.hpp)
-            if (!cut && any_fluid) {
+            if (!cut && any_fluid && fill) {
               std::array<double, 3> xi{0, 0, 0};
               for (int k = 0; k < D; ++k) xi[k] = pj[k] - pi[k];
               record_pressure_bond(i, j, off.fraction, crack_of[c], xi, 0.0);
@@ -264,42 +285,34 @@ void build_bonds(const scene::Scene& s, Model<D>& m, const std::vector<std::arra
           }
         }
         if (cut) continue;
-        if (!crossing.empty()) {
+        if (fill && !crossing.empty()) {
           Point3 pj{0, 0, 0};
           for (int k = 0; k < D; ++k) pj[k] = m.reference_position[j][k];
           for (auto f : crossing)
             if (interfaces[f].cuts(pi, pj)) {
-              across[i].push_back({static_cast<std::uint32_t>(nb[i].size()), static_cast<std::uint16_t>(f)});
+              across[i].push_back({static_cast<std::uint32_t>(count), static_cast<std::uint16_t>(f)});
               break;
             }
         }
-        nb[i].push_back(j);
-        frac[i].push_back(static_cast<float>(off.fraction));
+        if (fill) {
+          const auto k = static_cast<std::size_t>(b.offset[i] + count);
+          b.neighbor[k] = j;
+          b.family[k] = static_cast<std::uint16_t>(first_family + a);
+        }
+        ++count;
       }
-    }
+      return count;
+    };
+    // count, make the rows' offsets, fill: the bonds go straight to their place
+#pragma omp parallel for if(rift::parallel::worth_a_team(info.last - info.first)) schedule(dynamic, 256)
+    for (std::size_t i = info.first; i < info.last; ++i) b.offset[i + 1] = row(i, false);
+    for (std::size_t i = info.first; i < info.last; ++i) b.offset[i + 1] += b.offset[i];
+    b.neighbor.resize(static_cast<std::size_t>(b.offset[info.last]));
+    b.family.resize(static_cast<std::size_t>(b.offset[info.last]));
+#pragma omp parallel for if(rift::parallel::worth_a_team(info.last - info.first)) schedule(dynamic, 256)
+    for (std::size_t i = info.first; i < info.last; ++i) row(i, true);
   }
-  Bonds& b = m.bonds;
-  b.offset.assign(n + 1, 0);
-  for (std::size_t i = 0; i < n; ++i) b.offset[i + 1] = b.offset[i] + static_cast<std::int64_t>(nb[i].size());
-  const auto nbonds = static_cast<std::size_t>(b.offset[n]);
-  b.neighbor.resize(nbonds);
-  b.length.resize(nbonds);
-  b.volume.resize(nbonds);
-  b.correction.assign(nbonds, 1.0f);
-  b.mirror_correction.assign(nbonds, 1.0f);
-  b.intact.assign(nbonds, 1);
-#pragma omp parallel for if(rift::parallel::worth_a_team(n)) schedule(static)
-  for (std::size_t i = 0; i < n; ++i) {
-    auto k0 = static_cast<std::size_t>(b.offset[i]);
-    for (std::size_t q = 0; q < nb[i].size(); ++q) {
-      std::int32_t j = nb[i][q];
-      b.neighbor[k0 + q] = j;
-      b.length[k0 + q] = norm<D>(m.reference_position[j] - m.reference_position[i]);
-      b.volume[k0 + q] = static_cast<float>(m.volume[j] * frac[i][q]);
-    }
-    std::vector<std::int32_t>().swap(nb[i]);
-    std::vector<float>().swap(frac[i]);
-  }
+  b.intact.assign(b.neighbor.size(), bond_intact);
   InterfaceBonds& ib = m.interface_bonds;
   if (!s.interfaces.empty()) {
     ib.offset.assign(n + 1, 0);
@@ -372,7 +385,8 @@ Model<D> discretize(const scene::Scene& s) {
 
   build_bonds<D>(s, m, lattice_index);
 
-  apply_surface_correction<D>(m);
+  const auto factor_row_owners = assign_factor_rows<D>(m);
+  apply_surface_correction<D>(m, factor_row_owners);
   // weighted volume m_i = sum omega_i |xi|^2 V_j (Silling et al. 2007, eq. 21), with the particle's own
   // (surface-corrected) influence function; fixed at set-up as in LAMMPS
   m.weighted_volume.assign(n, 0.0);
@@ -382,13 +396,13 @@ Model<D> discretize(const scene::Scene& s) {
     for (std::size_t i = body.first; i < body.last; ++i) {
       double w = 0.0;
       for (auto k = m.bonds.offset[i]; k < m.bonds.offset[i + 1]; ++k) {
-        const double xi = m.bonds.length[k];
-        w += m.bonds.correction[k] * influence(c.influence, xi, c.horizon) * xi * xi * m.bonds.volume[k];
+        const double xi = m.bonds.length(k);
+        w += m.bonds.correction(i, k) * influence(c.influence, xi, c.horizon) * xi * xi * m.bonds.volume(k);
       }
       m.weighted_volume[i] = w;
     }
   }
-  compute_dilatation_weights<D>(m);
+  compute_dilatation_weights<D>(m, factor_row_owners);
   prepare_viscous_history<D>(m);
   prepare_crack_pressure<D>(m);
   prepare_interfaces<D>(s, m);

@@ -19,9 +19,9 @@ DynamicRelaxation<D>::DynamicRelaxation(const Model<D>& m) {
     for (std::size_t i = body.first; i < body.last; ++i) {
       double sum = 0.0;
       for (auto k = m.bonds.offset[i]; k < m.bonds.offset[i + 1]; ++k) {
-        const double xi = m.bonds.length[k];
-        sum += std::max(1.0f, m.bonds.correction[k]) * c.equivalent_micromodulus * influence(c.influence, xi, c.horizon) / xi *
-               m.bonds.volume[k];
+        const double xi = m.bonds.length(k);
+        sum += std::max(1.0f, m.bonds.correction(i, k)) * c.equivalent_micromodulus * influence(c.influence, xi, c.horizon) / xi *
+               m.bonds.volume(k);
       }
       fictitious_density_[i] = 0.25 * 5.0 * sum;
     }

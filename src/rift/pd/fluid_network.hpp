@@ -38,7 +38,7 @@ std::vector<double> whole_family_weighted_volumes(const Model<D>& m) {
     const auto& c = m.constants_of(i);
     double sum = 0.0;
     for (auto k = b.offset[i]; k < b.offset[i + 1]; ++k)
-      sum += influence(c.influence, b.length[k], c.horizon) * b.length[k] * b.length[k] * b.volume[k];
+      sum += influence(c.influence, b.length(k), c.horizon) * b.length(k) * b.length(k) * b.volume(k);
     if (!w.offset.empty())
       for (auto k = w.offset[i]; k < w.offset[i + 1]; ++k) {
         const double xi = w.length(static_cast<std::size_t>(k));
@@ -135,9 +135,9 @@ void update_fluid_network(Model<D>& m) {
 /// d omega V_j (1/m_i + 1/m_j) of the broken bond k = i-j (whole-family weighted volumes).
 template <int D>
 double broken_bond_coefficient(const Model<D>& m, const MaterialConstants& c, std::int64_t k, std::size_t i, std::size_t j) {
-  const double xi = m.bonds.length[k];
+  const double xi = m.bonds.length(k);
   const auto& whole = m.fluid_network.whole_weighted_volume;
-  return D * influence(c.influence, xi, c.horizon) * m.bonds.volume[k] * (1.0 / whole[i] + 1.0 / whole[j]);
+  return D * influence(c.influence, xi, c.horizon) * m.bonds.volume(k) * (1.0 / whole[i] + 1.0 / whole[j]);
 }
 
 /// Calls f(k, j, coefficient) for each bond k = i-j that carries fluid (carries_fluid) and whose two
@@ -168,7 +168,7 @@ void add_network_pressure(Model<D>& m, const std::vector<double>& pressure) {
     if (s < 0 || pressure[static_cast<std::size_t>(s)] == 0.0) continue;
     for_each_network_bond<D>(m, i, s, [&](std::int64_t k, std::size_t j, double coefficient) {
       const Vec<D> eta = m.position[j] - m.position[i];
-      const double scale = -pressure[static_cast<std::size_t>(s)] * coefficient * m.bonds.length[k] / norm<D>(eta);
+      const double scale = -pressure[static_cast<std::size_t>(s)] * coefficient * m.bonds.length(k) / norm<D>(eta);
       for (int q = 0; q < D; ++q) m.body_force[i][q] += scale * eta[q];
     });
   }
@@ -197,7 +197,7 @@ double cavity_volume_change(const Model<D>& m, int s) {
       }
     }
     for_each_network_bond<D>(m, i, s, [&](std::int64_t k, std::size_t j, double coefficient) {
-      const double xi = m.bonds.length[k];
+      const double xi = m.bonds.length(k);
       acc[0] += 0.5 * coefficient * xi * m.volume[i] * (norm<D>(m.position[j] - m.position[i]) - xi);
     });
   });

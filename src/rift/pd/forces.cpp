@@ -54,8 +54,8 @@ void update_damage(Model<D>& m) {
   for (std::size_t i = 0; i < n; ++i) {
     double all = 0.0, intact = 0.0;
     for (auto k = b.offset[i]; k < b.offset[i + 1]; ++k) {
-      all += b.volume[k];
-      if (b.intact[k] == bond_intact) intact += b.volume[k];
+      all += b.volume(k);
+      if (b.intact[k] == bond_intact) intact += b.volume(k);
     }
     m.damage[i] = all > 0.0 ? 1.0 - intact / all : 0.0;
   }
@@ -98,8 +98,8 @@ double stable_time_step(const Model<D>& m) {
     for (std::size_t i = body.first; i < body.last; ++i) {
       double sum = 0.0;
       for (auto k = m.bonds.offset[i]; k < m.bonds.offset[i + 1]; ++k) {
-        const double xi = m.bonds.length[k];
-        sum += m.bonds.volume[k] * std::max(1.0f, m.bonds.correction[k]) * c.equivalent_micromodulus *
+        const double xi = m.bonds.length(k);
+        sum += m.bonds.volume(k) * std::max(1.0f, m.bonds.correction(i, k)) * c.equivalent_micromodulus *
                influence(c.influence, xi, c.horizon) / xi;
       }
       if (sum > 0.0) local = std::min(local, std::sqrt(2.0 * c.density / sum));

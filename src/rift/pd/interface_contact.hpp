@@ -87,7 +87,7 @@ double interface_opening(const Model<D>& m, std::size_t i, std::size_t j, const 
 /// keeps the fluid out. The outcome reader calls the same faces open (dilated).
 template <int D>
 bool interface_faces_apart(const Model<D>& m, std::int64_t k, std::size_t i, std::size_t j, const InterfaceLaw& law) {
-  return interface_opening<D>(m, i, j, law) > m.constants_of(i).critical_stretch * m.bonds.length[static_cast<std::size_t>(k)];
+  return interface_opening<D>(m, i, j, law) > m.constants_of(i).critical_stretch * m.bonds.length(k);
 }
 
 /// Force density on particle i from its failed interface bond k = i-j, interface entry q; with
@@ -99,8 +99,8 @@ Vec<D> interface_contact_force(const Model<D>& m, std::size_t i, std::size_t j, 
   const InterfaceLaw& law = ib.laws[ib.interface[q]];
   const auto& c = m.constants_of(i);
   const auto kk = static_cast<std::size_t>(k);
-  const double length = m.bonds.length[kk];
-  const double stiffness = c.equivalent_micromodulus * influence(c.influence, length, c.horizon) * m.bonds.volume[kk] / length;
+  const double length = m.bonds.length(static_cast<std::int64_t>(kk));
+  const double stiffness = c.equivalent_micromodulus * influence(c.influence, length, c.horizon) * m.bonds.volume(static_cast<std::int64_t>(kk)) / length;
   const InterfaceJump jump = interface_jump<D>(m, i, j, law);
   const auto& delta = jump.delta;
   const auto& n = jump.n;

@@ -41,13 +41,15 @@ double dilatation_row(Model<D>& m, const MaterialConstants& c, std::size_t i, do
   Bonds& b = m.bonds;
   const Vec<D> xi_pos = m.position[i];
   const double s0_i = m.stretch_limit[i];
+  const std::int64_t row_i = b.factor_row[i];
   double s_min = std::numeric_limits<double>::max();
   theta = 0.0, q = 0.0;
   for (auto k = b.offset[i]; k < b.offset[i + 1]; ++k) {
     if (b.intact[k] != bond_intact) continue;
     const auto j = static_cast<std::size_t>(b.neighbor[k]);
     const double r = norm<D>(m.position[j] - xi_pos);
-    const double xi = b.length[k];
+    const FamilyOffset& family = b.families[b.family[k]];
+    const double xi = family.length;
     const double e = r - xi;
     if (c.breakable && e > xi * std::min(s0_i, m.stretch_limit[j])) {
       b.intact[k] = bond_broken;
@@ -55,8 +57,9 @@ double dilatation_row(Model<D>& m, const MaterialConstants& c, std::size_t i, do
     }
     // divide only for a candidate: e / xi < s_min up to the rounding of s_min xi (either sign)
     if (const double bound = s_min * xi; e < bound + std::abs(bound) * 1e-12) s_min = std::min(s_min, e / xi);
-    theta += b.dilatation_weight[k] * e * b.volume[k];
-    if constexpr (Coupling) q += b.correction[k] * influence(Omega, xi, c.horizon) * xi * e * b.volume[k];
+    const BondFactors& own = b.factors[static_cast<std::size_t>(row_i + b.family[k])];
+    theta += own.dilatation_weight * e * family.volume;
+    if constexpr (Coupling) q += own.correction * influence(Omega, xi, c.horizon) * xi * e * family.volume;
   }
   return s_min;
 }
@@ -80,12 +83,13 @@ void lps_dilatation(Model<D>& m, const BodyInfo& body) {
   }
 }
 
-/// What the force pass reads of a neighbour, packed in one record per particle instead of four
-/// arrays: its position, p_j, a_j and theta_j.
+/// What the force pass reads of a neighbour, packed in one record per particle instead of five
+/// arrays: its position, p_j, a_j, theta_j and its row of factors.
 template <int D>
 struct ForceStateInputs {
   Vec<D> position;
   double pressure, a, theta;
+  std::int64_t factor_row;
 };
 
 /// Second pass of the LPS and of its viscoelastic variant (ves.hpp, Viscous: the deviatoric
@@ -104,7 +108,7 @@ void state_based_forces(Model<D>& m, const BodyInfo& body) {
 #pragma omp parallel for if(rift::parallel::worth_a_team(body.last - body.first)) schedule(static)
   for (std::size_t j = body.first; j < body.last; ++j) {
     const double a_j = m.weighted_volume[j] > 0.0 ? a_dev / m.weighted_volume[j] : 0.0;
-    in[j] = {m.position[j], pressure_factor<D>(kappa, m.dilatation[j], a_j, m.dilatation_coupling[j]), a_j, m.dilatation[j]};
+    in[j] = {m.position[j], pressure_factor<D>(kappa, m.dilatation[j], a_j, m.dilatation_coupling[j]), a_j, m.dilatation[j], b.factor_row[j]};
   }
 #pragma omp parallel for if(rift::parallel::worth_a_team(body.last - body.first)) schedule(static)
   for (std::size_t i = body.first; i < body.last; ++i) {
@@ -115,7 +119,8 @@ void state_based_forces(Model<D>& m, const BodyInfo& body) {
       const ForceStateInputs<D>& other = in[b.neighbor[k]];
       const Vec<D> eta = other.position - own.position;
       const double r = norm<D>(eta);
-      const double xi = b.length[k];
+      const FamilyOffset& family = b.families[b.family[k]];
+      const double xi = family.length;
       const double e = r - xi;
       const double omega = influence(Omega, xi, horizon);
       double dev_i = e - own.theta * xi / D, dev_j = e - other.theta * xi / D;
@@ -124,9 +129,11 @@ void state_based_forces(Model<D>& m, const BodyInfo& body) {
         dev_i -= lambda * b.back_extension[k];
         dev_j -= lambda * b.back_extension[static_cast<std::size_t>(b.offset[j]) + b.mirror_slot[k]];
       }
-      const double t_i = force_state(b.dilatation_weight[k], own.pressure, own.a, b.correction[k], omega, dev_i);
-      const double t_j = force_state(b.mirror_dilatation_weight[k], other.pressure, other.a, b.mirror_correction[k], omega, dev_j);
-      const double scalar = (t_i + t_j) * b.volume[k] / r;
+      const BondFactors& g_i = b.factors[static_cast<std::size_t>(own.factor_row + b.family[k])];
+      const BondFactors& g_j = b.factors[static_cast<std::size_t>(other.factor_row + family.mirror)];
+      const double t_i = force_state(g_i.dilatation_weight, own.pressure, own.a, g_i.correction, omega, dev_i);
+      const double t_j = force_state(g_j.dilatation_weight, other.pressure, other.a, g_j.correction, omega, dev_j);
+      const double scalar = (t_i + t_j) * family.volume / r;
       for (int q = 0; q < D; ++q) f[q] += scalar * eta[q];
     }
     m.force[i] = f;
@@ -143,14 +150,14 @@ double state_based_energy_density(const Model<D>& m, const BodyInfo& body, std::
   for (auto k = b.offset[i]; k < b.offset[i + 1]; ++k) {
     if (b.intact[k] != bond_intact) continue;
     const auto j = static_cast<std::size_t>(b.neighbor[k]);
-    const double xi = b.length[k];
+    const double xi = b.length(k);
     const double e = norm<D>(m.position[j] - m.position[i]) - xi;
     const double ed = e - theta * xi / D;
     if constexpr (Viscous) {
       const double ev = ed - b.back_extension[k];
-      dev += b.correction[k] * influence(c.influence, xi, c.horizon) * ((1.0 - lambda) * ed * ed + lambda * ev * ev) * b.volume[k];
+      dev += b.correction(i, k) * influence(c.influence, xi, c.horizon) * ((1.0 - lambda) * ed * ed + lambda * ev * ev) * b.volume(k);
     } else {
-      dev += b.correction[k] * influence(c.influence, xi, c.horizon) * ed * ed * b.volume[k];
+      dev += b.correction(i, k) * influence(c.influence, xi, c.horizon) * ed * ed * b.volume(k);
     }
   }
   return 0.5 * c.kappa * theta * theta + 0.5 * c.lps_deviatoric_coefficient() / m.weighted_volume[i] * dev;

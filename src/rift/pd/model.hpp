@@ -15,6 +15,7 @@ namespace rift::pd {
 struct BodyInfo {
   std::string name;
   std::size_t first = 0, last = 0;  // particle range [first, last)
+  std::size_t first_family = 0, family_count = 0;  // its family offsets in Bonds::families
   MaterialConstants constants;
 };
 

@@ -27,6 +27,7 @@ void pmb_forces(Model<D>& m, const BodyInfo& body) {
   for (std::size_t i = body.first; i < body.last; ++i) {
     const Vec<D> xi_pos = m.position[i];
     const double s0_i = m.stretch_limit[i];
+    const std::int64_t row_i = b.factor_row[i];
     Vec<D> f{};
     double s_min = std::numeric_limits<double>::max();
     for (auto k = b.offset[i]; k < b.offset[i + 1]; ++k) {
@@ -34,14 +35,17 @@ void pmb_forces(Model<D>& m, const BodyInfo& body) {
       const auto j = static_cast<std::size_t>(b.neighbor[k]);
       const Vec<D> eta = m.position[j] - xi_pos;
       const double r = norm<D>(eta);
-      const double xi = b.length[k];
+      const FamilyOffset& family = b.families[b.family[k]];
+      const double xi = family.length;
       const double s = (r - xi) / xi;
       if (breakable && s > std::min(s0_i, m.stretch_limit[j])) {
         b.intact[k] = bond_broken;
         continue;
       }
       s_min = std::min(s_min, s);
-      const double scalar = pmb_bond_force(micromodulus, influence(Omega, xi, horizon), s, b.correction[k], b.mirror_correction[k]) * b.volume[k] / r;
+      const float g_i = b.factors[static_cast<std::size_t>(row_i + b.family[k])].correction;
+      const float g_j = b.factors[static_cast<std::size_t>(b.factor_row[j] + family.mirror)].correction;
+      const double scalar = pmb_bond_force(micromodulus, influence(Omega, xi, horizon), s, g_i, g_j) * family.volume / r;
       for (int q = 0; q < D; ++q) f[q] += scalar * eta[q];
     }
     m.force[i] = f;
@@ -58,9 +62,9 @@ double pmb_energy_density(const Model<D>& m, const BodyInfo& body, std::size_t i
   for (auto k = b.offset[i]; k < b.offset[i + 1]; ++k) {
     if (b.intact[k] != bond_intact) continue;
     const auto j = static_cast<std::size_t>(b.neighbor[k]);
-    const double xi = b.length[k];
+    const double xi = b.length(k);
     const double s = (norm<D>(m.position[j] - m.position[i]) - xi) / xi;
-    w += influence(c.influence, xi, c.horizon) * s * s * xi * b.volume[k] * b.correction[k];
+    w += influence(c.influence, xi, c.horizon) * s * s * xi * b.volume(k) * b.correction(i, k);
   }
   return 0.25 * c.micromodulus * w;
 }

@@ -44,21 +44,22 @@ void bond_pair_stress(const Model<D>& m, std::size_t i, double s[3][3]) {
       continue;
     }
     const double r = norm<D>(eta);
-    const double xi = b.length[k];
+    const double xi = b.length(k);
     const double e = r - xi;
     const double omega = influence(c.influence, xi, c.horizon);
     double pair;
     if (c.model == scene::ModelKind::pmb) {
-      pair = pmb_bond_force(c.micromodulus, omega, e / xi, b.correction[k], b.mirror_correction[k]);
+      pair = pmb_bond_force(c.micromodulus, omega, e / xi, b.correction(i, k), b.mirror_correction(j, k));
     } else {
       const double a_j = a_dev / m.weighted_volume[j];
       const double pressure_j = pressure_factor<D>(c.kappa, m.dilatation[j], a_j, m.dilatation_coupling[j]);
       const double eb_i = ves ? lambda * b.back_extension[k] : 0.0;
       const double eb_j = ves ? lambda * b.back_extension[static_cast<std::size_t>(b.offset[j]) + b.mirror_slot[k]] : 0.0;
-      pair = force_state(b.dilatation_weight[k], pressure_i, a_i, b.correction[k], omega, e - m.dilatation[i] * xi / D - eb_i) +
-             force_state(b.mirror_dilatation_weight[k], pressure_j, a_j, b.mirror_correction[k], omega, e - m.dilatation[j] * xi / D - eb_j);
+      const BondFactors &g_i = b.factors_of(i, k), &g_j = b.mirror_factors_of(j, k);
+      pair = force_state(g_i.dilatation_weight, pressure_i, a_i, g_i.correction, omega, e - m.dilatation[i] * xi / D - eb_i) +
+             force_state(g_j.dilatation_weight, pressure_j, a_j, g_j.correction, omega, e - m.dilatation[j] * xi / D - eb_j);
     }
-    const double scale = 0.5 * pair * b.volume[k] / r;
+    const double scale = 0.5 * pair * b.volume(k) / r;
     for (int p = 0; p < D; ++p)
       for (int q = 0; q < D; ++q) s[p][q] += scale * eta[p] * xi_vec[q];
   }

@@ -40,71 +40,78 @@ double isotropic_mean(int D, const std::array<int, 3>& e) {
   return dfact(e[0] - 1) * dfact(e[1] - 1) * dfact(e[2] - 1) / double(D * (D + 2));
 }
 
-/// mirror[k] = side value of the bond j-i for bond k = i-j (rows are sorted by neighbour).
-void mirror_values(const Bonds& b, const std::vector<float>& side, std::vector<float>& mirror) {
-  const auto n = static_cast<std::int64_t>(b.offset.size()) - 1;
-#pragma omp parallel for if(rift::parallel::worth_a_team(static_cast<std::size_t>(n))) schedule(static)
-  for (std::int64_t i = 0; i < n; ++i)
-    for (auto k = b.offset[i]; k < b.offset[i + 1]; ++k) {
-      const auto j = b.neighbor[k];
-      const auto first = b.neighbor.begin() + b.offset[j], last = b.neighbor.begin() + b.offset[j + 1];
-      auto it = std::lower_bound(first, last, static_cast<std::int32_t>(i));
-      mirror[k] = side[static_cast<std::size_t>(it - b.neighbor.begin())];
-    }
-}
-
 }  // namespace
 
 template <int D>
-void apply_surface_correction(Model<D>& m) {
+std::vector<std::size_t> assign_factor_rows(Model<D>& m) {
+  Bonds& b = m.bonds;
+  b.factor_row.assign(m.size(), 0);
+  b.factors.clear();
+  std::vector<std::size_t> owners;
+  for (const auto& body : m.bodies) {
+    const std::size_t count = body.family_count, first_family = body.first_family;
+    // without the correction a PMB particle's factors are all 1, whatever its family
+    const bool uniform = !body.constants.surface_correction && !body.constants.state_based();
+    std::int64_t shared = 0;
+    bool have_shared = false;
+    for (std::size_t i = body.first; i < body.last; ++i) {
+      const bool whole = uniform || static_cast<std::size_t>(b.offset[i + 1] - b.offset[i]) == count;
+      if (whole && have_shared) {
+        b.factor_row[i] = shared;
+        continue;
+      }
+      b.factor_row[i] = static_cast<std::int64_t>(b.factors.size()) - static_cast<std::int64_t>(first_family);
+      if (whole) shared = b.factor_row[i], have_shared = true;
+      b.factors.resize(b.factors.size() + count);
+      owners.push_back(i);
+    }
+  }
+  return owners;
+}
+
+template <int D>
+void apply_surface_correction(Model<D>& m, const std::vector<std::size_t>& owners) {
   Bonds& b = m.bonds;
   const auto exps = quartic_exponents<D>();
   const int na = static_cast<int>(exps.size());
-  for (const auto& body : m.bodies) {
-    const auto& c = body.constants;
+#pragma omp parallel for if(rift::parallel::worth_a_team(owners.size())) schedule(dynamic, 64)
+  for (std::size_t o = 0; o < owners.size(); ++o) {
+    const std::size_t i = owners[o];
+    const auto& c = m.constants_of(i);
     if (!c.surface_correction) continue;
     const int p = c.model == scene::ModelKind::pmb ? 1 : 2;  // weight |xi|^p of the energy moment
     // continuum moment int_ball omega |xi|^p dV
     const double full = family_moment(D, c.influence, c.horizon, c.thickness, p);
-#pragma omp parallel for if(rift::parallel::worth_a_team(body.last - body.first)) schedule(dynamic, 64)
-    for (std::size_t i = body.first; i < body.last; ++i) {
-      Eigen::MatrixXd A = Eigen::MatrixXd::Zero(na, na);
-      Eigen::VectorXd rhs(na);
-      for (int a = 0; a < na; ++a) rhs[a] = full * isotropic_mean(D, exps[static_cast<std::size_t>(a)]);
-      Eigen::VectorXd psi(na);
-      auto monomials = [&](std::size_t j, double xi) {
-        const Vec<D> n = (1.0 / xi) * (m.reference_position[j] - m.reference_position[i]);
-        for (int a = 0; a < na; ++a) {
-          const auto& e = exps[static_cast<std::size_t>(a)];
-          psi[a] = ipow(n[0], e[0]) * ipow(n[1], e[1]) * (D == 3 ? ipow(n[D - 1], e[2]) : 1.0);
-        }
-      };
-      for (auto k = b.offset[i]; k < b.offset[i + 1]; ++k) {
-        const double xi = b.length[k];
-        const double base = influence(c.influence, xi, c.horizon) * ipow(xi, p) * b.volume[k];
-        monomials(static_cast<std::size_t>(b.neighbor[k]), xi);
-        A.noalias() += base * psi * psi.transpose();
-        rhs -= base * psi;  // moments of the uncorrected family
+    Eigen::MatrixXd A = Eigen::MatrixXd::Zero(na, na);
+    Eigen::VectorXd rhs(na);
+    for (int a = 0; a < na; ++a) rhs[a] = full * isotropic_mean(D, exps[static_cast<std::size_t>(a)]);
+    Eigen::VectorXd psi(na);
+    auto monomials = [&](const FamilyOffset& f) {
+      for (int a = 0; a < na; ++a) {
+        const auto& e = exps[static_cast<std::size_t>(a)];
+        psi[a] = ipow(f.xi[0] / f.length, e[0]) * ipow(f.xi[1] / f.length, e[1]) * (D == 3 ? ipow(f.xi[2] / f.length, e[2]) : 1.0);
       }
-      // smallest-norm change of the influence function that matches the moments
-      Eigen::VectorXd lambda = A.completeOrthogonalDecomposition().solve(rhs);
-      for (auto k = b.offset[i]; k < b.offset[i + 1]; ++k) {
-        monomials(static_cast<std::size_t>(b.neighbor[k]), b.length[k]);
-        b.correction[k] = static_cast<float>(1.0 + lambda.dot(psi));
-      }
+    };
+    for (auto k = b.offset[i]; k < b.offset[i + 1]; ++k) {
+      const FamilyOffset& f = b.family_of(k);
+      const double base = influence(c.influence, f.length, c.horizon) * ipow(f.length, p) * f.volume;
+      monomials(f);
+      A.noalias() += base * psi * psi.transpose();
+      rhs -= base * psi;  // moments of the uncorrected family
+    }
+    // smallest-norm change of the influence function that matches the moments
+    Eigen::VectorXd lambda = A.completeOrthogonalDecomposition().solve(rhs);
+    for (auto k = b.offset[i]; k < b.offset[i + 1]; ++k) {
+      monomials(b.family_of(k));
+      b.factors[static_cast<std::size_t>(b.factor_row[i] + b.family[static_cast<std::size_t>(k)])].correction =
+          static_cast<float>(1.0 + lambda.dot(psi));
     }
   }
-  mirror_values(b, b.correction, b.mirror_correction);
 }
 
 template <int D>
-void compute_dilatation_weights(Model<D>& m) {
+void compute_dilatation_weights(Model<D>& m, const std::vector<std::size_t>& owners) {
   Bonds& b = m.bonds;
-  bool any_lps = false;
-  for (const auto& body : m.bodies) any_lps = any_lps || body.constants.state_based();
-  if (!any_lps) return;
-  b.dilatation_weight.assign(b.neighbor.size(), 0.0f);
-  b.mirror_dilatation_weight.assign(b.neighbor.size(), 0.0f);
   constexpr int nq = D == 3 ? 6 : 3;  // degree-2 monomials n_a n_b, a <= b
   std::array<std::array<int, 2>, nq> pairs{};
   {
@@ -112,44 +119,47 @@ void compute_dilatation_weights(Model<D>& m) {
     for (int a = 0; a < D; ++a)
       for (int c = a; c < D; ++c) pairs[static_cast<std::size_t>(q++)] = {a, c};
   }
-  for (const auto& body : m.bodies) {
-    const auto& c = body.constants;
+#pragma omp parallel for if(rift::parallel::worth_a_team(owners.size())) schedule(dynamic, 64)
+  for (std::size_t o = 0; o < owners.size(); ++o) {
+    const std::size_t i = owners[o];
+    const auto& c = m.constants_of(i);
     if (!c.state_based()) continue;
-#pragma omp parallel for if(rift::parallel::worth_a_team(body.last - body.first)) schedule(dynamic, 64)
-    for (std::size_t i = body.first; i < body.last; ++i) {
-      if (!c.surface_correction) {
-        for (auto k = b.offset[i]; k < b.offset[i + 1]; ++k)
-          b.dilatation_weight[k] = static_cast<float>(D * influence(c.influence, b.length[k], c.horizon) * b.length[k] /
-                                                      m.weighted_volume[i]);
-        continue;
-      }
-      // b_ij = omega |xi| (mu . phi(n)) with sum_j b_ij V_j |xi| n_a n_b = delta_ab
-      Eigen::Matrix<double, nq, nq> A = Eigen::Matrix<double, nq, nq>::Zero();
-      Eigen::Matrix<double, nq, 1> rhs, phi;
-      for (int q = 0; q < nq; ++q) rhs[q] = pairs[static_cast<std::size_t>(q)][0] == pairs[static_cast<std::size_t>(q)][1] ? 1.0 : 0.0;
-      auto monomials = [&](auto k) {
-        const auto j = static_cast<std::size_t>(b.neighbor[k]);
-        const Vec<D> n = (1.0 / b.length[k]) * (m.reference_position[j] - m.reference_position[i]);
-        for (int q = 0; q < nq; ++q) phi[q] = n[pairs[static_cast<std::size_t>(q)][0]] * n[pairs[static_cast<std::size_t>(q)][1]];
-      };
-      for (auto k = b.offset[i]; k < b.offset[i + 1]; ++k) {
-        monomials(k);
-        const double xi = b.length[k];
-        A.noalias() += influence(c.influence, xi, c.horizon) * xi * xi * b.volume[k] * phi * phi.transpose();
-      }
-      Eigen::Matrix<double, nq, 1> mu = A.completeOrthogonalDecomposition().solve(rhs);
-      for (auto k = b.offset[i]; k < b.offset[i + 1]; ++k) {
-        monomials(k);
-        b.dilatation_weight[k] = static_cast<float>(influence(c.influence, b.length[k], c.horizon) * b.length[k] * mu.dot(phi));
-      }
+    auto weight = [&](std::int64_t k) -> float& {
+      return b.factors[static_cast<std::size_t>(b.factor_row[i] + b.family[static_cast<std::size_t>(k)])].dilatation_weight;
+    };
+    if (!c.surface_correction) {
+      for (auto k = b.offset[i]; k < b.offset[i + 1]; ++k)
+        weight(k) = static_cast<float>(D * influence(c.influence, b.length(k), c.horizon) * b.length(k) / m.weighted_volume[i]);
+      continue;
+    }
+    // b_ij = omega |xi| (mu . phi(n)) with sum_j b_ij V_j |xi| n_a n_b = delta_ab
+    Eigen::Matrix<double, nq, nq> A = Eigen::Matrix<double, nq, nq>::Zero();
+    Eigen::Matrix<double, nq, 1> rhs, phi;
+    for (int q = 0; q < nq; ++q) rhs[q] = pairs[static_cast<std::size_t>(q)][0] == pairs[static_cast<std::size_t>(q)][1] ? 1.0 : 0.0;
+    auto monomials = [&](const FamilyOffset& f) {
+      for (int q = 0; q < nq; ++q)
+        phi[q] = (f.xi[static_cast<std::size_t>(pairs[static_cast<std::size_t>(q)][0])] / f.length) *
+                 (f.xi[static_cast<std::size_t>(pairs[static_cast<std::size_t>(q)][1])] / f.length);
+    };
+    for (auto k = b.offset[i]; k < b.offset[i + 1]; ++k) {
+      const FamilyOffset& f = b.family_of(k);
+      monomials(f);
+      A.noalias() += influence(c.influence, f.length, c.horizon) * f.length * f.length * f.volume * phi * phi.transpose();
+    }
+    Eigen::Matrix<double, nq, 1> mu = A.completeOrthogonalDecomposition().solve(rhs);
+    for (auto k = b.offset[i]; k < b.offset[i + 1]; ++k) {
+      const FamilyOffset& f = b.family_of(k);
+      monomials(f);
+      weight(k) = static_cast<float>(influence(c.influence, f.length, c.horizon) * f.length * mu.dot(phi));
     }
   }
-  mirror_values(b, b.dilatation_weight, b.mirror_dilatation_weight);
 }
 
-template void apply_surface_correction<2>(Model<2>&);
-template void apply_surface_correction<3>(Model<3>&);
-template void compute_dilatation_weights<2>(Model<2>&);
-template void compute_dilatation_weights<3>(Model<3>&);
+template std::vector<std::size_t> assign_factor_rows<2>(Model<2>&);
+template std::vector<std::size_t> assign_factor_rows<3>(Model<3>&);
+template void apply_surface_correction<2>(Model<2>&, const std::vector<std::size_t>&);
+template void apply_surface_correction<3>(Model<3>&, const std::vector<std::size_t>&);
+template void compute_dilatation_weights<2>(Model<2>&, const std::vector<std::size_t>&);
+template void compute_dilatation_weights<3>(Model<3>&, const std::vector<std::size_t>&);
 
 }  // namespace rift::pd

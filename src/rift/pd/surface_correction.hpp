@@ -19,18 +19,27 @@
 // b_ij = omega (mu_i . phi(n)) |xi| V_j, phi = all degree-2 monomials, such that
 // sum_j b_ij |xi| n (x) n = I (uncorrected: b_ij = d omega |xi| V_j / m_i).
 // Bond forces use t_i + t_j, so momentum is conserved with per-particle influence functions.
-// The factor of particle i's side of bond k is bonds.correction[k]; the other side's is
-// bonds.mirror_correction[k].
+// Both live in the particle's row of factors (bonds.hpp): bonds.factors_of(i, k) for i's side of
+// bond k, bonds.mirror_factors_of(j, k) for the other side. Particles whose families are whole share
+// one row per body (their factors are equal: the same offsets, the same moments).
 #pragma once
+#include <cstddef>
+#include <vector>
+
 #include "rift/pd/model.hpp"
 
 namespace rift::pd {
 
+/// Gives every particle its row of factors (1 and 0 to start with); returns the particles whose rows
+/// the two functions below fill (one per shared row, and every particle with a row of its own).
 template <int D>
-void apply_surface_correction(Model<D>& m);
+std::vector<std::size_t> assign_factor_rows(Model<D>& m);
 
-/// LPS dilatation weights (needs the weighted volumes); the arrays stay empty without LPS bodies.
 template <int D>
-void compute_dilatation_weights(Model<D>& m);
+void apply_surface_correction(Model<D>& m, const std::vector<std::size_t>& owners);
+
+/// LPS dilatation weights (needs the weighted volumes); nothing to do without LPS bodies.
+template <int D>
+void compute_dilatation_weights(Model<D>& m, const std::vector<std::size_t>& owners);
 
 }  // namespace rift::pd

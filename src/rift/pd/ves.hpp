@@ -36,8 +36,8 @@ void prepare_viscous_history(Model<D>& m) {
   for (const auto& body : m.bodies) any = any || body.constants.model == scene::ModelKind::ves;
   if (!any) return;
   Bonds& b = m.bonds;
-  b.deviatoric_extension.assign(b.neighbor.size(), 0.0);
-  b.back_extension.assign(b.neighbor.size(), 0.0);
+  b.deviatoric_extension.assign(b.neighbor.size(), 0.0f);
+  b.back_extension.assign(b.neighbor.size(), 0.0f);
   b.mirror_slot.assign(b.neighbor.size(), 0);
   const auto n = static_cast<std::int64_t>(b.offset.size()) - 1;
   for (std::int64_t i = 0; i < n; ++i)
@@ -73,16 +73,16 @@ void ves_dilatation(Model<D>& m, const BodyInfo& body, double dt) {
     for (auto k = b.offset[i]; k < b.offset[i + 1]; ++k) {
       if (b.intact[k] != bond_intact) continue;
       const auto j = static_cast<std::size_t>(b.neighbor[k]);
-      const double xi = b.length[k];
+      const double xi = b.length(k);
       const double e = norm<D>(m.position[j] - xi_pos) - xi;
       const double ed = e - theta * xi / D;
-      double eb = b.back_extension[k];
-      if (advance) {
-        eb = b.deviatoric_extension[k] * one_minus_decay + eb * decay + beta * (ed - b.deviatoric_extension[k]);
-        b.back_extension[k] = eb;
-        b.deviatoric_extension[k] = ed;
+      if (advance) {  // in double, stored in single precision (bonds.hpp)
+        const double ed_old = b.deviatoric_extension[k];
+        b.back_extension[k] = static_cast<float>(ed_old * one_minus_decay + b.back_extension[k] * decay + beta * (ed - ed_old));
+        b.deviatoric_extension[k] = static_cast<float>(ed);
       }
-      p += b.correction[k] * influence(Omega, xi, horizon) * (ed - lambda * eb) * xi * b.volume[k];
+      const double eb = b.back_extension[k];
+      p += b.correction(i, k) * influence(Omega, xi, horizon) * (ed - lambda * eb) * xi * b.volume(k);
     }
     m.dilatation[i] = theta;
     m.dilatation_coupling[i] = p;

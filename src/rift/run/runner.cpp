@@ -54,12 +54,10 @@ Plan make_plan(const Simulation<D>& p) {
   Plan plan;
   plan.particles = p.model.size();
   plan.bonds = p.model.bonds.size() / 2;
-  plan.bytes_per_particle = double(pd::Model<D>::bytes_per_particle()) + sizeof(std::int64_t);
-  // both directions of a bond are stored; LPS and VES add two dilatation weights per direction, VES its
-  // deviatoric and back extensions and the reverse-bond slot
-  const auto& b = p.model.bonds;
-  plan.bytes_per_bond = 2.0 * (double(pd::Bonds::bytes_per_bond()) + (b.dilatation_weight.empty() ? 0.0 : 2 * sizeof(float)) +
-                               (b.back_extension.empty() ? 0.0 : 2 * sizeof(double) + sizeof(std::uint16_t)));
+  // per particle: its fields, its row offset and the index of its row of factors (bonds.hpp)
+  plan.bytes_per_particle = double(pd::Model<D>::bytes_per_particle()) + 2 * sizeof(std::int64_t);
+  // both directions of a bond are stored
+  plan.bytes_per_bond = 2.0 * p.model.bonds.bytes_per_directed_bond();
   plan.stable_time_step = p.stable_dt;
   plan.time_step = p.dt;
   plan.steps = p.steps;
