@@ -21,6 +21,7 @@ inline constexpr std::uint8_t bond_interface_failed = 2;
 struct FamilyOffset {
   std::array<double, 3> xi{};  // reference bond vector x_j - x_i (z = 0 in 2D)
   double length = 0.0;         // |xi| (double: no spurious stretch)
+  double inverse_length = 0.0; // 1 / |xi|: the stretch is a product
   double volume = 0.0;         // V_j times the partial-volume fraction of j inside the horizon of i
   std::uint32_t mirror = 0;    // the offset -xi: the bond j-i of the bond i-j
 };
@@ -29,6 +30,19 @@ struct FamilyOffset {
 struct BondFactors {
   float correction = 1.0f;         // g_i: the particle's influence-function factor (1 when off)
   float dilatation_weight = 0.0f;  // b_ij: theta_i = sum b_ij e_ij V_j (LPS and VES only)
+};
+
+/// Raw views of the bond arrays for the hot loops. Copied into a loop's locals these pointers stay in
+/// registers; read through the vectors they would be reloaded after every store to a bond's state
+/// (a one-byte store may alias anything).
+struct BondView {
+  const std::int64_t* offset;
+  const std::int32_t* neighbor;
+  const std::uint16_t* family;
+  std::uint8_t* intact;
+  const FamilyOffset* families;
+  const BondFactors* factors;
+  const std::int64_t* factor_row;
 };
 
 struct Bonds {
@@ -49,6 +63,9 @@ struct Bonds {
   std::vector<std::uint16_t> mirror_slot;
 
   std::int64_t size() const { return static_cast<std::int64_t>(neighbor.size()); }
+  BondView view() {
+    return {offset.data(), neighbor.data(), family.data(), intact.data(), families.data(), factors.data(), factor_row.data()};
+  }
   const FamilyOffset& family_of(std::int64_t k) const { return families[family[static_cast<std::size_t>(k)]]; }
   double length(std::int64_t k) const { return family_of(k).length; }
   double volume(std::int64_t k) const { return family_of(k).volume; }

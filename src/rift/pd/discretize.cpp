@@ -168,6 +168,7 @@ void build_bonds(const scene::Scene& s, Model<D>& m, const std::vector<std::arra
       FamilyOffset f;
       for (int k = 0; k < D; ++k) f.xi[static_cast<std::size_t>(k)] = off.o[static_cast<std::size_t>(k)] * body.spacing;
       f.length = std::sqrt(f.xi[0] * f.xi[0] + f.xi[1] * f.xi[1] + f.xi[2] * f.xi[2]);
+      f.inverse_length = 1.0 / f.length;
       f.volume = site_volume * off.fraction;
       m.bonds.families.push_back(f);
     }

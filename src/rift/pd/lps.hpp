@@ -13,8 +13,10 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <utility>
 #include <vector>
 
+#include "rift/pd/bond_slabs.hpp"
 #include "rift/pd/influence.hpp"
 #include "rift/pd/model.hpp"
 #include "rift/parallel/team.hpp"
@@ -33,58 +35,92 @@ double pressure_factor(double kappa, double theta, double a, double coupling) {
   return kappa * theta - a * coupling / D;
 }
 
-/// Intact bonds of row i: theta_i = sum b e V, with Coupling also q_i = sum sigma e |xi| V; breaks
-/// the bonds stretched past min(s0_i, s0_j) (the mirror bond in row j is broken by the same test) and
-/// returns the smallest stretch of the rest.
+/// The first pass of the LPS and VES, each bond once (bond_slabs.hpp): breaks the bonds stretched
+/// past min(s0_i, s0_j) (both directions) and sums over the rest theta_i = sum b_ij e V (into
+/// m.dilatation), with Coupling also q_i = sum sigma_ij e |xi| V (into `coupling`), and the smallest
+/// stretch of each particle (into `smallest`, none: no intact bond). e = |y| - |xi| is the same seen
+/// from either end; b and sigma are each end's own (surface_correction.hpp).
 template <int D, scene::Influence Omega, bool Coupling>
-double dilatation_row(Model<D>& m, const MaterialConstants& c, std::size_t i, double& theta, double& q) {
+void dilatation_pass(Model<D>& m, const BodyInfo& body, double* coupling, double* smallest) {
+  const auto& c = body.constants;
   Bonds& b = m.bonds;
-  const Vec<D> xi_pos = m.position[i];
-  const double s0_i = m.stretch_limit[i];
-  const std::int64_t row_i = b.factor_row[i];
-  double s_min = std::numeric_limits<double>::max();
-  theta = 0.0, q = 0.0;
-  for (auto k = b.offset[i]; k < b.offset[i + 1]; ++k) {
-    if (b.intact[k] != bond_intact) continue;
-    const auto j = static_cast<std::size_t>(b.neighbor[k]);
-    const double r = norm<D>(m.position[j] - xi_pos);
-    const FamilyOffset& family = b.families[b.family[k]];
-    const double xi = family.length;
-    const double e = r - xi;
-    if (c.breakable && e > xi * std::min(s0_i, m.stretch_limit[j])) {
-      b.intact[k] = bond_broken;
-      continue;
-    }
-    // divide only for a candidate: e / xi < s_min up to the rounding of s_min xi (either sign)
-    if (const double bound = s_min * xi; e < bound + std::abs(bound) * 1e-12) s_min = std::min(s_min, e / xi);
-    const BondFactors& own = b.factors[static_cast<std::size_t>(row_i + b.family[k])];
-    theta += own.dilatation_weight * e * family.volume;
-    if constexpr (Coupling) q += own.correction * influence(Omega, xi, c.horizon) * xi * e * family.volume;
+  constexpr double none = std::numeric_limits<double>::max();
+#pragma omp parallel for if(rift::parallel::worth_a_team(body.last - body.first)) schedule(static)
+  for (std::size_t i = body.first; i < body.last; ++i) {
+    m.dilatation[i] = 0.0;
+    if constexpr (Coupling) coupling[i] = 0.0;
+    smallest[i] = none;
   }
-  return s_min;
+  std::vector<std::pair<std::size_t, std::int64_t>> broken;  // (i, k) of the bonds broken here
+  for_each_row_by_slabs(b, body.first, body.last, [&](std::size_t i) {
+    const Vec<D> xi_pos = m.position[i];
+    const double s0_i = m.stretch_limit[i];
+    const std::int64_t row_i = b.factor_row[i];
+    double s_min = smallest[i], theta = 0.0, q = 0.0;
+    for (auto k = first_forward_bond(b, i); k < b.offset[i + 1]; ++k) {
+      if (b.intact[k] != bond_intact) continue;
+      const auto j = static_cast<std::size_t>(b.neighbor[k]);
+      const double r = norm<D>(m.position[j] - xi_pos);
+      const FamilyOffset& family = b.families[b.family[k]];
+      const double xi = family.length;
+      const double e = r - xi;
+      if (c.breakable && e > xi * std::min(s0_i, m.stretch_limit[j])) {
+        b.intact[k] = bond_broken;
+#pragma omp critical(rift_lps_broken)
+        broken.emplace_back(i, k);
+        continue;
+      }
+      const double s = e * family.inverse_length;
+      s_min = std::min(s_min, s);
+      smallest[j] = std::min(smallest[j], s);
+      const BondFactors& own = b.factors[static_cast<std::size_t>(row_i + b.family[k])];
+      const BondFactors& other = b.factors[static_cast<std::size_t>(b.factor_row[j] + family.mirror)];
+      const double ev = e * family.volume;
+      theta += own.dilatation_weight * ev;
+      m.dilatation[j] += other.dilatation_weight * ev;
+      if constexpr (Coupling) {
+        const double w = influence(Omega, xi, c.horizon) * xi * ev;
+        q += own.correction * w;
+        coupling[j] += other.correction * w;
+      }
+    }
+    m.dilatation[i] += theta;
+    if constexpr (Coupling) coupling[i] += q;
+    smallest[i] = s_min;
+  });
+  for (const auto& [i, k] : broken) break_mirror_bond(b, i, k);
 }
 
 /// s0_i = s00 - alpha s_min for the next step (alpha > 0, some bond intact).
 template <int D>
-void next_stretch_limit(Model<D>& m, const MaterialConstants& c, std::size_t i, double s_min) {
-  if (c.alpha > 0.0 && s_min < std::numeric_limits<double>::max()) m.next_stretch_limit[i] = c.critical_stretch - c.alpha * s_min;
+void next_stretch_limits(Model<D>& m, const BodyInfo& body, const double* smallest) {
+  const auto& c = body.constants;
+  if (c.alpha <= 0.0) return;
+#pragma omp parallel for if(rift::parallel::worth_a_team(body.last - body.first)) schedule(static)
+  for (std::size_t i = body.first; i < body.last; ++i)
+    if (smallest[i] < std::numeric_limits<double>::max()) m.next_stretch_limit[i] = c.critical_stretch - c.alpha * smallest[i];
+}
+
+/// Per-particle scratch of the passes, the calling thread's (the team reads and writes it through
+/// the pointer): one array of n doubles per `slot`.
+inline double* pass_scratch(std::size_t n, int slot) {
+  static thread_local std::vector<double> scratch[2];
+  scratch[slot].resize(n);
+  return scratch[slot].data();
 }
 
 template <int D, scene::Influence Omega>
 void lps_dilatation(Model<D>& m, const BodyInfo& body) {
-  const auto& c = body.constants;
+  double* const q = pass_scratch(m.size(), 0);
+  double* const smallest = pass_scratch(m.size(), 1);
+  dilatation_pass<D, Omega, true>(m, body, q, smallest);
 #pragma omp parallel for if(rift::parallel::worth_a_team(body.last - body.first)) schedule(static)
-  for (std::size_t i = body.first; i < body.last; ++i) {
-    double theta, q;
-    const double s_min = dilatation_row<D, Omega, true>(m, c, i, theta, q);
-    m.dilatation[i] = theta;
-    m.dilatation_coupling[i] = q - theta * m.weighted_volume[i] / D;
-    next_stretch_limit<D>(m, c, i, s_min);
-  }
+  for (std::size_t i = body.first; i < body.last; ++i) m.dilatation_coupling[i] = q[i] - m.dilatation[i] * m.weighted_volume[i] / D;
+  next_stretch_limits<D>(m, body, smallest);
 }
 
-/// What the force pass reads of a neighbour, packed in one record per particle instead of five
-/// arrays: its position, p_j, a_j, theta_j and its row of factors.
+/// What the force pass reads of each end of a bond, packed in one record per particle instead of
+/// five arrays: its position, p, a, theta and its row of factors.
 template <int D>
 struct ForceStateInputs {
   Vec<D> position;
@@ -93,8 +129,8 @@ struct ForceStateInputs {
 };
 
 /// Second pass of the LPS and of its viscoelastic variant (ves.hpp, Viscous: the deviatoric
-/// extension of each end less lambda times its back extension): f_i = sum_j (t_i<j> + t_j<i>) V_j
-/// along the deformed bond.
+/// extension of each end less lambda times its back extension), each bond once (bond_slabs.hpp):
+/// the pair force density (t_i<j> + t_j<i>) V along the deformed bond, on i and, opposite, on j.
 template <int D, scene::Influence Omega, bool Viscous>
 void state_based_forces(Model<D>& m, const BodyInfo& body) {
   const auto& c = body.constants;
@@ -109,14 +145,15 @@ void state_based_forces(Model<D>& m, const BodyInfo& body) {
   for (std::size_t j = body.first; j < body.last; ++j) {
     const double a_j = m.weighted_volume[j] > 0.0 ? a_dev / m.weighted_volume[j] : 0.0;
     in[j] = {m.position[j], pressure_factor<D>(kappa, m.dilatation[j], a_j, m.dilatation_coupling[j]), a_j, m.dilatation[j], b.factor_row[j]};
+    m.force[j] = Vec<D>{};
   }
-#pragma omp parallel for if(rift::parallel::worth_a_team(body.last - body.first)) schedule(static)
-  for (std::size_t i = body.first; i < body.last; ++i) {
+  for_each_row_by_slabs(b, body.first, body.last, [&](std::size_t i) {
     const ForceStateInputs<D> own = in[i];
     Vec<D> f{};
-    for (auto k = b.offset[i]; k < b.offset[i + 1]; ++k) {
+    for (auto k = first_forward_bond(b, i); k < b.offset[i + 1]; ++k) {
       if (b.intact[k] != bond_intact) continue;
-      const ForceStateInputs<D>& other = in[b.neighbor[k]];
+      const auto j = static_cast<std::size_t>(b.neighbor[k]);
+      const ForceStateInputs<D>& other = in[j];
       const Vec<D> eta = other.position - own.position;
       const double r = norm<D>(eta);
       const FamilyOffset& family = b.families[b.family[k]];
@@ -125,7 +162,6 @@ void state_based_forces(Model<D>& m, const BodyInfo& body) {
       const double omega = influence(Omega, xi, horizon);
       double dev_i = e - own.theta * xi / D, dev_j = e - other.theta * xi / D;
       if constexpr (Viscous) {
-        const auto j = static_cast<std::size_t>(b.neighbor[k]);
         dev_i -= lambda * b.back_extension[k];
         dev_j -= lambda * b.back_extension[static_cast<std::size_t>(b.offset[j]) + b.mirror_slot[k]];
       }
@@ -134,10 +170,13 @@ void state_based_forces(Model<D>& m, const BodyInfo& body) {
       const double t_i = force_state(g_i.dilatation_weight, own.pressure, own.a, g_i.correction, omega, dev_i);
       const double t_j = force_state(g_j.dilatation_weight, other.pressure, other.a, g_j.correction, omega, dev_j);
       const double scalar = (t_i + t_j) * family.volume / r;
-      for (int q = 0; q < D; ++q) f[q] += scalar * eta[q];
+      for (int q = 0; q < D; ++q) {
+        f[q] += scalar * eta[q];
+        m.force[j][q] -= scalar * eta[q];
+      }
     }
-    m.force[i] = f;
-  }
+    for (int q = 0; q < D; ++q) m.force[i][q] += f[q];
+  });
 }
 
 /// W_i (uses the current dilatation; Viscous: and back extensions, ves.hpp).

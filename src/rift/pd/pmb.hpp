@@ -4,8 +4,12 @@
 // when s exceeds min(s0_i, s0_j); s0_i = s00 - alpha s_min,i (eq. 23, as LAMMPS peri/pmb).
 #pragma once
 #include <algorithm>
+#include <cstdint>
 #include <limits>
+#include <utility>
+#include <vector>
 
+#include "rift/pd/bond_slabs.hpp"
 #include "rift/pd/influence.hpp"
 #include "rift/pd/model.hpp"
 #include "rift/parallel/team.hpp"
@@ -17,39 +21,82 @@ inline double pmb_bond_force(double micromodulus, double omega, double s, float 
   return micromodulus * omega * s * (0.5f * (correction + mirror_correction));
 }
 
+/// What the PMB pass reads of a neighbour, packed in one record per particle instead of three
+/// arrays: its position, s0_j and its row of factors.
+template <int D>
+struct BondEndInputs {
+  Vec<D> position;
+  double stretch_limit;
+  std::int64_t factor_row;
+};
+
 template <int D, scene::Influence Omega>
 void pmb_forces(Model<D>& m, const BodyInfo& body) {
   const auto& c = body.constants;
   Bonds& b = m.bonds;
   const double micromodulus = c.micromodulus, s00 = c.critical_stretch, alpha = c.alpha, horizon = c.horizon;
   const bool breakable = c.breakable;
+  // bonds join particles of one body; the buffers are the calling thread's, which the team writes
+  // and reads through `in` and `smallest` (the smallest stretch of each particle's intact bonds)
+  static thread_local std::vector<BondEndInputs<D>> inputs;
+  static thread_local std::vector<double> smallest_stretch;
+  inputs.resize(m.size());
+  smallest_stretch.resize(m.size());
+  BondEndInputs<D>* const in = inputs.data();
+  double* const smallest = smallest_stretch.data();
+  constexpr double none = std::numeric_limits<double>::max();
 #pragma omp parallel for if(rift::parallel::worth_a_team(body.last - body.first)) schedule(static)
-  for (std::size_t i = body.first; i < body.last; ++i) {
-    const Vec<D> xi_pos = m.position[i];
-    const double s0_i = m.stretch_limit[i];
-    const std::int64_t row_i = b.factor_row[i];
+  for (std::size_t j = body.first; j < body.last; ++j) {
+    in[j] = {m.position[j], m.stretch_limit[j], b.factor_row[j]};
+    m.force[j] = Vec<D>{};
+    smallest[j] = none;
+  }
+  // each bond once, from its lower end (bond_slabs.hpp): s is the same seen from either end, and so
+  // is the pair force c omega s (g_i + g_j)/2 V along the bond (one lattice cell volume per body)
+  std::vector<std::pair<std::size_t, std::int64_t>> broken;  // (i, k) of the bonds broken here
+  const BondView bonds = b.view();
+  Vec<D>* const forces = m.force.data();
+  for_each_row_by_slabs(b, body.first, body.last, [&](std::size_t i) {
+    const BondView v = bonds;  // locals: registers (bonds.hpp)
+    Vec<D>* const force = forces;
+    double* const s_smallest = smallest;
+    const BondEndInputs<D>* const ends = in;
+    const BondEndInputs<D> own = ends[i];
     Vec<D> f{};
-    double s_min = std::numeric_limits<double>::max();
-    for (auto k = b.offset[i]; k < b.offset[i + 1]; ++k) {
-      if (b.intact[k] != bond_intact) continue;
-      const auto j = static_cast<std::size_t>(b.neighbor[k]);
-      const Vec<D> eta = m.position[j] - xi_pos;
+    double s_min = s_smallest[i];
+    for (auto k = first_forward_bond(b, i); k < v.offset[i + 1]; ++k) {
+      if (v.intact[k] != bond_intact) continue;
+      const auto j = static_cast<std::size_t>(v.neighbor[k]);
+      const BondEndInputs<D>& other = ends[j];
+      const Vec<D> eta = other.position - own.position;
       const double r = norm<D>(eta);
-      const FamilyOffset& family = b.families[b.family[k]];
+      const FamilyOffset& family = v.families[v.family[k]];
       const double xi = family.length;
-      const double s = (r - xi) / xi;
-      if (breakable && s > std::min(s0_i, m.stretch_limit[j])) {
-        b.intact[k] = bond_broken;
+      const double s = (r - xi) * family.inverse_length;
+      if (breakable && s > std::min(own.stretch_limit, other.stretch_limit)) {
+        v.intact[k] = bond_broken;
+#pragma omp critical(rift_pmb_broken)
+        broken.emplace_back(i, k);
         continue;
       }
       s_min = std::min(s_min, s);
-      const float g_i = b.factors[static_cast<std::size_t>(row_i + b.family[k])].correction;
-      const float g_j = b.factors[static_cast<std::size_t>(b.factor_row[j] + family.mirror)].correction;
+      s_smallest[j] = std::min(s_smallest[j], s);
+      const float g_i = v.factors[own.factor_row + v.family[k]].correction;
+      const float g_j = v.factors[other.factor_row + family.mirror].correction;
       const double scalar = pmb_bond_force(micromodulus, influence(Omega, xi, horizon), s, g_i, g_j) * family.volume / r;
-      for (int q = 0; q < D; ++q) f[q] += scalar * eta[q];
+      for (int q = 0; q < D; ++q) {
+        f[q] += scalar * eta[q];
+        force[j][q] -= scalar * eta[q];
+      }
     }
-    m.force[i] = f;
-    if (alpha > 0.0 && s_min < std::numeric_limits<double>::max()) m.next_stretch_limit[i] = s00 - alpha * s_min;
+    for (int q = 0; q < D; ++q) force[i][q] += f[q];
+    s_smallest[i] = s_min;
+  });
+  for (const auto& [i, k] : broken) break_mirror_bond(b, i, k);
+  if (alpha > 0.0) {
+#pragma omp parallel for if(rift::parallel::worth_a_team(body.last - body.first)) schedule(static)
+    for (std::size_t i = body.first; i < body.last; ++i)
+      if (smallest[i] < none) m.next_stretch_limit[i] = s00 - alpha * smallest[i];
   }
 }
 

@@ -64,30 +64,42 @@ void ves_dilatation(Model<D>& m, const BodyInfo& body, double dt) {
   const double x = advance ? dt / c.relaxation_time : 0.0;
   const double one_minus_decay = -std::expm1(-x), decay = 1.0 - one_minus_decay;
   const double beta = advance ? 1.0 - one_minus_decay / x : 0.0;
+  double* const smallest = pass_scratch(m.size(), 1);
+  dilatation_pass<D, Omega, false>(m, body, nullptr, smallest);
 #pragma omp parallel for if(rift::parallel::worth_a_team(body.last - body.first)) schedule(static)
-  for (std::size_t i = body.first; i < body.last; ++i) {
+  for (std::size_t i = body.first; i < body.last; ++i) m.dilatation_coupling[i] = 0.0;
+  // each bond once (bond_slabs.hpp): the back extensions of both directions, and P of both ends
+  for_each_row_by_slabs(b, body.first, body.last, [&](std::size_t i) {
     const Vec<D> xi_pos = m.position[i];
-    double theta, unused;
-    const double s_min = dilatation_row<D, Omega, false>(m, c, i, theta, unused);
+    const double theta_i = m.dilatation[i];
+    const std::int64_t row_i = b.factor_row[i];
     double p = 0.0;
-    for (auto k = b.offset[i]; k < b.offset[i + 1]; ++k) {
-      if (b.intact[k] != bond_intact) continue;
-      const auto j = static_cast<std::size_t>(b.neighbor[k]);
-      const double xi = b.length(k);
-      const double e = norm<D>(m.position[j] - xi_pos) - xi;
-      const double ed = e - theta * xi / D;
-      if (advance) {  // in double, stored in single precision (bonds.hpp)
+    // advances the history of directed bond k with deviatoric extension ed (in double, stored in
+    // single precision, bonds.hpp) and returns its back extension
+    auto back_extension = [&](std::size_t k, double ed) -> double {
+      if (advance) {
         const double ed_old = b.deviatoric_extension[k];
         b.back_extension[k] = static_cast<float>(ed_old * one_minus_decay + b.back_extension[k] * decay + beta * (ed - ed_old));
         b.deviatoric_extension[k] = static_cast<float>(ed);
       }
-      const double eb = b.back_extension[k];
-      p += b.correction(i, k) * influence(Omega, xi, horizon) * (ed - lambda * eb) * xi * b.volume(k);
+      return b.back_extension[k];
+    };
+    for (auto k = first_forward_bond(b, i); k < b.offset[i + 1]; ++k) {
+      if (b.intact[k] != bond_intact) continue;
+      const auto j = static_cast<std::size_t>(b.neighbor[k]);
+      const auto k_j = static_cast<std::size_t>(b.offset[j]) + b.mirror_slot[k];  // the bond j-i
+      const FamilyOffset& family = b.families[b.family[k]];
+      const double xi = family.length;
+      const double e = norm<D>(m.position[j] - xi_pos) - xi;
+      const double ed_i = e - theta_i * xi / D, ed_j = e - m.dilatation[j] * xi / D;
+      const double eb_i = back_extension(static_cast<std::size_t>(k), ed_i), eb_j = back_extension(k_j, ed_j);
+      const double w = influence(Omega, xi, horizon) * xi * family.volume;
+      p += b.factors[static_cast<std::size_t>(row_i + b.family[k])].correction * w * (ed_i - lambda * eb_i);
+      m.dilatation_coupling[j] += b.factors[static_cast<std::size_t>(b.factor_row[j] + family.mirror)].correction * w * (ed_j - lambda * eb_j);
     }
-    m.dilatation[i] = theta;
-    m.dilatation_coupling[i] = p;
-    next_stretch_limit<D>(m, c, i, s_min);
-  }
+    m.dilatation_coupling[i] += p;
+  });
+  next_stretch_limits<D>(m, body, smallest);
 }
 
 }  // namespace rift::pd

@@ -1,0 +1,55 @@
+// Passes that visit each bond once and act on both of its ends (Newton's third law: the pair force
+// of PMB and of the state-based models is equal and opposite on the two particles), without atomics.
+// Row i's bonds to higher-numbered neighbours are its forward bonds (rows are sorted by neighbour).
+// The particles are cut into index ranges, slabs, no shorter than the farthest forward reach
+// max(j - i): a row's forward bonds end in its own slab or the next. Even slabs run in parallel,
+// then odd ones, so no two slabs running at once write the same particle. The slabs depend on the
+// bonds alone, not on the threads, so every sum is made in the same order on any thread count.
+#pragma once
+#include <algorithm>
+#include <cstddef>
+#include <cstdint>
+
+#include "rift/pd/bonds.hpp"
+#include "rift/parallel/team.hpp"
+
+namespace rift::pd {
+
+/// The first forward bond of row i (neighbour above i).
+inline std::int64_t first_forward_bond(const Bonds& b, std::size_t i) {
+  const auto first = b.neighbor.begin() + b.offset[i], last = b.neighbor.begin() + b.offset[i + 1];
+  return std::upper_bound(first, last, static_cast<std::int32_t>(i)) - b.neighbor.begin();
+}
+
+/// Marks broken the bond j-i in row j of bond k = i-j.
+inline void break_mirror_bond(Bonds& b, std::size_t i, std::int64_t k) {
+  const auto j = static_cast<std::size_t>(b.neighbor[static_cast<std::size_t>(k)]);
+  const auto first = b.neighbor.begin() + b.offset[j], last = b.neighbor.begin() + b.offset[j + 1];
+  b.intact[static_cast<std::size_t>(std::lower_bound(first, last, static_cast<std::int32_t>(i)) - b.neighbor.begin())] = bond_broken;
+}
+
+/// Calls row(i) for every particle of [first, last), slab by slab as above.
+template <class Row>
+void for_each_row_by_slabs(const Bonds& b, std::size_t first, std::size_t last, Row&& row) {
+  if (last <= first) return;
+  std::size_t reach = 1;
+  for (std::size_t i = first; i < last; ++i)
+    if (b.offset[i + 1] > b.offset[i]) {
+      const auto j = static_cast<std::size_t>(b.neighbor[static_cast<std::size_t>(b.offset[i + 1] - 1)]);
+      if (j > i) reach = std::max(reach, j - i);
+    }
+  // at least the reach; more slabs than a few threads need for balance on large bodies
+  const std::size_t length = std::max(reach, (last - first + 255) / 256);
+  const std::size_t slabs = (last - first + length - 1) / length;
+  for (std::size_t parity = 0; parity < 2; ++parity) {
+    const auto count = static_cast<std::int64_t>((slabs + 1 - parity) / 2);
+#pragma omp parallel for if(rift::parallel::worth_a_team(last - first) && count > 1) schedule(dynamic, 1)
+    for (std::int64_t q = 0; q < count; ++q) {
+      const std::size_t from = first + (2 * static_cast<std::size_t>(q) + parity) * length;
+      const std::size_t to = std::min(last, from + length);
+      for (std::size_t i = from; i < to; ++i) row(i);
+    }
+  }
+}
+
+}  // namespace rift::pd
