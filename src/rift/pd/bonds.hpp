@@ -1,5 +1,9 @@
-// Bond families in compressed-sparse-row form: row i lists the bonds of particle i (both i-j and
-// j-i are stored, as LAMMPS PERI does, so each particle owns its force sum: no atomics).
+// Bond families in compressed-sparse-row form: row i lists the bonds of particle i, sorted by
+// neighbour (both i-j and j-i are stored, as LAMMPS PERI does; the force passes visit each bond once,
+// from its lower end, bond_slabs.hpp). A bond stores its neighbour, its lattice offset (an index into
+// the bodies' family offsets: length, neighbour volume, reverse offset) and its state: 7 bytes. The
+// influence-function factors of the surface correction sit in one row per particle, shared by the
+// particles whose family is whole.
 #pragma once
 #include <array>
 #include <cmath>

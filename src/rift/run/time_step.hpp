@@ -5,6 +5,8 @@
 #include <cmath>
 #include <string>
 
+#include <fmt/format.h>
+
 #include "rift/core/error.hpp"
 #include "rift/scene/scene.hpp"
 
@@ -21,8 +23,8 @@ inline StepPlan explicit_steps(const scene::Solver& solver, double stable_dt, co
   if (solver.time_step) {
     if (*solver.time_step > stable_dt)
       throw SceneError(solver.time_step_where, "solver.time_step",
-                       "time step " + std::to_string(*solver.time_step) + " s exceeds the stable limit " + std::to_string(stable_dt) +
-                           " s (" + limit_source + "); use a smaller value or safety_factor");
+                       fmt::format("time step {:.4g} s exceeds the stable limit {:.4g} s ({}); use a smaller value or safety_factor",
+                                   *solver.time_step, stable_dt, limit_source));
     dt = *solver.time_step;
   }
   StepPlan plan;
