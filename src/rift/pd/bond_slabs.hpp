@@ -9,8 +9,11 @@
 #include <algorithm>
 #include <cstddef>
 #include <cstdint>
+#include <limits>
+#include <vector>
 
 #include "rift/pd/bonds.hpp"
+#include "rift/pd/model.hpp"
 #include "rift/parallel/team.hpp"
 
 namespace rift::pd {
@@ -21,11 +24,33 @@ inline std::int64_t first_forward_bond(const Bonds& b, std::size_t i) {
   return std::upper_bound(first, last, static_cast<std::int32_t>(i)) - b.neighbor.begin();
 }
 
-/// Marks broken the bond j-i in row j of bond k = i-j.
-inline void break_mirror_bond(Bonds& b, std::size_t i, std::int64_t k) {
+/// The index of bond j-i, the reverse of bond k = i-j, in row j.
+inline std::int64_t reverse_bond(const Bonds& b, std::size_t i, std::int64_t k) {
   const auto j = static_cast<std::size_t>(b.neighbor[static_cast<std::size_t>(k)]);
   const auto first = b.neighbor.begin() + b.offset[j], last = b.neighbor.begin() + b.offset[j + 1];
-  b.intact[static_cast<std::size_t>(std::lower_bound(first, last, static_cast<std::int32_t>(i)) - b.neighbor.begin())] = bond_broken;
+  return std::lower_bound(first, last, static_cast<std::int32_t>(i)) - b.neighbor.begin();
+}
+
+/// Marks broken the reverse of bond k = i-j, which a pass broke from i's side.
+inline void break_mirror_bond(Bonds& b, std::size_t i, std::int64_t k) { b.intact[static_cast<std::size_t>(reverse_bond(b, i, k))] = bond_broken; }
+
+/// Per-particle scratch of the passes, the calling thread's (the team reads and writes it through
+/// the pointer): one array of n doubles per `slot`.
+inline double* pass_scratch(std::size_t n, int slot) {
+  static thread_local std::vector<double> scratch[2];
+  scratch[slot].resize(n);
+  return scratch[slot].data();
+}
+
+/// s0_i = s00 - alpha s_min for the next step (alpha > 0), from each particle's smallest stretch
+/// (max(): no intact bond, s0 kept).
+template <int D>
+void next_stretch_limits(Model<D>& m, const BodyInfo& body, const double* smallest) {
+  const auto& c = body.constants;
+  if (c.alpha <= 0.0) return;
+#pragma omp parallel for if(rift::parallel::worth_a_team(body.last - body.first)) schedule(static)
+  for (std::size_t i = body.first; i < body.last; ++i)
+    if (smallest[i] < std::numeric_limits<double>::max()) m.next_stretch_limit[i] = c.critical_stretch - c.alpha * smallest[i];
 }
 
 /// Calls row(i) for every particle of [first, last), slab by slab as above.

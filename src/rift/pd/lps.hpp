@@ -91,24 +91,6 @@ void dilatation_pass(Model<D>& m, const BodyInfo& body, double* coupling, double
   for (const auto& [i, k] : broken) break_mirror_bond(b, i, k);
 }
 
-/// s0_i = s00 - alpha s_min for the next step (alpha > 0, some bond intact).
-template <int D>
-void next_stretch_limits(Model<D>& m, const BodyInfo& body, const double* smallest) {
-  const auto& c = body.constants;
-  if (c.alpha <= 0.0) return;
-#pragma omp parallel for if(rift::parallel::worth_a_team(body.last - body.first)) schedule(static)
-  for (std::size_t i = body.first; i < body.last; ++i)
-    if (smallest[i] < std::numeric_limits<double>::max()) m.next_stretch_limit[i] = c.critical_stretch - c.alpha * smallest[i];
-}
-
-/// Per-particle scratch of the passes, the calling thread's (the team reads and writes it through
-/// the pointer): one array of n doubles per `slot`.
-inline double* pass_scratch(std::size_t n, int slot) {
-  static thread_local std::vector<double> scratch[2];
-  scratch[slot].resize(n);
-  return scratch[slot].data();
-}
-
 template <int D, scene::Influence Omega>
 void lps_dilatation(Model<D>& m, const BodyInfo& body) {
   double* const q = pass_scratch(m.size(), 0);

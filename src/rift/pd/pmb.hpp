@@ -34,16 +34,14 @@ template <int D, scene::Influence Omega>
 void pmb_forces(Model<D>& m, const BodyInfo& body) {
   const auto& c = body.constants;
   Bonds& b = m.bonds;
-  const double micromodulus = c.micromodulus, s00 = c.critical_stretch, alpha = c.alpha, horizon = c.horizon;
+  const double micromodulus = c.micromodulus, horizon = c.horizon;
   const bool breakable = c.breakable;
-  // bonds join particles of one body; the buffers are the calling thread's, which the team writes
-  // and reads through `in` and `smallest` (the smallest stretch of each particle's intact bonds)
+  // bonds join particles of one body; the buffer is the calling thread's, which the team writes and
+  // reads through `in`; `smallest`: the smallest stretch of each particle's intact bonds
   static thread_local std::vector<BondEndInputs<D>> inputs;
-  static thread_local std::vector<double> smallest_stretch;
   inputs.resize(m.size());
-  smallest_stretch.resize(m.size());
   BondEndInputs<D>* const in = inputs.data();
-  double* const smallest = smallest_stretch.data();
+  double* const smallest = pass_scratch(m.size(), 1);
   constexpr double none = std::numeric_limits<double>::max();
 #pragma omp parallel for if(rift::parallel::worth_a_team(body.last - body.first)) schedule(static)
   for (std::size_t j = body.first; j < body.last; ++j) {
@@ -93,11 +91,7 @@ void pmb_forces(Model<D>& m, const BodyInfo& body) {
     s_smallest[i] = s_min;
   });
   for (const auto& [i, k] : broken) break_mirror_bond(b, i, k);
-  if (alpha > 0.0) {
-#pragma omp parallel for if(rift::parallel::worth_a_team(body.last - body.first)) schedule(static)
-    for (std::size_t i = body.first; i < body.last; ++i)
-      if (smallest[i] < none) m.next_stretch_limit[i] = s00 - alpha * smallest[i];
-  }
+  next_stretch_limits<D>(m, body, smallest);
 }
 
 /// Strain energy density W_i = (1/4) sum c g_i omega s^2 |xi| V_j (for output and histories).

@@ -17,11 +17,11 @@
 // dilatation varies), and the P term of the surface correction (zero without it, as in LAMMPS, up to
 // the history of broken bonds).
 #pragma once
-#include <algorithm>
 #include <cmath>
 #include <limits>
 
 #include "rift/core/error.hpp"
+#include "rift/pd/bond_slabs.hpp"
 #include "rift/pd/influence.hpp"
 #include "rift/pd/lps.hpp"
 #include "rift/pd/model.hpp"
@@ -46,9 +46,7 @@ void prepare_viscous_history(Model<D>& m) {
 #pragma omp parallel for if(rift::parallel::worth_a_team(static_cast<std::size_t>(n))) schedule(static)
   for (std::int64_t i = 0; i < n; ++i)
     for (auto k = b.offset[i]; k < b.offset[i + 1]; ++k) {
-      const auto j = b.neighbor[k];
-      const auto first = b.neighbor.begin() + b.offset[j], last = b.neighbor.begin() + b.offset[j + 1];
-      b.mirror_slot[k] = static_cast<std::uint16_t>(std::lower_bound(first, last, static_cast<std::int32_t>(i)) - first);
+      b.mirror_slot[k] = static_cast<std::uint16_t>(reverse_bond(b, static_cast<std::size_t>(i), k) - b.offset[b.neighbor[k]]);
     }
 }
 
