@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <sstream>
 
+#include "rift/pd/bond_slabs.hpp"
 #include "rift/pd/discretize.hpp"
 #include "rift/pd/forces.hpp"
 #include "rift/pd/stress.hpp"
@@ -116,6 +117,29 @@ TEST(Viscoelastic, ForcesMatchAnIndependentEvaluationOverSteps) {
     std::printf("step %d: max |f_rift - f_formula| / max |f| = %.2e\n", step, worst);
     EXPECT_LT(worst, 2e-7) << "step " << step;
   }
+}
+
+// The history of bond j-i is found from bond i-j without a stored slot (bond_slabs.hpp): at its
+// offset's place in a whole row, by a search in the others. A 12^3 cube has both kinds of rows.
+TEST(Viscoelastic, ReverseBondIsTheBondBack) {
+  auto s = rift::scene::parse_string(ves_scene(12, 0.4, 2e-7, false), "ves.toml");
+  const auto m = rift::pd::discretize<3>(s);
+  const auto& b = m.bonds;
+  const auto& body = m.bodies[0];
+  std::size_t whole = 0;
+  for (std::size_t i = 0; i < m.size(); ++i) {
+    const auto j_row = [&](std::int64_t k) { return static_cast<std::size_t>(b.neighbor[static_cast<std::size_t>(k)]); };
+    whole += static_cast<std::size_t>(b.offset[i + 1] - b.offset[i]) == body.family_count;
+    for (auto k = b.offset[i]; k < b.offset[i + 1]; ++k) {
+      const auto r = rift::pd::reverse_bond(b, body, i, k);
+      const auto j = j_row(k);
+      ASSERT_GE(r, b.offset[j]);
+      ASSERT_LT(r, b.offset[j + 1]);
+      ASSERT_EQ(static_cast<std::size_t>(b.neighbor[static_cast<std::size_t>(r)]), i);
+      ASSERT_EQ(b.family[static_cast<std::size_t>(r)], b.family_of(k).mirror);
+    }
+  }
+  EXPECT_EQ(whole, std::size_t(6 * 6 * 6));  // the particles 3 or more spacings from every face (the family reaches 3 along an axis)
 }
 
 // Standard linear solid (Zener) under a shear strain ramped linearly to gamma over t_r and then held:

@@ -24,15 +24,22 @@ inline std::int64_t first_forward_bond(const Bonds& b, std::size_t i) {
   return std::upper_bound(first, last, static_cast<std::int32_t>(i)) - b.neighbor.begin();
 }
 
-/// The index of bond j-i, the reverse of bond k = i-j, in row j.
-inline std::int64_t reverse_bond(const Bonds& b, std::size_t i, std::int64_t k) {
+/// The index of bond j-i, the reverse of bond k = i-j, in row j (both of `body`). A row that holds
+/// every offset of the body's family lists them in family order (discretize.cpp: offsets in the
+/// order the lattice is numbered), so the reverse sits at its offset's place; other rows (a surface,
+/// a crack or a borehole cuts the family) are searched.
+inline std::int64_t reverse_bond(const Bonds& b, const BodyInfo& body, std::size_t i, std::int64_t k) {
   const auto j = static_cast<std::size_t>(b.neighbor[static_cast<std::size_t>(k)]);
+  if (static_cast<std::size_t>(b.offset[j + 1] - b.offset[j]) == body.family_count)
+    return b.offset[j] + static_cast<std::int64_t>(b.family_of(k).mirror - body.first_family);
   const auto first = b.neighbor.begin() + b.offset[j], last = b.neighbor.begin() + b.offset[j + 1];
   return std::lower_bound(first, last, static_cast<std::int32_t>(i)) - b.neighbor.begin();
 }
 
 /// Marks broken the reverse of bond k = i-j, which a pass broke from i's side.
-inline void break_mirror_bond(Bonds& b, std::size_t i, std::int64_t k) { b.intact[static_cast<std::size_t>(reverse_bond(b, i, k))] = bond_broken; }
+inline void break_mirror_bond(Bonds& b, const BodyInfo& body, std::size_t i, std::int64_t k) {
+  b.intact[static_cast<std::size_t>(reverse_bond(b, body, i, k))] = bond_broken;
+}
 
 /// Per-particle scratch of the passes, the calling thread's (the team reads and writes it through
 /// the pointer): one array of n doubles per `slot`.

@@ -61,10 +61,8 @@ struct Bonds {
   std::vector<std::int64_t> factor_row;
   std::vector<BondFactors> factors;
   // VES only (empty otherwise), per directed bond i-j: i's deviatoric extension and back extension
-  // after the last step (Mitchell 2011; stored in single precision, 6e-8 relative rounding), and the
-  // slot of the bond j-i in row j
+  // after the last step (Mitchell 2011; stored in single precision, 6e-8 relative rounding)
   std::vector<float> deviatoric_extension, back_extension;
-  std::vector<std::uint16_t> mirror_slot;
 
   std::int64_t size() const { return static_cast<std::int64_t>(neighbor.size()); }
   BondView view() {
@@ -87,7 +85,7 @@ struct Bonds {
   double bytes_per_directed_bond() const {
     if (neighbor.empty()) return 0.0;
     const double per_bond = sizeof(std::int32_t) + sizeof(std::uint16_t) + sizeof(std::uint8_t) +
-                            (back_extension.empty() ? 0.0 : 2.0 * sizeof(float) + sizeof(std::uint16_t));
+                            (back_extension.empty() ? 0.0 : 2.0 * sizeof(float));
     const double tables = double(factors.size() * sizeof(BondFactors) + families.size() * sizeof(FamilyOffset));
     return per_bond + tables / double(neighbor.size());
   }

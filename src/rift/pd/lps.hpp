@@ -88,7 +88,7 @@ void dilatation_pass(Model<D>& m, const BodyInfo& body, double* coupling, double
     if constexpr (Coupling) coupling[i] += q;
     smallest[i] = s_min;
   });
-  for (const auto& [i, k] : broken) break_mirror_bond(b, i, k);
+  for (const auto& [i, k] : broken) break_mirror_bond(b, body, i, k);
 }
 
 template <int D, scene::Influence Omega>
@@ -145,7 +145,7 @@ void state_based_forces(Model<D>& m, const BodyInfo& body) {
       double dev_i = e - own.theta * xi / D, dev_j = e - other.theta * xi / D;
       if constexpr (Viscous) {
         dev_i -= lambda * b.back_extension[k];
-        dev_j -= lambda * b.back_extension[static_cast<std::size_t>(b.offset[j]) + b.mirror_slot[k]];
+        dev_j -= lambda * b.back_extension[static_cast<std::size_t>(reverse_bond(b, body, i, k))];
       }
       const BondFactors& g_i = b.factors[static_cast<std::size_t>(own.factor_row + b.family[k])];
       const BondFactors& g_j = b.factors[static_cast<std::size_t>(other.factor_row + family.mirror)];

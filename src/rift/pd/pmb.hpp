@@ -90,7 +90,7 @@ void pmb_forces(Model<D>& m, const BodyInfo& body) {
     for (int q = 0; q < D; ++q) force[i][q] += f[q];
     s_smallest[i] = s_min;
   });
-  for (const auto& [i, k] : broken) break_mirror_bond(b, i, k);
+  for (const auto& [i, k] : broken) break_mirror_bond(b, body, i, k);
   next_stretch_limits<D>(m, body, smallest);
 }
 

@@ -18,9 +18,7 @@
 // the history of broken bonds).
 #pragma once
 #include <cmath>
-#include <limits>
 
-#include "rift/core/error.hpp"
 #include "rift/pd/bond_slabs.hpp"
 #include "rift/pd/influence.hpp"
 #include "rift/pd/lps.hpp"
@@ -29,25 +27,14 @@
 
 namespace rift::pd {
 
-/// Zero history and the reverse-bond slots for the VES bodies (rows are sorted by neighbour).
+/// Zero history for the VES bodies.
 template <int D>
 void prepare_viscous_history(Model<D>& m) {
   bool any = false;
   for (const auto& body : m.bodies) any = any || body.constants.model == scene::ModelKind::ves;
   if (!any) return;
-  Bonds& b = m.bonds;
-  b.deviatoric_extension.assign(b.neighbor.size(), 0.0f);
-  b.back_extension.assign(b.neighbor.size(), 0.0f);
-  b.mirror_slot.assign(b.neighbor.size(), 0);
-  const auto n = static_cast<std::int64_t>(b.offset.size()) - 1;
-  for (std::int64_t i = 0; i < n; ++i)
-    if (b.offset[i + 1] - b.offset[i] > std::numeric_limits<std::uint16_t>::max())
-      throw PhysicsError("a particle has more than 65535 bonds; the viscoelastic model needs fewer (a smaller horizon / spacing)");
-#pragma omp parallel for if(rift::parallel::worth_a_team(static_cast<std::size_t>(n))) schedule(static)
-  for (std::int64_t i = 0; i < n; ++i)
-    for (auto k = b.offset[i]; k < b.offset[i + 1]; ++k) {
-      b.mirror_slot[k] = static_cast<std::uint16_t>(reverse_bond(b, static_cast<std::size_t>(i), k) - b.offset[b.neighbor[k]]);
-    }
+  m.bonds.deviatoric_extension.assign(m.bonds.neighbor.size(), 0.0f);
+  m.bonds.back_extension.assign(m.bonds.neighbor.size(), 0.0f);
 }
 
 /// First pass: dilatation and bond breaking (as the LPS), then the back extension of every intact
@@ -85,7 +72,7 @@ void ves_dilatation(Model<D>& m, const BodyInfo& body, double dt) {
     for (auto k = first_forward_bond(b, i); k < b.offset[i + 1]; ++k) {
       if (b.intact[k] != bond_intact) continue;
       const auto j = static_cast<std::size_t>(b.neighbor[k]);
-      const auto k_j = static_cast<std::size_t>(b.offset[j]) + b.mirror_slot[k];  // the bond j-i
+      const auto k_j = static_cast<std::size_t>(reverse_bond(b, body, i, k));  // the bond j-i
       const FamilyOffset& family = b.families[b.family[k]];
       const double xi = family.length;
       const double e = norm<D>(m.position[j] - xi_pos) - xi;
