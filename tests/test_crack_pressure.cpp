@@ -270,6 +270,53 @@ end_time = 1e-6
   EXPECT_NEAR(middle / (p * 0.009 * 0.001), 1.0, 1e-6);
 }
 
+// The rock the fluid wets (pd/effective_stretch.hpp): the same borehole and dry pre-crack, which
+// stops at 12 mm, the rock unbreakable. At the end of a relaxation the faces of the crack the fluid
+// fills have the pore stretch p / (2 kappa) of their fluid (plane strain), to round-off; the
+// borehole's wall away from the crack (Hubbert and Willis: the fluid stays out of intact rock) and
+// the rock beyond the crack's tip have none.
+TEST(EffectiveStretch, TheFluidWetsTheCrackFacesNotTheBoreholeWall) {
+  const double p = 3e6;
+  const std::string text = block_24_by_16 + R"([regions.cavity]
+shape = "box"
+min = [0.0, 0.006]
+max = [0.003, 0.010]
+[[cracks]]
+points = [[0.001, 0.008], [0.012, 0.008]]
+[[boreholes]]
+region = "cavity"
+pressure = 3e6
+[solver]
+type = "dynamic_relaxation"
+)";
+  auto scene = rift::scene::parse_string(text, "wet.toml");
+  rift::run::Simulation<2> sim(scene);
+  auto& m = sim.model;
+  rift::pd::DynamicRelaxation<2> dr(m);
+  dr.relax(m, sim.loads, nullptr, 0.0, 20000, 1e-8);
+  const auto& pore = m.fluid_network.pore_stretch;
+  ASSERT_EQ(pore.size(), m.size());
+  const double wet = p / (2.0 * m.bodies[0].constants.kappa);
+  int faces = 0, wall = 0;
+  for (std::size_t i = 0; i < m.size(); ++i) {
+    const auto& x = m.reference_position[i];
+    bool crack_face = false, borehole_wall = false;
+    for (auto k = m.crack_bonds.offset[i]; k < m.crack_bonds.offset[i + 1]; ++k)
+      (m.crack_bonds.neighbor[static_cast<std::size_t>(k)] >= 0 ? crack_face : borehole_wall) = true;
+    if (crack_face) {
+      EXPECT_NEAR(pore[i] / wet, 1.0, 1e-12) << "crack face particle at " << x[0] << ", " << x[1];
+      ++faces;
+    } else if (borehole_wall) {
+      EXPECT_EQ(pore[i], 0.0) << "borehole wall particle at " << x[0] << ", " << x[1];
+      ++wall;
+    } else if (x[0] > 0.0125) {
+      EXPECT_EQ(pore[i], 0.0) << "particle beyond the tip at " << x[0] << ", " << x[1];
+    }
+  }
+  EXPECT_GT(faces, 20);
+  EXPECT_GT(wall, 5);
+}
+
 }  // namespace
 
 namespace {

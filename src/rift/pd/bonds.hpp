@@ -138,10 +138,13 @@ struct FluidNetwork {
   std::vector<double> whole_weighted_volume;  // per particle: m over its whole family, uncorrected
   std::int64_t broken_bonds = -1;             // broken bonds when the labels were last made
   std::vector<std::uint8_t> outer_surface;    // per particle: on the body's outer free surface (fluid_network.hpp)
+  std::vector<std::uint8_t> in_crack;         // per particle: the fluid reaches it across a crack (a broken or cut bond), not only at a borehole's wall
+  std::vector<double> pore_stretch;           // per particle: p / (d kappa) where the fluid is in the cracked rock, 0 elsewhere; empty: nowhere (effective_stretch.hpp)
   // per pressure source (the scene's cracks, then its boreholes)
   std::vector<std::uint8_t> dry;         // a crack without pressure of its own: its cut bonds carry a fluid that reaches them
   std::vector<double> reference_volume;  // the cavity's volume in the reference state (a borehole's lattice sites)
   std::vector<double> pressure;          // the last pressure applied, Pa
+  std::vector<double> pore_pressure;     // the pressure of the last equilibrium (or time step), which the wet rock feels, Pa (effective_stretch.hpp)
   std::vector<double> cavity_volume;     // the last cavity volume (injected sources), m^3
   std::vector<std::uint8_t> vented;      // the fluid reaches the outer surface: it escapes (breakthrough)
   std::vector<double> escaped_volume;    // injected fluid that escaped while vented (at zero pressure), m^3

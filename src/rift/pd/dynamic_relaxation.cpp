@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "rift/parallel/ordered_sum.hpp"
+#include "rift/pd/effective_stretch.hpp"
 #include "rift/pd/forces.hpp"
 #include "rift/pd/influence.hpp"
 #include "rift/parallel/team.hpp"
@@ -91,6 +92,7 @@ RelaxationResult DynamicRelaxation<D>::relax(Model<D>& m, const load::Boundaries
   }
   compute_forces<D>(m, contact);
   for (auto& v : m.velocity) v = Vec<D>{};
+  equilibrate_pore_pressure<D>(m);  // the wet rock feels the fluid of this equilibrium (effective_stretch.hpp)
   return result;
 }
 

@@ -17,6 +17,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "rift/pd/effective_stretch.hpp"
 #include "rift/pd/influence.hpp"
 #include "rift/pd/interface_law.hpp"
 #include "rift/parallel/ordered_sum.hpp"
@@ -103,6 +104,7 @@ void update_fluid_network(Model<D>& m) {
   f.broken_bonds = broken;
   const std::size_t n = m.size();
   f.source.assign(n, -1);
+  f.in_crack.assign(n, 0);
   std::vector<std::size_t> queue;
   for (std::size_t i = 0; i < n; ++i)
     for (auto k = w.offset[i]; k < w.offset[i + 1]; ++k)
@@ -111,8 +113,13 @@ void update_fluid_network(Model<D>& m) {
         queue.push_back(i);
         break;
       }
+  // the faces of a pressurized pre-crack are in a crack (a borehole's cut bonds end at its sites, -1)
+  for (std::size_t i : queue)
+    for (auto k = w.offset[i]; k < w.offset[i + 1]; ++k)
+      if (!f.dry[w.source[static_cast<std::size_t>(k)]] && w.neighbor[k] >= 0) f.in_crack[i] = 1;
   const std::size_t next_to_source = queue.size();
   auto reach = [&](std::size_t i, std::size_t j) {
+    f.in_crack[i] = f.in_crack[j] = 1;
     if (f.source[j] >= 0) return;
     f.source[j] = f.source[i];
     queue.push_back(j);
@@ -130,6 +137,7 @@ void update_fluid_network(Model<D>& m) {
   if (f.outer_surface.size() == n)
     for (std::size_t q = next_to_source; q < queue.size(); ++q)
       if (f.outer_surface[queue[q]]) f.vented[static_cast<std::size_t>(f.source[queue[q]])] = 1;
+  update_pore_stretch<D>(m);  // the rock the fluid reached is wet at once
 }
 
 /// d omega V_j (1/m_i + 1/m_j) of the broken bond k = i-j (whole-family weighted volumes).

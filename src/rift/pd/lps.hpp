@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "rift/pd/bond_slabs.hpp"
+#include "rift/pd/effective_stretch.hpp"
 #include "rift/pd/influence.hpp"
 #include "rift/pd/model.hpp"
 #include "rift/parallel/team.hpp"
@@ -36,7 +37,8 @@ double pressure_factor(double kappa, double theta, double a, double coupling) {
 }
 
 /// The first pass of the LPS and VES, each bond once (bond_slabs.hpp): breaks the bonds stretched
-/// past min(s0_i, s0_j) (both directions) and sums over the rest theta_i = sum b_ij e V (into
+/// past min(s0_i, s0_j) (both directions; in a crack's wet rock the effective stretch,
+/// effective_stretch.hpp) and sums over the rest theta_i = sum b_ij e V (into
 /// m.dilatation), with Coupling also q_i = sum sigma_ij e |xi| V (into `coupling`), and the smallest
 /// stretch of each particle (into `smallest`, none: no intact bond). e = |y| - |xi| is the same seen
 /// from either end; b and sigma are each end's own (surface_correction.hpp).
@@ -52,6 +54,7 @@ void dilatation_pass(Model<D>& m, const BodyInfo& body, double* coupling, double
     smallest[i] = none;
   }
   std::vector<std::pair<std::size_t, std::int64_t>> broken;  // (i, k) of the bonds broken here
+  const double* const pore = pore_stretch_or_null(m);
   for_each_row_by_slabs(b, body.first, body.last, [&](std::size_t i) {
     const Vec<D> xi_pos = m.position[i];
     const double s0_i = m.stretch_limit[i];
@@ -64,7 +67,9 @@ void dilatation_pass(Model<D>& m, const BodyInfo& body, double* coupling, double
       const FamilyOffset& family = b.families[b.family[k]];
       const double xi = family.length;
       const double e = r - xi;
-      if (c.breakable && e > xi * std::min(s0_i, m.stretch_limit[j])) {
+      double limit = std::min(s0_i, m.stretch_limit[j]);
+      if (pore) limit -= effective_stretch_shift(pore, c.alpha, i, j);
+      if (c.breakable && e > xi * limit) {
         b.intact[k] = bond_broken;
 #pragma omp critical(rift_lps_broken)
         broken.emplace_back(i, k);

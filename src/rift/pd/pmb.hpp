@@ -1,7 +1,8 @@
 // Prototype microelastic brittle (PMB) bond force (Silling and Askari 2005, eq. 15-16):
 // f = c omega(|xi|) s V_j along the deformed bond, s = (|y| - |xi|) / |xi|; with the surface
 // correction each end contributes half with its own influence factor: c (g_i + g_j)/2 omega s V_j. A bond breaks for good
-// when s exceeds min(s0_i, s0_j); s0_i = s00 - alpha s_min,i (eq. 23, as LAMMPS peri/pmb).
+// when s exceeds min(s0_i, s0_j); s0_i = s00 - alpha s_min,i (eq. 23, as LAMMPS peri/pmb); in a
+// crack's wet rock the limit is on the effective stretch (effective_stretch.hpp).
 #pragma once
 #include <algorithm>
 #include <cstdint>
@@ -10,6 +11,7 @@
 #include <vector>
 
 #include "rift/pd/bond_slabs.hpp"
+#include "rift/pd/effective_stretch.hpp"
 #include "rift/pd/influence.hpp"
 #include "rift/pd/model.hpp"
 #include "rift/parallel/team.hpp"
@@ -36,6 +38,7 @@ void pmb_forces(Model<D>& m, const BodyInfo& body) {
   Bonds& b = m.bonds;
   const double micromodulus = c.micromodulus, horizon = c.horizon;
   const bool breakable = c.breakable;
+  const double* const pore = pore_stretch_or_null(m);
   // bonds join particles of one body; the buffer is the calling thread's, which the team writes and
   // reads through `in`; `smallest`: the smallest stretch of each particle's intact bonds
   static thread_local std::vector<BondEndInputs<D>> inputs;
@@ -71,7 +74,9 @@ void pmb_forces(Model<D>& m, const BodyInfo& body) {
       const FamilyOffset& family = v.families[v.family[k]];
       const double xi = family.length;
       const double s = (r - xi) * family.inverse_length;
-      if (breakable && s > std::min(own.stretch_limit, other.stretch_limit)) {
+      double limit = std::min(own.stretch_limit, other.stretch_limit);
+      if (pore) limit -= effective_stretch_shift(pore, c.alpha, i, j);
+      if (breakable && s > limit) {
         v.intact[k] = bond_broken;
 #pragma omp critical(rift_pmb_broken)
         broken.emplace_back(i, k);

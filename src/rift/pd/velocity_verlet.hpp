@@ -3,6 +3,7 @@
 #pragma once
 #include "rift/load/boundary.hpp"
 #include "rift/pd/contact.hpp"
+#include "rift/pd/effective_stretch.hpp"
 #include "rift/pd/forces.hpp"
 #include "rift/pd/model.hpp"
 #include "rift/parallel/team.hpp"
@@ -40,6 +41,7 @@ void velocity_verlet_step(Model<D>& m, const load::Boundaries<D>& loads, Contact
   loads.apply_body_forces(m, m.time);
   kick<D>(m, 0.5 * dt);
   loads.prescribe_velocity(m, m.time, 0.0);
+  equilibrate_pore_pressure<D>(m);  // the wet rock of the next step feels this pressure (effective_stretch.hpp)
 }
 
 }  // namespace rift::pd

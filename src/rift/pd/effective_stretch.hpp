@@ -1,0 +1,75 @@
+// Effective stress in a crack's wet rock (Terzaghi; Biot coefficient 1). In the toughness-dominated
+// limit of hydraulic fracture the fluid has no lag behind the tip (Detournay 2004): it fills the
+// cracked rock there, and that rock's bonds fail under the effective stress sigma + p I, not under
+// the total stress sigma. The isotropic part -p I of the total stress gives every bond the stretch
+// -p / (d kappa) (kappa: the bulk modulus of the dimension, d = 2 or 3), so a bond whose two ends the
+// fluid reaches across a crack breaks when its effective stretch s + p / (d kappa) passes its limit:
+//   s > min(s0_i, s0_j) - (1 + alpha) min(s_p,i, s_p,j),   s_p = p / (d kappa)  (the pore stretch),
+// the factor 1 + alpha because s0 = s00 - alpha s_min follows the same shift of the smallest stretch
+// (Silling and Askari 2005, eq. 23). Without it the face pressure, which near a tip is a uniform
+// compression p on top of the singular field (Sneddon's crack is remote tension less p everywhere),
+// shortens the tip bonds, which span a horizon: a sharp crack then needs about 1.3 K_Ic to grow at
+// the pressure of the KGD validation case (tests/test_crack_tip_initiation.cpp), a toughness that
+// falls only as sqrt(horizon / crack length). Both ends must be wet: rock with one end on a crack face
+// and the other in the dry rock around it is not filled. A borehole's intact wall is not cracked
+// rock either: its fluid stays out of the rock (Hubbert and Willis 1957), and breakdown keeps the
+// total stress.
+// The pore stretch follows the fluid where it is, at once: as the crack grows, the rock the fluid
+// reaches across it is wet. Its pressure is the fluid's pressure where the fluid is in equilibrium
+// with the rock (the pore pressure): after each explicit time step, and at the end of each
+// dynamic-relaxation load step. The relaxation's iterations are not a physical path: the lumped
+// fluid's pressure spikes in them while the stiff fluid fills a cavity that has not opened yet, and a
+// criterion that followed those spikes would break rock the fluid has not loaded.
+#pragma once
+#include <cstddef>
+#include <vector>
+
+#include "rift/pd/model.hpp"
+
+namespace rift::pd {
+
+/// The pore stretch s_p = p / (d kappa) of every particle the fluid reaches across a crack, p the
+/// pore pressure of its source; none (empty) where no wet particle has pressure. Call when the fluid
+/// network's labels or the pore pressures change.
+template <int D>
+void update_pore_stretch(Model<D>& m) {
+  FluidNetwork& f = m.fluid_network;
+  const std::size_t n = m.size();
+  auto pore_pressure = [&](std::size_t i) {
+    const int s = f.source[i];
+    return f.in_crack[i] && s >= 0 && static_cast<std::size_t>(s) < f.pore_pressure.size() ? f.pore_pressure[static_cast<std::size_t>(s)] : 0.0;
+  };
+  bool any = false;
+  if (f.in_crack.size() == n && f.source.size() == n)
+    for (std::size_t i = 0; i < n && !any; ++i) any = pore_pressure(i) > 0.0;
+  if (!any) {
+    f.pore_stretch.clear();
+    return;
+  }
+  f.pore_stretch.resize(n);
+  for (std::size_t i = 0; i < n; ++i) f.pore_stretch[i] = pore_pressure(i) / (D * m.constants_of(i).kappa);
+}
+
+/// The fluid is in equilibrium with the rock (the end of a time step or of a load step): its
+/// pressures become the pore pressures.
+template <int D>
+void equilibrate_pore_pressure(Model<D>& m) {
+  FluidNetwork& f = m.fluid_network;
+  if (f.pore_pressure == f.pressure) return;
+  f.pore_pressure = f.pressure;
+  update_pore_stretch<D>(m);
+}
+
+/// The pore stretch array the bond passes read, nullptr where no rock is wet.
+template <int D>
+const double* pore_stretch_or_null(const Model<D>& m) {
+  return m.fluid_network.pore_stretch.size() == m.size() ? m.fluid_network.pore_stretch.data() : nullptr;
+}
+
+/// How far the wet rock lowers bond i-j's stretch limit: (1 + alpha) min(s_p,i, s_p,j).
+inline double effective_stretch_shift(const double* pore_stretch, double alpha, std::size_t i, std::size_t j) {
+  const double wet = pore_stretch[i] < pore_stretch[j] ? pore_stretch[i] : pore_stretch[j];
+  return (1.0 + alpha) * wet;
+}
+
+}  // namespace rift::pd
