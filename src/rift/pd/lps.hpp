@@ -55,7 +55,8 @@ void dilatation_pass(Model<D>& m, const BodyInfo& body, double* coupling, double
   }
   std::vector<std::pair<std::size_t, std::int64_t>> broken;  // (i, k) of the bonds broken here
   const double* const pore = pore_stretch_or_null(m);
-  for_each_row_by_slabs(b, body.first, body.last, [&](std::size_t i) {
+  // the wet rock's shift is compiled in only where there is wet rock (effective_stretch.hpp)
+  auto row = [&]<bool Wet>(std::size_t i) {
     const Vec<D> xi_pos = m.position[i];
     const double s0_i = m.stretch_limit[i];
     const std::int64_t row_i = b.factor_row[i];
@@ -68,7 +69,7 @@ void dilatation_pass(Model<D>& m, const BodyInfo& body, double* coupling, double
       const double xi = family.length;
       const double e = r - xi;
       double limit = std::min(s0_i, m.stretch_limit[j]);
-      if (pore) limit -= effective_stretch_shift(pore, c.alpha, i, j);
+      if constexpr (Wet) limit -= effective_stretch_shift(pore, c.alpha, i, j);
       if (c.breakable && e > xi * limit) {
         b.intact[k] = bond_broken;
 #pragma omp critical(rift_lps_broken)
@@ -92,7 +93,11 @@ void dilatation_pass(Model<D>& m, const BodyInfo& body, double* coupling, double
     m.dilatation[i] += theta;
     if constexpr (Coupling) coupling[i] += q;
     smallest[i] = s_min;
-  });
+  };
+  if (pore)
+    for_each_row_by_slabs(b, body.first, body.last, [&](std::size_t i) { row.template operator()<true>(i); });
+  else
+    for_each_row_by_slabs(b, body.first, body.last, [&](std::size_t i) { row.template operator()<false>(i); });
   for (const auto& [i, k] : broken) break_mirror_bond(b, body, i, k);
 }
 

@@ -57,7 +57,8 @@ void pmb_forces(Model<D>& m, const BodyInfo& body) {
   std::vector<std::pair<std::size_t, std::int64_t>> broken;  // (i, k) of the bonds broken here
   const BondView bonds = b.view();
   Vec<D>* const forces = m.force.data();
-  for_each_row_by_slabs(b, body.first, body.last, [&](std::size_t i) {
+  // the wet rock's shift is compiled in only where there is wet rock (effective_stretch.hpp)
+  auto row = [&]<bool Wet>(std::size_t i) {
     const BondView v = bonds;  // locals: registers (bonds.hpp)
     Vec<D>* const force = forces;
     double* const s_smallest = smallest;
@@ -75,7 +76,7 @@ void pmb_forces(Model<D>& m, const BodyInfo& body) {
       const double xi = family.length;
       const double s = (r - xi) * family.inverse_length;
       double limit = std::min(own.stretch_limit, other.stretch_limit);
-      if (pore) limit -= effective_stretch_shift(pore, c.alpha, i, j);
+      if constexpr (Wet) limit -= effective_stretch_shift(pore, c.alpha, i, j);
       if (breakable && s > limit) {
         v.intact[k] = bond_broken;
 #pragma omp critical(rift_pmb_broken)
@@ -94,7 +95,11 @@ void pmb_forces(Model<D>& m, const BodyInfo& body) {
     }
     for (int q = 0; q < D; ++q) force[i][q] += f[q];
     s_smallest[i] = s_min;
-  });
+  };
+  if (pore)
+    for_each_row_by_slabs(b, body.first, body.last, [&](std::size_t i) { row.template operator()<true>(i); });
+  else
+    for_each_row_by_slabs(b, body.first, body.last, [&](std::size_t i) { row.template operator()<false>(i); });
   for (const auto& [i, k] : broken) break_mirror_bond(b, body, i, k);
   next_stretch_limits<D>(m, body, smallest);
 }
