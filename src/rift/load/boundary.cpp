@@ -6,6 +6,7 @@
 #include "rift/load/time_function.hpp"
 #include "rift/load/traction_layer.hpp"
 #include "rift/pd/crack_pressure.hpp"
+#include "rift/pd/network_load.hpp"
 
 namespace rift::load {
 
@@ -93,6 +94,7 @@ void Boundaries<D>::apply_body_forces(pd::Model<D>& m, double t) const {
   if (m.crack_bonds.neighbor.empty()) return;
   // the fluid of each source also fills the cracks grown from it
   pd::update_fluid_network<D>(m);
+  pd::update_network_load<D>(m);
   auto& fluid = m.fluid_network;
   fluid.pressure.assign(pressure_sources_.size(), 0.0);
   fluid.cavity_volume.resize(pressure_sources_.size(), 0.0);

@@ -140,6 +140,9 @@ struct FluidNetwork {
   std::vector<std::uint8_t> outer_surface;    // per particle: on the body's outer free surface (fluid_network.hpp)
   std::vector<std::uint8_t> in_crack;         // per particle: the fluid reaches it across a crack (a broken or cut bond), not only at a borehole's wall
   std::vector<double> pore_stretch;           // per particle: p / (d kappa) where the fluid is in the cracked rock, 0 elsewhere; empty: nowhere (effective_stretch.hpp)
+  std::vector<std::vector<std::int64_t>> network_bonds;  // per source: the broken bonds its fluid fills (both entries of each), ascending
+  std::vector<std::vector<std::int64_t>> loaded_bonds;   // network_bonds when network_load was made
+  std::vector<std::vector<double>> network_load;         // per source: the force density on each particle per unit pressure (n x d, 1/m); empty: none (network_load.hpp)
   // per pressure source (the scene's cracks, then its boreholes)
   std::vector<std::uint8_t> dry;         // a crack without pressure of its own: its cut bonds carry a fluid that reaches them
   std::vector<double> reference_volume;  // the cavity's volume in the reference state (a borehole's lattice sites)

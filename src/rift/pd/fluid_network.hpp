@@ -1,11 +1,11 @@
 // Fluid in the cracks that grow from a pressurized borehole or pre-crack. The fluid of a pressure
 // source reaches every particle joined to it by a chain of broken bonds: the particles next to the
 // source (those with pressure bonds, crack_pressure.hpp) and, through the bonds broken since, the
-// faces of every crack connected to it. A broken bond between two particles the same fluid reaches
-// then carries that fluid's stress -p I like a bond the pre-crack cuts:
-//   f_i = -p d omega (1/m_i + 1/m_j) |xi| V_j y_ij / |y_ij|   (m over whole families, uncorrected),
-// so the pressure acts on the crack faces as the crack grows (the toughness-dominated limit of
-// hydraulic fracture: no pressure drop along the crack). A crack that no fluid reaches stays dry, and
+// faces of every crack connected to it. The broken bonds between particles the same fluid reaches
+// form its network, and the fluid loads the rock around them with the forces that keep a uniform
+// compression in equilibrium there (network_load.hpp), so the pressure acts on the crack faces as
+// the crack grows (the toughness-dominated limit of hydraulic fracture: no pressure drop along the
+// crack). A crack that no fluid reaches stays dry, and
 // so does a pre-crack without pressure of its own until a fluid reaches it across broken bonds or
 // the borehole it starts from: then its cut bonds carry that fluid's pressure.
 // A network that reaches the body's outer surface is open to the outside (breakthrough): an injected
@@ -137,59 +137,48 @@ void update_fluid_network(Model<D>& m) {
   if (f.outer_surface.size() == n)
     for (std::size_t q = next_to_source; q < queue.size(); ++q)
       if (f.outer_surface[queue[q]]) f.vented[static_cast<std::size_t>(f.source[queue[q]])] = 1;
+  // the broken bonds each fluid fills, both entries of each (network_load.hpp)
+  f.network_bonds.assign(f.dry.size(), {});
+  for (std::size_t i = 0; i < n; ++i) {
+    const int s = f.source[i];
+    if (s < 0) continue;
+    for (auto k = b.offset[i]; k < b.offset[i + 1]; ++k) {
+      if (b.intact[k] == bond_intact) continue;
+      const auto j = static_cast<std::size_t>(b.neighbor[k]);
+      if (f.source[j] == s && carries_fluid<D>(m, k, i, j)) f.network_bonds[static_cast<std::size_t>(s)].push_back(k);
+    }
+  }
   update_pore_stretch<D>(m);  // the rock the fluid reached is wet at once
 }
 
-/// d omega V_j (1/m_i + 1/m_j) of the broken bond k = i-j (whole-family weighted volumes).
-template <int D>
-double broken_bond_coefficient(const Model<D>& m, const MaterialConstants& c, std::int64_t k, std::size_t i, std::size_t j) {
-  const double xi = m.bonds.length(k);
-  const auto& whole = m.fluid_network.whole_weighted_volume;
-  return D * influence(c.influence, xi, c.horizon) * m.bonds.volume(k) * (1.0 / whole[i] + 1.0 / whole[j]);
-}
-
-/// Calls f(k, j, coefficient) for each bond k = i-j that carries fluid (carries_fluid) and whose two
-/// ends the fluid of source s reaches, with its pressure coefficient d omega V_j (1/m_i + 1/m_j).
-template <int D, class F>
-void for_each_network_bond(const Model<D>& m, std::size_t i, int s, F&& f) {
-  const FluidNetwork& net = m.fluid_network;
-  if (net.broken_bonds <= 0 || net.source[i] != s) return;
-  const Bonds& b = m.bonds;
-  const auto& c = m.constants_of(i);
-  for (auto k = b.offset[i]; k < b.offset[i + 1]; ++k) {
-    if (b.intact[k] == bond_intact) continue;
-    const auto j = static_cast<std::size_t>(b.neighbor[k]);
-    if (net.source[j] == s && carries_fluid<D>(m, k, i, j)) f(k, j, broken_bond_coefficient<D>(m, c, k, i, j));
-  }
-}
-
-/// Adds the pressure on the broken bonds of each fluid network to m.body_force (pressure[s] as in
-/// add_crack_pressure). Call after update_fluid_network.
+/// Adds the fluid's load on the broken bonds of each network to m.body_force: p_s g_s (g: the
+/// network load, network_load.hpp; pressure[s] as in add_crack_pressure).
 template <int D>
 void add_network_pressure(Model<D>& m, const std::vector<double>& pressure) {
   const FluidNetwork& f = m.fluid_network;
-  if (f.broken_bonds == 0) return;
-  const std::size_t n = m.size();
-#pragma omp parallel for if(rift::parallel::worth_a_team(n)) schedule(dynamic, 256)
-  for (std::size_t i = 0; i < n; ++i) {
-    const int s = f.source[i];
-    if (s < 0 || pressure[static_cast<std::size_t>(s)] == 0.0) continue;
-    for_each_network_bond<D>(m, i, s, [&](std::int64_t k, std::size_t j, double coefficient) {
-      const Vec<D> eta = m.position[j] - m.position[i];
-      const double scale = -pressure[static_cast<std::size_t>(s)] * coefficient * m.bonds.length(k) / norm<D>(eta);
-      for (int q = 0; q < D; ++q) m.body_force[i][q] += scale * eta[q];
-    });
+  for (std::size_t s = 0; s < f.network_load.size() && s < pressure.size(); ++s) {
+    const auto& g = f.network_load[s];
+    if (g.empty() || pressure[s] == 0.0) continue;
+    const double p = pressure[s];
+    const std::size_t n = m.size();
+#pragma omp parallel for if(rift::parallel::worth_a_team(n)) schedule(static)
+    for (std::size_t i = 0; i < n; ++i)
+      for (int q = 0; q < D; ++q) m.body_force[i][q] += p * g[i * D + static_cast<std::size_t>(q)];
   }
 }
 
 /// Volume change of source s's cavity (borehole and the cracks joined to it) from the reference
 /// state, defined as the work conjugate of the pressure forces: p dV = sum_i f_i . du_i V_i. A bond
 /// to a fluid site adds coef |xi| V_i (-xi/|xi| . u_i) (its force keeps the reference direction),
-/// a cut or broken bond between two particles adds coef |xi| V_i (|y| - |xi|) / 2 from each end
-/// (coef V_i is symmetric). For a flat crack whose faces part by w this is w times the face area.
+/// a cut bond between two particles adds coef |xi| V_i (|y| - |xi|) / 2 from each end (coef V_i is
+/// symmetric), the network's load g_s . u_i V_i. For a flat crack whose faces part by w this is w
+/// times the face area.
 template <int D>
 double cavity_volume_change(const Model<D>& m, int s) {
   const CrackBonds& w = m.crack_bonds;
+  const auto& loads = m.fluid_network.network_load;
+  const std::vector<double>* network = static_cast<std::size_t>(s) < loads.size() && !loads[static_cast<std::size_t>(s)].empty()
+                                           ? &loads[static_cast<std::size_t>(s)] : nullptr;
   const auto sums = parallel::ordered_sums<1>(m.size(), [&](std::size_t i, std::array<double, 1>& acc) {
     for (auto k = w.offset[i]; k < w.offset[i + 1]; ++k) {
       if (pressure_bond_source<D>(m, k, i) != s) continue;
@@ -204,10 +193,9 @@ double cavity_volume_change(const Model<D>& m, int s) {
         acc[0] += 0.5 * w.coefficient[k] * xi * m.volume[i] * (y - xi);
       }
     }
-    for_each_network_bond<D>(m, i, s, [&](std::int64_t k, std::size_t j, double coefficient) {
-      const double xi = m.bonds.length(k);
-      acc[0] += 0.5 * coefficient * xi * m.volume[i] * (norm<D>(m.position[j] - m.position[i]) - xi);
-    });
+    if (network)
+      for (int q = 0; q < D; ++q)
+        acc[0] += (*network)[i * D + static_cast<std::size_t>(q)] * (m.position[i][q] - m.reference_position[i][q]) * m.volume[i];
   });
   return sums[0];
 }
