@@ -166,6 +166,10 @@ Result hf_kgd_toughness(const Settings& settings) {
   // the fluid's work on the rock, sum of p dV over the load steps (trapezoids from p = 0 at the
   // reference cavity volume)
   double work = 0.0, last_pressure = 0.0, last_volume = m.fluid_network.reference_volume[source];
+  auto l_kgd = [&](double t) { return 0.9324 * std::pow(E_prime * Q * t / K_prime, 2.0 / 3.0); };
+  // l / l_KGD at each load step of the second half: the crack grows a column at a time, stick and slip
+  double l_low = 1e300, l_high = 0.0, l_sum = 0.0;
+  int l_count = 0;
   for (long step = 1; step <= steps; ++step) {
     const double t = s.solver.end_time * double(step) / double(steps);
     const auto r = sim.relax(dr, s.solver, t);
@@ -174,6 +178,10 @@ Result hf_kgd_toughness(const Settings& settings) {
     const double pressure = m.fluid_network.pressure[source], volume = m.fluid_network.cavity_volume[source];
     work += 0.5 * (pressure + last_pressure) * (volume - last_volume);
     last_pressure = pressure, last_volume = volume;
+    if (step >= steps / 2) {
+      const double ratio = crack_reach(m, spacing) / l_kgd(t);
+      l_low = std::min(l_low, ratio), l_high = std::max(l_high, ratio), l_sum += ratio, ++l_count;
+    }
     if (step == steps / 2 || step == steps) {
       pd::update_damage<2>(m);
       read.push_back(read_kgd(m, spacing, pressure, work));
@@ -195,7 +203,7 @@ Result hf_kgd_toughness(const Settings& settings) {
   std::string series;
   for (const auto& k : read) {
     const double Qt = Q * k.time;
-    const double l = 0.9324 * std::pow(E_prime * Qt / K_prime, 2.0 / 3.0);
+    const double l = l_kgd(k.time);
     const double w0 = 0.6828 * std::pow(K_prime * K_prime * Qt / (E_prime * E_prime), 1.0 / 3.0);
     const double p = 0.1831 * std::pow(std::pow(K_prime, 4) / (E_prime * Qt), 1.0 / 3.0);
     const double rl = k.half_length / l, rw = k.inlet_opening / w0, rp = k.pressure / p;
@@ -213,12 +221,13 @@ Result hf_kgd_toughness(const Settings& settings) {
   res.reference = 1.0;
   res.tolerance = 0.05;
   res.unit = "half-length / KGD toughness solution, worse of two times";
-  char buf[1000];
+  char buf[1200];
   std::snprintf(buf, sizeof buf, "%s (limits: l 5%%, w0 10%%, p 15%%); K_Ic = sqrt(E' G0) = %.3f MPa m^0.5; %zu particles, spacing %.2g mm, "
-                "horizon %.4g mm; load steps without equilibrium: %d (%ld relaxation iterations in all); between the two times, bonds broken per unit of growth: %.2f "
+                "horizon %.4g mm; load steps without equilibrium: %d (%ld relaxation iterations in all); l / l_KGD over the %d load steps "
+                "of the second half: mean %.3f, from %.3f to %.3f (stick and slip); between the two times, bonds broken per unit of growth: %.2f "
                 "times a straight cut's (%.0f per mm), energy dissipated per unit of new crack area: %.2f G0",
-                series.c_str(), K_Ic / 1e6, m.size(), spacing * 1e3, body.horizon * 1e3, unconverged, iterations, dissipation, per_metre * 1e-3,
-                dissipation_energy);
+                series.c_str(), K_Ic / 1e6, m.size(), spacing * 1e3, body.horizon * 1e3, unconverged, iterations, l_count,
+                l_count ? l_sum / l_count : 0.0, l_low, l_high, dissipation, per_metre * 1e-3, dissipation_energy);
   res.details = buf;
   res.source = "Detournay (2004) KGD fracture, toughness-dominated (zero viscosity) solution";
   res.pass = pass;
