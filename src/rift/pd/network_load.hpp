@@ -6,8 +6,8 @@
 // only if the fluid's forces keep the uniform compression in equilibrium there. The force flux of
 // -p I across each broken bond (the cut bonds of crack_pressure.hpp) does so in the continuum limit
 // only: with a horizon of 3 spacings the uniform state is left with a residual of 60% of the face
-// load in the row at a tip, and a pressurized tip grows at 1.02-1.10 K_Ic where a dry one grows at
-// 0.97-1.06. So the fluid of source s loads particle i by p_s g_s,i, with g defined by the model
+// load in the row at a tip, and a pressurized tip starts at 1.02-1.10 K_Ic where a dry one starts
+// at 0.97-1.06. So the fluid of source s loads particle i by p_s g_s,i, with g defined by the model
 // itself:
 //   g_s,i = (F_i(eps) - F_i^s(eps)) / (eps d kappa_i),
 // F(eps) the internal force density with every particle moved by a uniform expansion x = (1 + eps) X
@@ -15,8 +15,8 @@
 // is linear in a uniform expansion (e = eps |xi|, y / |y| = xi / |xi|), so g does not depend on eps,
 // and the uniform strain -p / (d kappa) is an equilibrium of the network with its load: a grown tip
 // under pressure starts at the dry tip's K (tests/test_crack_tip_initiation.cpp). Over a flat crack
-// g puts the traction p on each face (the LPS lattice's virial is exact for a uniform strain); the
-// difference is made only where the families are not whole. The viscoelastic model loads with its
+// in the LPS g puts the traction p on each face (the lattice's virial is exact for a uniform strain;
+// tests/test_crack_pressure.cpp); it differs from the flux only where the families are not whole. The viscoelastic model loads with its
 // instantaneous (LPS) response. The pre-crack's cut bonds and a borehole's wall keep the force flux
 // (crack_pressure.hpp); the cavity volume is the work conjugate of both (fluid_network.hpp).
 #pragma once
