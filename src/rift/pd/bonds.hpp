@@ -135,7 +135,6 @@ struct InterfaceBonds {
 /// without pressure sources.
 struct FluidNetwork {
   std::vector<int> source;                    // per particle: the source whose fluid reaches it, -1 none
-  std::vector<double> whole_weighted_volume;  // per particle: m over its whole family, uncorrected
   std::int64_t broken_bonds = -1;             // broken bonds when the labels were last made
   std::vector<std::uint8_t> outer_surface;    // per particle: on the body's outer free surface (fluid_network.hpp)
   std::vector<std::uint8_t> in_crack;         // per particle: the fluid reaches it across a crack (a broken or cut bond), not only at a borehole's wall

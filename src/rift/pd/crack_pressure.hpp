@@ -23,14 +23,12 @@
 namespace rift::pd {
 
 /// The coefficients d omega V_j (1/m_i + 1/m_j) of the pressure-carrying bonds (after the weighted
-/// volumes), and the whole-family weighted volumes of every particle for the crack network.
+/// volumes; m over whole families), and which particles are on the outer surface (fluid_network.hpp).
 template <int D>
 void prepare_crack_pressure(Model<D>& m) {
   CrackBonds& w = m.crack_bonds;
   if (w.neighbor.empty()) return;
-  // whole-family weighted volumes, kept for the bonds that break later (fluid_network.hpp)
-  m.fluid_network.whole_weighted_volume = whole_family_weighted_volumes<D>(m);
-  const auto& whole = m.fluid_network.whole_weighted_volume;
+  const std::vector<double> whole = whole_family_weighted_volumes<D>(m);
   m.fluid_network.outer_surface = outer_surface_particles<D>(m, whole);
   w.coefficient.assign(w.neighbor.size(), 0.0);
   for (std::size_t i = 0; i < m.size(); ++i) {

@@ -4,6 +4,7 @@
 #pragma once
 #include "rift/load/boundary.hpp"
 #include "rift/pd/contact.hpp"
+#include "rift/pd/held_breaking.hpp"
 #include "rift/pd/model.hpp"
 
 namespace rift::pd {
@@ -13,24 +14,6 @@ struct RelaxationResult {
   double residual = 0.0;  // ||internal + external force|| / ||load||
   bool converged = false;
   int breaking_passes = 1;  // equilibria of the load step (relax_breaking_at_equilibrium)
-};
-
-/// Holds every bond of the model (no bond or interface bond may break) while it lives.
-template <int D>
-class HeldBreaking {
- public:
-  explicit HeldBreaking(Model<D>& m) : m_(m) {
-    for (auto& b : m_.bodies) breakable_.push_back(b.constants.breakable), b.constants.breakable = false;
-  }
-  ~HeldBreaking() {
-    for (std::size_t b = 0; b < m_.bodies.size(); ++b) m_.bodies[b].constants.breakable = breakable_[b];
-  }
-  HeldBreaking(const HeldBreaking&) = delete;
-  HeldBreaking& operator=(const HeldBreaking&) = delete;
-
- private:
-  Model<D>& m_;
-  std::vector<bool> breakable_;
 };
 
 template <int D>

@@ -24,19 +24,19 @@
 #include <vector>
 
 #include "rift/pd/fluid_network.hpp"
+#include "rift/pd/held_breaking.hpp"
 #include "rift/pd/lps.hpp"
 #include "rift/pd/pmb.hpp"
 
 namespace rift::pd {
 
 namespace detail {
-/// The internal force density of every particle with breaking held (the VES by its LPS response).
+/// The internal force density of every particle, no bond breaking (the VES by its LPS response).
 template <int D>
 void elastic_forces(Model<D>& m) {
   using I = scene::Influence;
-  for (auto& body : m.bodies) {
-    const bool breakable = body.constants.breakable;
-    body.constants.breakable = false;
+  const HeldBreaking<D> held(m);
+  for (const auto& body : m.bodies) {
     const bool constant = body.constants.influence == I::constant;
     if (body.constants.model == scene::ModelKind::pmb) {
       if (constant) pmb_forces<D, I::constant>(m, body);
@@ -45,7 +45,6 @@ void elastic_forces(Model<D>& m) {
       if (constant) lps_dilatation<D, I::constant>(m, body), state_based_forces<D, I::constant, false>(m, body);
       else lps_dilatation<D, I::inverse_distance>(m, body), state_based_forces<D, I::inverse_distance, false>(m, body);
     }
-    body.constants.breakable = breakable;
   }
 }
 }  // namespace detail
