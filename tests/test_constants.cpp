@@ -44,6 +44,22 @@ TEST(Constants, PmbPlaneStressHaBobaru) {
   EXPECT_NEAR(rift::pd::critical_stretch_from_fracture_energy(mc, G0), std::sqrt(4 * pi * G0 / (9 * E * delta)), 1e-12);
 }
 
+// propagation_toughness_ratio divides the separation work's s0: K of every break scales with s0 in
+// the linear lattice, so a grown crack that advanced at ratio K_Ic advances at K_Ic.
+TEST(Constants, PropagationToughnessRatioDividesTheCriticalStretch) {
+  rift::scene::Scene s;
+  s.dimension = 3;
+  rift::scene::Material m;
+  m.model = ModelKind::lps;
+  m.density = 2440;
+  m.bulk_modulus = 48e9;
+  m.shear_modulus = 28.8e9;
+  m.fracture_energy = 3.8;
+  const double plain = rift::pd::make_constants(s, m, 0.003, 0.001).critical_stretch;
+  m.propagation_toughness_ratio = 1.25;
+  EXPECT_NEAR(rift::pd::make_constants(s, m, 0.003, 0.001).critical_stretch, plain / 1.25, 1e-15);
+}
+
 // The quadrature of the rigid-separation work reproduces the PMB closed form (tolerance 0.2%)
 // for both dimensions and both influence functions.
 TEST(Constants, SeparationWorkQuadratureMatchesPmbClosedForm) {

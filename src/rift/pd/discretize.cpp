@@ -10,6 +10,7 @@
 #include "rift/pd/crack_pressure.hpp"
 #include "rift/pd/influence.hpp"
 #include "rift/pd/interface_law.hpp"
+#include "rift/pd/normal_stress_failure.hpp"
 #include "rift/pd/surface_correction.hpp"
 #include "rift/pd/ves.hpp"
 #include "rift/parallel/team.hpp"
@@ -383,6 +384,8 @@ Model<D> discretize(const scene::Scene& s) {
   m.stretch_limit.resize(n);
   for (std::size_t i = 0; i < n; ++i) m.stretch_limit[i] = m.constants_of(i).critical_stretch;
   m.next_stretch_limit = m.stretch_limit;
+  for (const auto& body : m.bodies)
+    if (body.constants.normal_stress_failure) m.failure_stress.assign(n * stress_components<D>, 0.0);
 
   build_bonds<D>(s, m, lattice_index);
 

@@ -7,6 +7,7 @@
 #include "rift/pd/interface_contact.hpp"
 #include "rift/pd/interface_law.hpp"
 #include "rift/pd/lps.hpp"
+#include "rift/pd/normal_stress_failure.hpp"
 #include "rift/pd/pmb.hpp"
 #include "rift/pd/ves.hpp"
 #include "rift/parallel/team.hpp"
@@ -42,6 +43,7 @@ void compute_forces(Model<D>& m, Contact<D>* contact, double history_dt) {
       else state_based_forces<D, I::inverse_distance, true>(m, body);
     }
   }
+  if (!m.failure_stress.empty()) update_failure_stress<D>(m);  // what the next pass breaks on
   add_interface_contact<D>(m, history_dt > 0.0);  // failed bonds across pre-existing fractures
   if (contact) contact->add_forces(m);
 }

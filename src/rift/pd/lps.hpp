@@ -20,6 +20,7 @@
 #include "rift/pd/effective_stretch.hpp"
 #include "rift/pd/influence.hpp"
 #include "rift/pd/model.hpp"
+#include "rift/pd/normal_stress_failure.hpp"
 #include "rift/parallel/team.hpp"
 
 namespace rift::pd {
@@ -38,7 +39,8 @@ double pressure_factor(double kappa, double theta, double a, double coupling) {
 
 /// The first pass of the LPS and VES, each bond once (bond_slabs.hpp): breaks the bonds stretched
 /// past min(s0_i, s0_j) (both directions; in a crack's wet rock the effective stretch,
-/// effective_stretch.hpp) and sums over the rest theta_i = sum b_ij e V (into
+/// effective_stretch.hpp; with normal_stress failure the normal stress along the bond over d kappa,
+/// normal_stress_failure.hpp) and sums over the rest theta_i = sum b_ij e V (into
 /// m.dilatation), with Coupling also q_i = sum sigma_ij e |xi| V (into `coupling`), and the smallest
 /// stretch of each particle (into `smallest`, none: no intact bond). e = |y| - |xi| is the same seen
 /// from either end; b and sigma are each end's own (surface_correction.hpp).
@@ -55,8 +57,11 @@ void dilatation_pass(Model<D>& m, const BodyInfo& body, double* coupling, double
   }
   std::vector<std::pair<std::size_t, std::int64_t>> broken;  // (i, k) of the bonds broken here
   const double* const pore = pore_stretch_or_null(m);
+  const double* const stress = m.failure_stress.data();
+  const double stress_to_stretch = 1.0 / (D * c.kappa);
+  constexpr int C = stress_components<D>;
   // the wet rock's shift is compiled in only where there is wet rock (effective_stretch.hpp)
-  auto row = [&]<bool Wet>(std::size_t i) {
+  auto row = [&]<bool Wet, bool Normal>(std::size_t i) {
     const Vec<D> xi_pos = m.position[i];
     const double s0_i = m.stretch_limit[i];
     const std::int64_t row_i = b.factor_row[i];
@@ -70,7 +75,15 @@ void dilatation_pass(Model<D>& m, const BodyInfo& body, double* coupling, double
       const double e = r - xi;
       double limit = std::min(s0_i, m.stretch_limit[j]);
       if constexpr (Wet) limit -= effective_stretch_shift(pore, c.alpha, i, j);
-      if (c.breakable && e > xi * limit) {
+      bool past;
+      if constexpr (Normal) {
+        Vec<D> n = m.position[j] - xi_pos;
+        for (int q = 0; q < D; ++q) n[q] /= r;
+        past = 0.5 * (normal_component<D>(stress + C * i, n) + normal_component<D>(stress + C * j, n)) * stress_to_stretch > limit;
+      } else {
+        past = e > xi * limit;
+      }
+      if (c.breakable && past) {
         b.intact[k] = bond_broken;
 #pragma omp critical(rift_lps_broken)
         broken.emplace_back(i, k);
@@ -94,10 +107,14 @@ void dilatation_pass(Model<D>& m, const BodyInfo& body, double* coupling, double
     if constexpr (Coupling) coupling[i] += q;
     smallest[i] = s_min;
   };
-  if (pore)
-    for_each_row_by_slabs(b, body.first, body.last, [&](std::size_t i) { row.template operator()<true>(i); });
-  else
-    for_each_row_by_slabs(b, body.first, body.last, [&](std::size_t i) { row.template operator()<false>(i); });
+  auto rows = [&]<bool Normal>() {
+    if (pore)
+      for_each_row_by_slabs(b, body.first, body.last, [&](std::size_t i) { row.template operator()<true, Normal>(i); });
+    else
+      for_each_row_by_slabs(b, body.first, body.last, [&](std::size_t i) { row.template operator()<false, Normal>(i); });
+  };
+  if (c.normal_stress_failure) rows.template operator()<true>();
+  else rows.template operator()<false>();
   for (const auto& [i, k] : broken) break_mirror_bond(b, body, i, k);
 }
 

@@ -38,11 +38,17 @@ MaterialConstants make_constants(const scene::Scene& s, const scene::Material& m
   mc.viscous_fraction = m.viscous_fraction;
   mc.relaxation_time = m.relaxation_time;
   mc.surface_correction = m.surface_correction;
-  if (m.critical_stretch) {
+  if (m.bond_failure == scene::BondFailure::normal_stress) {
+    mc.normal_stress_failure = true;
+    mc.critical_stretch = *m.tensile_strength / (mc.dimension * mc.kappa);
+    mc.breakable = true;
+  } else if (m.critical_stretch) {
     mc.critical_stretch = *m.critical_stretch;
     mc.breakable = true;
   } else if (m.fracture_energy) {
-    mc.critical_stretch = critical_stretch_from_fracture_energy(mc, *m.fracture_energy);
+    // the separation work's s0 (Silling and Askari 2005), scaled so that a grown crack, not a sharp
+    // cut, advances at K_Ic (the problem is linear up to a break: K of every event scales with s0)
+    mc.critical_stretch = critical_stretch_from_fracture_energy(mc, *m.fracture_energy) / m.propagation_toughness_ratio;
     mc.breakable = true;
   }
   return mc;

@@ -22,6 +22,9 @@ struct MaterialConstants {
   double critical_stretch = 0.0;  // s00; 0 = unbreakable
   double alpha = 0.0;
   bool breakable = false;
+  /// Bonds break on the normal stress along them (bond_failure = normal_stress): critical_stretch is
+  /// then the tensile strength over d kappa, the stretch of a uniform expansion with that stress.
+  bool normal_stress_failure = false;
   /// Viscoelastic state-based model (ves; Mitchell 2011): lambda, the share of the deviatoric
   /// response that relaxes, and its relaxation time tau (s).
   double viscous_fraction = 0.0, relaxation_time = 0.0;

@@ -154,9 +154,29 @@ void parse_materials(R& root, Scene& s) {
         if (m.fracture_energy) r.fail("critical_stretch", "give fracture_energy or critical_stretch, not both");
         m.critical_stretch = r.positive("critical_stretch", *s0);
       }
+      if (auto ratio = r.number("propagation_toughness_ratio")) {
+        if (!m.fracture_energy) r.fail("propagation_toughness_ratio", "only with fracture_energy (it scales the critical stretch that G0 gives)");
+        m.propagation_toughness_ratio = r.positive("propagation_toughness_ratio", *ratio);
+      }
       m.alpha = r.non_negative("alpha", r.number("alpha", 0.0));
+      if (auto f = r.choice("bond_failure", {"stretch", "normal_stress"}))
+        m.bond_failure = *f == "normal_stress" ? BondFailure::normal_stress : BondFailure::stretch;
+      if (auto T = r.number("tensile_strength")) {
+        if (m.bond_failure != BondFailure::normal_stress) r.fail("tensile_strength", "only with bond_failure = \"normal_stress\"");
+        m.tensile_strength = r.positive("tensile_strength", *T);
+      }
+      if (m.bond_failure == BondFailure::normal_stress) {
+        if (m.model == ModelKind::pmb)
+          r.fail("bond_failure", "\"normal_stress\" needs model \"lps\" or \"ves\" (a PMB bond's force is its stretch: use \"stretch\")");
+        if (!m.tensile_strength) throw SceneError(r.where(), r.key("tensile_strength"), "missing required key (bond_failure = \"normal_stress\"), Pa");
+        if (m.fracture_energy) r.fail("fracture_energy", "not with bond_failure = \"normal_stress\" (give tensile_strength)");
+        if (m.critical_stretch) r.fail("critical_stretch", "not with bond_failure = \"normal_stress\" (give tensile_strength)");
+        if (m.alpha != 0.0) r.fail("alpha", "not with bond_failure = \"normal_stress\" (compression cannot break a bond on its tension)");
+      }
       if (auto sc = r.boolean("surface_correction")) m.surface_correction = *sc;
-      allowed.insert(allowed.end(), {"influence", "fracture_energy", "critical_stretch", "alpha", "surface_correction"});
+      allowed.insert(allowed.end(),
+                     {"influence", "fracture_energy", "propagation_toughness_ratio", "critical_stretch", "alpha", "bond_failure",
+                      "tensile_strength", "surface_correction"});
       if (m.model == ModelKind::ves) {
         // Mitchell (2011) viscoelastic state-based model, as LAMMPS peri/ves (lambda, tau)
         const double lambda = r.required_number("viscous_fraction", "lambda in [0, 1], the share of the deviatoric response that relaxes");

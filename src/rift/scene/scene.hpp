@@ -17,6 +17,10 @@ enum class Method { peridynamics, mpm };
 enum class ModelKind { pmb, lps, ves, linear_elastic, neo_hookean, j2_plasticity };
 /// Influence function omega(|xi|): constant 1, or delta/|xi| ("inverse_distance", LAMMPS peri/lps).
 enum class Influence { constant, inverse_distance };
+// What breaks a bond: its stretch past s0 (Silling and Askari 2005; LAMMPS peri), or the normal
+// stress along it past the tensile strength (a Rankine criterion on the bond-pair stress of its ends;
+// state-based models).
+enum class BondFailure { stretch, normal_stress };
 
 struct Material {
   std::string name;
@@ -28,7 +32,12 @@ struct Material {
   Influence influence = Influence::constant;
   std::optional<double> fracture_energy;   // G0, J/m^2
   std::optional<double> critical_stretch;  // s00, given directly
+  // K at which a grown crack advances steadily in the lattice with the critical stretch G0 gives,
+  // over K_Ic (tests/test_crack_tip_initiation.cpp, CrackGrowth); s00 is divided by it
+  double propagation_toughness_ratio = 1.0;
   double alpha = 0.0;                      // s0 = s00 - alpha * s_min (LAMMPS peri)
+  BondFailure bond_failure = BondFailure::stretch;
+  std::optional<double> tensile_strength;  // T, Pa (bond_failure = normal_stress)
   double viscous_fraction = 0.0;           // ves: lambda, share of the deviatoric response that relaxes
   double relaxation_time = 0.0;            // ves: tau, s
   bool surface_correction = true;
