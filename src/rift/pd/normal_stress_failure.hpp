@@ -17,13 +17,11 @@
 // breaks it where no stress is tensile (Zhou et al. 2008's test S-1, 15 / 0 MPa: 5.0e-4, above the
 // s00 of hf_zhou_crossing). The LPS force state is no measure of tension either: it weighs the
 // deviatoric extension d + 2 times more than the stress does.
-// Its cracks are not yet calibrated: the crack-growth probe of tests/test_crack_tip_initiation.cpp
+// Its cracks are not yet calibrated: the crack-growth probe of tests/test_crack_growth.cpp
 // with T = 5 MPa (LPS, E = 10 GPa, horizon 3.015 spacings of 2 mm) runs at 0.8 K_Ic (G0 = 50 J/m^2)
 // and breaks 46 bonds off the crack's line per column it grows: ahead of a mode I tip
 // sigma_xx = sigma_yy, so bonds of every direction there pass T together, in a band.
 #pragma once
-#include <vector>
-
 #include "rift/core/vec.hpp"
 #include "rift/pd/bulk_strain.hpp"
 #include "rift/pd/model.hpp"

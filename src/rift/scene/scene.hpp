@@ -33,7 +33,7 @@ struct Material {
   std::optional<double> fracture_energy;   // G0, J/m^2
   std::optional<double> critical_stretch;  // s00, given directly
   // K at which a grown crack advances steadily in the lattice with the critical stretch G0 gives,
-  // over K_Ic (tests/test_crack_tip_initiation.cpp, CrackGrowth); s00 is divided by it
+  // over K_Ic (tests/test_crack_growth.cpp); s00 is divided by it
   double propagation_toughness_ratio = 1.0;
   double alpha = 0.0;                      // s0 = s00 - alpha * s_min (LAMMPS peri)
   BondFailure bond_failure = BondFailure::stretch;
