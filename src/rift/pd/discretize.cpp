@@ -385,7 +385,7 @@ Model<D> discretize(const scene::Scene& s) {
   for (std::size_t i = 0; i < n; ++i) m.stretch_limit[i] = m.constants_of(i).critical_stretch;
   m.next_stretch_limit = m.stretch_limit;
   for (const auto& body : m.bodies)
-    if (body.constants.normal_stress_failure) m.failure_stress.assign(n * stress_components<D>, 0.0);
+    if (body.constants.normal_stress_failure) m.failure_strain.assign(n * stress_components<D>, 0.0);
 
   build_bonds<D>(s, m, lattice_index);
 

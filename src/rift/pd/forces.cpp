@@ -18,6 +18,7 @@ template <int D>
 void compute_forces(Model<D>& m, Contact<D>* contact, double history_dt) {
   using I = scene::Influence;
   apply_interface_law<D>(m);  // bonds across pre-existing fractures, with the last stresses
+  if (!m.failure_strain.empty()) update_failure_strain<D>(m);  // what the first pass breaks on
   for (const auto& body : m.bodies) {
     const auto& c = body.constants;
     if (c.model == scene::ModelKind::pmb) {
@@ -43,7 +44,6 @@ void compute_forces(Model<D>& m, Contact<D>* contact, double history_dt) {
       else state_based_forces<D, I::inverse_distance, true>(m, body);
     }
   }
-  if (!m.failure_stress.empty()) update_failure_stress<D>(m);  // what the next pass breaks on
   add_interface_contact<D>(m, history_dt > 0.0);  // failed bonds across pre-existing fractures
   if (contact) contact->add_forces(m);
 }

@@ -34,9 +34,9 @@ struct Model {
   std::vector<double> stretch_limit;       // s0 of each particle (LAMMPS: s00 - alpha s_min)
   std::vector<double> next_stretch_limit;
   std::vector<double> damage;
-  // bond_failure = "normal_stress" only (else empty): the bond-pair stress of each particle from the
-  // last force evaluation, stress_components<D> per particle (normal_stress_failure.hpp), Pa
-  std::vector<double> failure_stress;
+  // bond_failure = "normal_stress" only (else empty): the small strain of each particle at the
+  // current force evaluation, stress_components<D> per particle (normal_stress_failure.hpp)
+  std::vector<double> failure_strain;
   std::vector<std::uint32_t> body;
   std::vector<std::uint8_t> constrained;  // bit k: velocity component k is prescribed
 
