@@ -65,7 +65,6 @@ TEST(NormalStressFailure, BondNormalStressIsHookesForAHomogeneousDeformation) {
   deform(m, sxx, syy, sxy);
   rift::pd::compute_forces<2>(m, nullptr);
   const auto& c = m.bodies[0].constants;
-  const double lambda = c.kappa - c.shear_modulus;  // plane strain: kappa = lambda + G
   double worst = 0.0;
   long bonds = 0;
   for (std::size_t i = 0; i < m.size(); ++i)
@@ -75,8 +74,8 @@ TEST(NormalStressFailure, BondNormalStressIsHookesForAHomogeneousDeformation) {
       const double r = rift::norm<2>(n), xi = m.bonds.length(k);
       n[0] /= r, n[1] /= r;
       const double hooke = sxx * n[0] * n[0] + syy * n[1] * n[1] + 2.0 * sxy * n[0] * n[1];
-      const double bond = rift::pd::bond_normal_stress<2>(&m.failure_strain[3 * i], &m.failure_strain[3 * j], n, (r - xi) / xi, lambda,
-                                                          c.shear_modulus);
+      const double bond = rift::pd::bond_normal_stress<2>(&m.failure_strain[3 * i], &m.failure_strain[3 * j], n, (r - xi) / xi,
+                                                          c.lame_lambda(), c.p_wave_modulus());
       worst = std::max(worst, std::abs(bond - hooke));
       ++bonds;
     }

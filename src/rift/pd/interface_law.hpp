@@ -137,7 +137,7 @@ double pressure_in_interface(const Model<D>& m, std::size_t i) {
 /// its instantaneous moduli.
 template <int D>
 std::array<double, 9> rock_stress(const MaterialConstants& c, const std::array<double, 9>& eps) {
-  const double G = c.shear_modulus, lambda = D == 3 ? c.kappa - 2.0 * G / 3.0 : c.kappa - G;
+  const double G = c.shear_modulus, lambda = c.lame_lambda();
   double trace = 0.0;
   for (int a = 0; a < D; ++a) trace += eps[4 * a];
   std::array<double, 9> sigma{};

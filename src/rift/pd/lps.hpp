@@ -58,7 +58,7 @@ void dilatation_pass(Model<D>& m, const BodyInfo& body, double* coupling, double
   std::vector<std::pair<std::size_t, std::int64_t>> broken;  // (i, k) of the bonds broken here
   const double* const pore = pore_stretch_or_null(m);
   const double* const strain = m.failure_strain.data();
-  const double stress_to_stretch = 1.0 / (D * c.kappa), lambda = c.kappa - 2.0 * c.shear_modulus / D;
+  const double stress_to_stretch = 1.0 / (D * c.kappa), lambda = c.lame_lambda(), p_wave = c.p_wave_modulus();
   constexpr int C = stress_components<D>;
   // the wet rock's shift is compiled in only where there is wet rock (effective_stretch.hpp)
   auto row = [&]<bool Wet, bool Normal>(std::size_t i) {
@@ -79,7 +79,7 @@ void dilatation_pass(Model<D>& m, const BodyInfo& body, double* coupling, double
       if constexpr (Normal) {
         Vec<D> n = m.position[j] - xi_pos;
         for (int q = 0; q < D; ++q) n[q] /= r;
-        past = bond_normal_stress<D>(strain + C * i, strain + C * j, n, e / xi, lambda, c.shear_modulus) * stress_to_stretch > limit;
+        past = bond_normal_stress<D>(strain + C * i, strain + C * j, n, e / xi, lambda, p_wave) * stress_to_stretch > limit;
       } else {
         past = e > xi * limit;
       }

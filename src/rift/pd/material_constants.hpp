@@ -32,6 +32,8 @@ struct MaterialConstants {
 
   /// Ordinary state-based (dilatation and deviatoric extension): LPS and its viscoelastic variant.
   bool state_based() const { return model == scene::ModelKind::lps || model == scene::ModelKind::ves; }
+  /// Lame's first parameter of the dimension: kappa - 2G/3 (3D), kappa - G (2D).
+  double lame_lambda() const { return dimension == 3 ? kappa - 2.0 * shear_modulus / 3.0 : kappa - shear_modulus; }
   /// P-wave (constrained) modulus of the dimension: kappa + 4G/3 (3D), kappa + G (2D).
   double p_wave_modulus() const { return dimension == 3 ? kappa + 4.0 * shear_modulus / 3.0 : kappa + shear_modulus; }
   /// Coefficients of the LPS force scalar t = A_dil theta omega |xi| / m + A_dev omega e / m:

@@ -4,7 +4,7 @@
 // sec. 18), exact for every homogeneous deformation, beside free surfaces and cracks too. The bond
 // i-j of stretch s along n = y_ij / |y_ij| breaks when
 //   sigma_n = lambda (tr eps - n . eps . n) + (lambda + 2 G) s > T,
-// eps the mean of its ends' strains, lambda = kappa - 2 G / d, T the tensile strength: Hooke's
+// eps the mean of its ends' strains, lambda Lame's first parameter, T the tensile strength: Hooke's
 // normal stress along n, n . sigma . n = lambda tr eps + 2 G n . eps . n, with the bond's own
 // stretch for the strain along it. For a homogeneous deformation s = n . eps . n and the two agree.
 // Beside a crack they do not: the bonds still bridging an open crack's faces stretch by its
@@ -16,16 +16,17 @@
 // and a bridging bond its opening: 3 bonds off the line per column, as with the stretch criterion.
 // A strength criterion: the crack grows at K = 0.87 T sqrt(delta) (0.846-0.893, 2D plane strain LPS,
 // horizon 3.015 spacings; tests/test_crack_growth.cpp), so its toughness goes with sqrt(delta).
-// In the stretch units of the other criterion, sigma_n / (d kappa)
-// > s0 with s0 = T / (d kappa), the stretch of a uniform expansion under the stress T: the effective
-// stretch's pore shift p / (d kappa) (effective_stretch.hpp) is then the pore pressure added to
-// sigma_n (Terzaghi), and the stretch limits are shared. The strain is that of the current positions,
-// over the bonds intact before the pass.
+// In the stretch units of the other criterion, sigma_n / (d kappa) > s0 with s0 = T / (d kappa),
+// the stretch of a uniform expansion under the stress T: the effective stretch's pore shift
+// p / (d kappa) (effective_stretch.hpp) is then the pore pressure added to sigma_n (Terzaghi), and
+// the stretch limits are shared. The strain is that of the current positions, over the bonds intact
+// before the pass.
 // Why: a bond's stretch is not its tension. Under a uniaxial compression a bond across it is
 // stretched by the Poisson effect (plane strain: nu (1 + nu) sigma / E), and a stretch criterion
 // breaks it where no stress is tensile (Zhou et al. 2008's test S-1, 15 / 0 MPa: 5.0e-4, above the
-// s00 of hf_zhou_crossing); here lambda (tr eps - n . eps . n), negative, offsets it. The LPS force state is no
-// measure of tension either: it weighs the deviatoric extension d + 2 times more than the stress does.
+// s00 of hf_zhou_crossing); here lambda (tr eps - n . eps . n), negative, offsets it. The LPS force
+// state is no measure of tension either: it weighs the deviatoric extension d + 2 times more than
+// the stress does.
 #pragma once
 #include "rift/core/vec.hpp"
 #include "rift/pd/bulk_strain.hpp"
@@ -55,12 +56,13 @@ inline double trace_of(const double* s) {
 }
 
 /// The normal stress along a bond of stretch s and direction n whose ends have the strain records
-/// eps_i and eps_j: lambda (tr eps - n . eps . n) + (lambda + 2 G) s, eps their mean.
+/// eps_i and eps_j: lambda (tr eps - n . eps . n) + (lambda + 2 G) s, eps their mean (lambda and
+/// lambda + 2 G: MaterialConstants::lame_lambda and p_wave_modulus).
 template <int D>
 inline double bond_normal_stress(const double* eps_i, const double* eps_j, const Vec<D>& n, double stretch, double lambda,
-                                 double shear_modulus) {
+                                 double p_wave_modulus) {
   const double lateral = 0.5 * (trace_of<D>(eps_i) - normal_component<D>(eps_i, n) + trace_of<D>(eps_j) - normal_component<D>(eps_j, n));
-  return lambda * lateral + (lambda + 2.0 * shear_modulus) * stretch;
+  return lambda * lateral + p_wave_modulus * stretch;
 }
 
 /// The strain of every particle of the bodies whose bonds fail on the normal stress (into
