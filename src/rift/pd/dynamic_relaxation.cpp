@@ -1,5 +1,7 @@
 #include "rift/pd/dynamic_relaxation.hpp"
 
+#include <Eigen/Dense>
+#include <algorithm>
 #include <cmath>
 
 #include "rift/parallel/ordered_sum.hpp"
@@ -29,6 +31,62 @@ DynamicRelaxation<D>::DynamicRelaxation(const Model<D>& m) {
   }
 }
 
+// The rigid-body part of the iterations' accelerations F_i / lambda_i, A + alpha x (x - c), from the
+// net force and torque of F over the fictitious masses lambda_i V_i (c their centre). For a body held
+// by tractions alone (a block under in-situ stress, as in a tri-axial frame) the equilibrium is one
+// up to a rigid motion, and what the loads leave of force and torque cannot be taken up by any
+// deformation: a compressed free body's rotation has a negative geometric stiffness under dead loads
+// (a face's force keeps its direction while its point turns), so the iterations let it grow:
+// Zhou's 2-7 block (hf_zhou_crossing) turned about its centre once its interface slipped, the
+// residual stalled at 1.1e-5 and grew, and a load step took 36,621 iterations (2,333 without the
+// turn); a square block turned by 0.02 rad before its in-situ stage turned on to 180 degrees, where
+// the compressive tractions pull (tests/test_in_situ_stress.cpp). The iterations move the body with
+// F less this part and measure their residual on it.
+template <int D>
+struct RigidAcceleration {
+  Eigen::Vector3d centre = Eigen::Vector3d::Zero(), linear = Eigen::Vector3d::Zero(), angular = Eigen::Vector3d::Zero();
+  Vec<D> at(const Vec<D>& x) const {
+    Eigen::Vector3d r = Eigen::Vector3d::Zero();
+    for (int k = 0; k < D; ++k) r[k] = x[k] - centre[k];
+    const Eigen::Vector3d a = linear + angular.cross(r);
+    Vec<D> out;
+    for (int k = 0; k < D; ++k) out[k] = a[k];
+    return out;
+  }
+};
+
+template <int D>
+RigidAcceleration<D> rigid_acceleration(const Model<D>& m, const std::vector<double>& mass) {
+  const std::size_t n = m.size();
+  RigidAcceleration<D> out;
+  auto first = parallel::ordered_sums<1 + 2 * D>(n, [&](std::size_t i, std::array<double, 1 + 2 * D>& acc) {
+    const double w = mass[i] * m.volume[i];
+    acc[0] += w;
+    for (int k = 0; k < D; ++k) acc[1 + k] += w * m.position[i][k], acc[1 + D + k] += (m.force[i][k] + m.body_force[i][k]) * m.volume[i];
+  });
+  if (!(first[0] > 0.0)) return out;
+  for (int k = 0; k < D; ++k) out.centre[k] = first[1 + k] / first[0], out.linear[k] = first[1 + D + k] / first[0];
+  // torque of F (3) and inertia tensor (6) of the masses about the centre
+  auto second = parallel::ordered_sums<9>(n, [&](std::size_t i, std::array<double, 9>& acc) {
+    const double w = mass[i] * m.volume[i];
+    Eigen::Vector3d r = Eigen::Vector3d::Zero(), f = r;
+    for (int k = 0; k < D; ++k) r[k] = m.position[i][k] - out.centre[k], f[k] = (m.force[i][k] + m.body_force[i][k]) * m.volume[i];
+    const Eigen::Vector3d torque = r.cross(f);
+    for (int k = 0; k < 3; ++k) acc[k] += torque[k];
+    const double r2 = r.squaredNorm();
+    acc[3] += w * (r2 - r[0] * r[0]), acc[4] += w * (r2 - r[1] * r[1]), acc[5] += w * (r2 - r[2] * r[2]);
+    acc[6] -= w * r[0] * r[1], acc[7] -= w * r[1] * r[2], acc[8] -= w * r[0] * r[2];
+  });
+  if constexpr (D == 2) {
+    if (second[5] > 0.0) out.angular[2] = second[2] / second[5];
+  } else {
+    Eigen::Matrix3d inertia;
+    inertia << second[3], second[6], second[8], second[6], second[4], second[7], second[8], second[7], second[5];
+    out.angular = inertia.ldlt().solve(Eigen::Vector3d(second[0], second[1], second[2]));
+  }
+  return out;
+}
+
 template <int D>
 RelaxationResult DynamicRelaxation<D>::relax(Model<D>& m, const load::Boundaries<D>& loads, Contact<D>* contact,
                                               double t, int max_iterations, double tolerance) {
@@ -45,6 +103,8 @@ RelaxationResult DynamicRelaxation<D>::relax(Model<D>& m, const load::Boundaries
     return sum;
   };
   double load_norm = squared_load();
+  // held by tractions alone, no component of any particle prescribed: no rigid motion (rigid_acceleration)
+  const bool free_body = std::none_of(m.constrained.begin(), m.constrained.end(), [](std::uint8_t c) { return c != 0; });
   for (int it = 0; it < max_iterations; ++it) {
     advance_stretch_limits<D>(m);
     compute_forces<D>(m, contact);
@@ -52,11 +112,13 @@ RelaxationResult DynamicRelaxation<D>::relax(Model<D>& m, const load::Boundaries
       loads.apply_body_forces(m, t);
       load_norm = squared_load();
     }
+    const RigidAcceleration<D> rigid = free_body ? rigid_acceleration<D>(m, fictitious_density_) : RigidAcceleration<D>{};
     // U^T K U with the local diagonal stiffness K_ii = -(F^n - F^{n-1}) / (lambda V^{n-1/2}) (eq. 12), U^T U,
     // squared residual of the free components and squared reactions of the constrained ones
     auto sums = parallel::ordered_sums<4>(n, [&](std::size_t i, std::array<double, 4>& acc) {
+      const Vec<D> rigid_i = free_body ? rigid.at(m.position[i]) : Vec<D>{};
       for (int k = 0; k < D; ++k) {
-        const double total = m.force[i][k] + m.body_force[i][k];
+        const double total = m.force[i][k] + m.body_force[i][k] - fictitious_density_[i] * rigid_i[k];
         if (m.constrained[i] >> k & 1) {
           acc[3] += m.force[i][k] * m.force[i][k] * m.volume[i] * m.volume[i];
           continue;
@@ -80,9 +142,10 @@ RelaxationResult DynamicRelaxation<D>::relax(Model<D>& m, const load::Boundaries
     const double cn = (den > 0.0 && num > 0.0) ? 2.0 * std::sqrt(num / den) : 0.0;
 #pragma omp parallel for if(rift::parallel::worth_a_team(n)) schedule(static)
     for (std::size_t i = 0; i < n; ++i) {
+      const Vec<D> rigid_i = free_body ? rigid.at(m.position[i]) : Vec<D>{};
       for (int k = 0; k < D; ++k) {
         if (m.constrained[i] >> k & 1) continue;
-        const double f = (m.force[i][k] + m.body_force[i][k]) / fictitious_density_[i];
+        const double f = (m.force[i][k] + m.body_force[i][k]) / fictitious_density_[i] - rigid_i[k];
         double& v = m.velocity[i][k];
         v = it == 0 ? 0.5 * f : ((2.0 - cn) * v + 2.0 * f) / (2.0 + cn);  // eq. 13-14, dt = 1
         m.position[i][k] += v;
