@@ -379,3 +379,64 @@ TEST(InjectedFluid, BreakthroughToTheOuterSurfaceVentsTheFluid) {
 }
 
 }  // namespace
+
+namespace {
+
+// A flake off a borehole's wall (fluid_network.hpp, mark_immersed_fragments): the particle of the
+// wall on the x axis with every bond broken sits in the fluid, whose pressure on its closed surface
+// has no resultant, and so does its mirror on the -x side, held by one bond that lets it turn. They
+// get no load (their neighbours on the rock side still do: the fluid fills the crack the flake
+// left), and where they go changes the cavity's volume by nothing: moved 1 mm, the volume is the
+// same to the last bit. Before, the wall's force flux and the network's
+// load did not cancel on it, and in Zhou's 2-7 (hf_zhou_crossing) a flake moved 1.65 mm into the
+// borehole, the volume counted its travel, and the pressure fell from 5.4 MPa to 0.
+TEST(InjectedFluid, AFlakeInTheFluidGetsNoLoadAndNoVolume) {
+  auto scene = rift::scene::parse_string(block_with_injected_borehole(0.02, 0.0035, 1e-9), "flake.toml");
+  auto m = rift::pd::discretize<2>(scene);
+  rift::load::Boundaries<2> loads(scene, m);
+  std::size_t flake = m.size();
+  double nearest = 1e9;
+  for (std::size_t i = 0; i < m.size(); ++i) {
+    const auto& X = m.reference_position[i];
+    if (X[0] > 0.0 && std::abs(X[1]) < 0.0006 && X[0] < nearest) nearest = X[0], flake = i;
+  }
+  ASSERT_LT(flake, m.size());
+  // and its mirror on the -x side, hanging by the bond to the particle behind it alone
+  std::size_t hanging = m.size(), behind = m.size();
+  for (std::size_t i = 0; i < m.size(); ++i) {
+    const auto& X = m.reference_position[i];
+    if (X[1] == m.reference_position[flake][1] && std::abs(X[0] + nearest) < 1e-9) hanging = i;
+    if (X[1] == m.reference_position[flake][1] && std::abs(X[0] + nearest + 0.001) < 1e-9) behind = i;
+  }
+  ASSERT_LT(std::max(hanging, behind), m.size());
+  auto& b = m.bonds;
+  for (std::size_t i = 0; i < m.size(); ++i)
+    for (auto k = b.offset[i]; k < b.offset[i + 1]; ++k) {
+      const auto j = static_cast<std::size_t>(b.neighbor[k]);
+      if (i == flake || j == flake) b.intact[k] = rift::pd::bond_broken;
+      if ((i == hanging || j == hanging) && !(std::min(i, j) == std::min(hanging, behind) && std::max(i, j) == std::max(hanging, behind)))
+        b.intact[k] = rift::pd::bond_broken;
+    }
+  loads.apply_body_forces(m, 1.0);
+  const auto& f = m.fluid_network;
+  ASSERT_GT(f.pressure.at(0), 0.0);
+  for (const std::size_t loose : {flake, hanging}) {
+    EXPECT_EQ(f.immersed.at(loose), 1);
+    EXPECT_EQ(m.body_force[loose][0], 0.0);
+    EXPECT_EQ(m.body_force[loose][1], 0.0);
+  }
+  long immersed = 0, loaded_behind = 0;
+  for (std::size_t i = 0; i < m.size(); ++i) {
+    immersed += f.immersed[i];
+    const auto& X = m.reference_position[i];
+    if (X[1] == m.reference_position[flake][1] && X[0] > nearest && X[0] < nearest + 0.0011) loaded_behind += m.body_force[i][0] > 0.0;
+  }
+  EXPECT_EQ(immersed, 2) << "only the flake and the particle hanging by one bond";
+  EXPECT_EQ(loaded_behind, 1) << "the rock behind the flake carries the fluid's pressure, outward";
+  const double before = rift::pd::cavity_volume_change<2>(m, 0);
+  m.position[flake][0] -= 0.001;
+  m.position[hanging][1] += 0.001;
+  EXPECT_EQ(rift::pd::cavity_volume_change<2>(m, 0), before);
+}
+
+}  // namespace

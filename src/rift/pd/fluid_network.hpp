@@ -11,6 +11,7 @@
 // A network that reaches the body's outer surface is open to the outside (breakthrough): an injected
 // fluid escapes there, and its pressure falls to zero while the crack stays open to the surface.
 #pragma once
+#include <Eigen/Dense>
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -72,6 +73,7 @@ template <int D>
 int pressure_bond_source(const Model<D>& m, std::int64_t k, std::size_t i) {
   const CrackBonds& w = m.crack_bonds;
   const FluidNetwork& f = m.fluid_network;
+  if (!f.immersed.empty() && f.immersed[i]) return -1;  // a fragment in the fluid: no net load
   const int own = w.source[static_cast<std::size_t>(k)];
   if (!f.dry[static_cast<std::size_t>(own)]) return own;
   const auto j = w.neighbor[static_cast<std::size_t>(k)];
@@ -87,6 +89,77 @@ bool carries_fluid(const Model<D>& m, std::int64_t k, std::size_t i, std::size_t
   if (state != bond_interface_failed) return false;
   const InterfaceLaw* law = interface_of_bond<D>(m, i, k);
   return law && interface_faces_apart<D>(m, k, i, j, *law);
+}
+
+/// Fragments in the fluid. A few particles whose intact bonds no longer join them to the rest of
+/// the body (a flake off a borehole's wall, between two cracks), or hold them by bonds that do not
+/// span every direction, are surrounded by the fluid, whose pressure on a closed surface has no
+/// resultant, and what they displace stays fluid. The loads of
+/// the network and the wall (network_load.hpp, crack_pressure.hpp) balance on a particle only as
+/// far as the force flux of the wall matches the model's own response, so a detached flake felt a
+/// net push and, nothing but the fluid in front of it, moved into the borehole: in Zhou's 2-7
+/// (hf_zhou_crossing, at equilibrium) a flake at the wall moved 1.65 mm, the cavity volume counted
+/// its travel, and the fluid's pressure fell from 5.4 MPa to 0 in one relaxation. A wet particle
+/// whose intact bonds reach fewer particles than a whole family holds is marked immersed: no fluid
+/// load, no part of the cavity's volume; so is one whose intact bonds to particles not so marked
+/// do not span D dimensions (below).
+template <int D>
+void mark_immersed_fragments(Model<D>& m) {
+  FluidNetwork& f = m.fluid_network;
+  const Bonds& b = m.bonds;
+  const std::size_t n = m.size();
+  f.immersed.assign(n, 0);
+  // per particle: 0 not yet reached, -1 joined to more than a family, else the search that reached it
+  std::vector<std::int64_t> label(n, 0);
+  std::vector<std::size_t> piece;
+  std::int64_t search = 0;
+  for (std::size_t start = 0; start < n; ++start) {
+    if (f.source[start] < 0 || label[start] != 0) continue;
+    // a search over intact bonds that stops once the piece holds more than a whole family, or
+    // meets a particle an earlier search found so joined
+    const std::size_t family = m.bodies[m.body[start]].family_count;
+    label[start] = ++search;
+    piece.assign(1, start);
+    bool closed = true;
+    for (std::size_t q = 0; q < piece.size() && closed; ++q)
+      for (auto k = b.offset[piece[q]]; k < b.offset[piece[q] + 1]; ++k) {
+        const auto j = static_cast<std::size_t>(b.neighbor[k]);
+        if (b.intact[k] != bond_intact || label[j] == search) continue;
+        if (label[j] == -1 || piece.size() >= family) {
+          closed = false;
+          break;
+        }
+        label[j] = search;
+        piece.push_back(j);
+      }
+    for (std::size_t i : piece) {
+      if (closed) f.immersed[i] = f.source[i] >= 0;
+      else label[i] = -1;
+    }
+  }
+  // a wet particle held by bonds that do not span D dimensions (one bond, or a row of them) turns
+  // about them freely: the fluid swung such a particle 0.7 mm about its last bond in 2-7. Peeled
+  // off, with the particles it alone held, until every particle left holds on in every direction.
+  std::vector<std::size_t> wet;  // the peeling runs over the wet particles alone
+  for (std::size_t i = 0; i < n; ++i)
+    if (f.source[i] >= 0 && !f.immersed[i]) wet.push_back(i);
+  for (bool peeled = true; peeled;) {
+    peeled = false;
+    for (std::size_t i : wet) {
+      if (f.immersed[i]) continue;
+      Eigen::Matrix<double, D, D> shape = Eigen::Matrix<double, D, D>::Zero();
+      for (auto k = b.offset[i]; k < b.offset[i + 1]; ++k) {
+        const auto j = static_cast<std::size_t>(b.neighbor[k]);
+        if (b.intact[k] != bond_intact || f.immersed[j]) continue;
+        Eigen::Matrix<double, D, 1> xi;
+        for (int q = 0; q < D; ++q) xi[q] = m.reference_position[j][q] - m.reference_position[i][q];
+        shape += xi * xi.transpose() / xi.squaredNorm();
+      }
+      if (std::abs(shape.determinant()) > 1e-6 * std::pow(shape.trace() / D, D)) continue;
+      f.immersed[i] = 1;
+      peeled = true;
+    }
+  }
 }
 
 /// Labels every particle with the pressure source whose fluid reaches it (-1: none), by a search
@@ -137,6 +210,7 @@ void update_fluid_network(Model<D>& m) {
   if (f.outer_surface.size() == n)
     for (std::size_t q = next_to_source; q < queue.size(); ++q)
       if (f.outer_surface[queue[q]]) f.vented[static_cast<std::size_t>(f.source[queue[q]])] = 1;
+  mark_immersed_fragments<D>(m);
   // the broken bonds each fluid fills, both entries of each (network_load.hpp)
   f.network_bonds.assign(f.dry.size(), {});
   for (std::size_t i = 0; i < n; ++i) {
@@ -163,7 +237,8 @@ void add_network_pressure(Model<D>& m, const std::vector<double>& pressure) {
     const std::size_t n = m.size();
 #pragma omp parallel for if(rift::parallel::worth_a_team(n)) schedule(static)
     for (std::size_t i = 0; i < n; ++i)
-      for (int q = 0; q < D; ++q) m.body_force[i][q] += p * g[i * D + static_cast<std::size_t>(q)];
+      if (f.immersed.empty() || !f.immersed[i])
+        for (int q = 0; q < D; ++q) m.body_force[i][q] += p * g[i * D + static_cast<std::size_t>(q)];
   }
 }
 
@@ -193,7 +268,7 @@ double cavity_volume_change(const Model<D>& m, int s) {
         acc[0] += 0.5 * w.coefficient[k] * xi * m.volume[i] * (y - xi);
       }
     }
-    if (network)
+    if (network && (m.fluid_network.immersed.empty() || !m.fluid_network.immersed[i]))
       for (int q = 0; q < D; ++q)
         acc[0] += (*network)[i * D + static_cast<std::size_t>(q)] * (m.position[i][q] - m.reference_position[i][q]) * m.volume[i];
   });
