@@ -32,7 +32,9 @@
 // escapes (the laboratory test ended there, its pressure lost; pd/interface_outcome.hpp). The case writes zhou_crossing.csv with the columns
 // test, approach_angle_deg, sigma_H_MPa, sigma_h_MPa, outcome_experiment, outcome_thesis_pd,
 // outcome_rift (and the second horizon's), and the damage of each run as zhou_crossing_<test>.csv
-// (x, y, damage) for the panel validation/run draws.
+// (x, y, damage) for the panel validation/run draws, and each row's scene at each spacing as
+// zhou_<test>_<spacing>mm.toml (`rift run` on it gives the history load step by load step;
+// RIFT_ZHOU_ROWS=none writes the scenes alone).
 #include <array>
 #include <cmath>
 #include <cstdio>
@@ -187,6 +189,14 @@ Result hf_zhou_crossing(const Settings& settings) {
     const std::string list = std::string(",") + rows + ",";
     return list.find("," + test + ",") != std::string::npos;
   };
+  // each row's scene, for `rift run` (its history and fields load step by load step)
+  if (!settings.output_dir.empty())
+    for (const auto& t : zhou_tests)
+      for (double spacing : spacings) {
+        char name[200];
+        std::snprintf(name, sizeof name, "%s/zhou_%s_%gmm.toml", settings.output_dir.c_str(), t.test, spacing * 1e3);
+        std::ofstream(name) << zhou_scene(t, spacing);
+      }
   for (const auto& t : zhou_tests) {
     std::array<std::string, 2> o{"not run", "not run"};
     if (!selected(t.test)) {
