@@ -113,7 +113,8 @@ void dilatation_pass(Model<D>& m, const BodyInfo& body, double* coupling, double
     else
       for_each_row_by_slabs(b, body.first, body.last, [&](std::size_t i) { row.template operator()<false, Normal>(i); });
   };
-  if (c.normal_stress_failure) rows.template operator()<true>();
+  // the normal stress only where a bond may break (the strain is not made while breaking is held)
+  if (c.normal_stress_failure && c.breakable) rows.template operator()<true>();
   else rows.template operator()<false>();
   for (const auto& [i, k] : broken) break_mirror_bond(b, body, i, k);
 }

@@ -65,13 +65,15 @@ inline double bond_normal_stress(const double* eps_i, const double* eps_j, const
   return lambda * lateral + p_wave_modulus * stretch;
 }
 
-/// The strain of every particle of the bodies whose bonds fail on the normal stress (into
-/// m.failure_strain), from the current positions. Call before the pass that breaks bonds.
+/// The strain of every particle of the bodies whose bonds fail on the normal stress and may break
+/// now (into m.failure_strain), from the current positions. Call before the pass that breaks bonds.
+/// While breaking is held (HeldBreaking: the in-situ stage, the iterations of breaking at
+/// equilibrium) nothing reads it, and the pass, a quarter of an iteration's time, is skipped.
 template <int D>
 void update_failure_strain(Model<D>& m) {
   constexpr int C = stress_components<D>;
   for (const auto& body : m.bodies) {
-    if (!body.constants.normal_stress_failure) continue;
+    if (!body.constants.normal_stress_failure || !body.constants.breakable) continue;
 #pragma omp parallel for if(rift::parallel::worth_a_team(body.last - body.first)) schedule(static)
     for (std::size_t i = body.first; i < body.last; ++i) {
       const auto eps = bulk_strain<D>(m, i);
