@@ -290,7 +290,9 @@ TEST(InterfaceLaw, FluidWeakensTheInterfaceOnlyInsideIt) {
 //   on to y = 10 mm -> crossed (9.5 mm, 3 horizons past the plane; 2 are needed);
 //   up to it, the interface bonds failed over |x| < 8 mm, the fluid let in and the upper half lifted
 //   10 um (more than the rock's critical stretch 1e-3 times any bond) -> dilated (open and wet along
-//   17 mm, more than 3 horizons).
+//   17 mm, more than 3 horizons), and only while the fluid's 1 MPa exceeds the compression the in-situ
+//   stresses put across the interface (Warpinski and Teufel's p > sigma_n, the thesis' EQ 4.7):
+//   sigma_h = -0.9 MPa across it dilates, -1.1 MPa holds it shut (arrested).
 TEST(InterfaceOutcome, CrossedDilatedArrestedFromTheBonds) {
   const std::string hole = R"([regions.hole]
 shape = "cylinder"
@@ -301,8 +303,8 @@ region = "hole"
 pressure = 1e6
 )";
   // wet: whether the fluid reaches the particle at (6.5 mm, 0.5 mm), on the interface 6.5 mm from the crack
-  auto outcome = [&](double crack_top, double failed_half_length, double lift, bool* wet = nullptr) {
-    auto s = block_with_interface("[-0.03, 0.0]", "[0.03, 0.0]", "tensile_strength = 1e6\nfriction_coefficient = 0.89", hole, "1e-3");
+  auto outcome = [&](double crack_top, double failed_half_length, double lift, bool* wet = nullptr, const std::string& in_situ = "") {
+    auto s = block_with_interface("[-0.03, 0.0]", "[0.03, 0.0]", "tensile_strength = 1e6\nfriction_coefficient = 0.89", hole + in_situ, "1e-3");
     auto m = rift::pd::discretize<2>(s);
     auto& b = m.bonds;
     for (std::size_t i = 0; i < m.size(); ++i)
@@ -340,6 +342,9 @@ pressure = 1e6
   EXPECT_TRUE(wet);
   EXPECT_EQ(dilated.name(), "dilated");
   EXPECT_NEAR(dilated.opened_length, 0.017, 0.0011);  // failed rows |x| <= 7.5 mm, bonds reaching 2 mm on: midpoints to 8.5 mm
+  auto in_situ = [](const char* sigma_h) { return std::string("[in_situ_stress]\nsigma_H = -3e6\nsigma_h = ") + sigma_h + "\n"; };
+  EXPECT_EQ(outcome(0.0, 0.008, 1e-5, nullptr, in_situ("-0.9e6")).name(), "dilated");
+  EXPECT_EQ(outcome(0.0, 0.008, 1e-5, nullptr, in_situ("-1.1e6")).name(), "arrested");
 }
 
 }  // namespace

@@ -115,6 +115,7 @@ struct InterfaceLaw {
   double length = 0.0;                           // 2D: the segment's length
   double tensile_strength = 0.0, cohesion = 0.0, friction_coefficient = 0.0;  // Pa, Pa, -
   int near_side = 0;  // the side (sign of (x - point) . normal) of the fluid sources; 0 without
+  double in_situ_normal_compression = 0.0;  // -n . sigma n of the far-field in-situ stresses, Pa (0 without)
 };
 
 /// The bonds that cross a pre-existing fracture, row i listing those of particle i (the mirror

@@ -60,13 +60,19 @@ inline InterfaceLaw make_interface_law(const scene::Interface& f, int dimension)
   return law;
 }
 
-/// Laws of the scene's interfaces, the particles with bonds across one, and the side of each
-/// interface the fluid sources are on (the mean position of the particles with pressure bonds).
+/// Laws of the scene's interfaces, the particles with bonds across one, the side of each
+/// interface the fluid sources are on (the mean position of the particles with pressure bonds) and
+/// the normal compression the in-situ stresses put across it (the thesis' EQ 4.4).
 template <int D>
 void prepare_interfaces(const scene::Scene& s, Model<D>& m) {
   InterfaceBonds& ib = m.interface_bonds;
   ib.laws.clear();
-  for (const auto& f : s.interfaces) ib.laws.push_back(make_interface_law(f, D));
+  for (const auto& f : s.interfaces) {
+    auto law = make_interface_law(f, D);
+    if (s.in_situ.enabled)
+      for (int k = 0; k < D; ++k) law.in_situ_normal_compression -= s.in_situ.principal(k) * law.normal[k] * law.normal[k];
+    ib.laws.push_back(law);
+  }
   ib.particles.clear();
   ib.slip.assign(ib.slot.size(), {0.0, 0.0, 0.0});
   if (ib.offset.empty()) return;
