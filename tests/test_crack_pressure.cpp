@@ -5,6 +5,8 @@
 
 #include <cmath>
 #include <cstdio>
+#include <fstream>
+#include <string>
 #include <sstream>
 #include <vector>
 
@@ -12,6 +14,7 @@
 #include "rift/pd/discretize.hpp"
 #include "rift/pd/dynamic_relaxation.hpp"
 #include "rift/pd/fluid_network.hpp"
+#include "rift/run/runner.hpp"
 #include "rift/run/simulation.hpp"
 #include "rift/scene/parse.hpp"
 #include "rock_scene.hpp"
@@ -437,6 +440,55 @@ TEST(InjectedFluid, AFlakeInTheFluidGetsNoLoadAndNoVolume) {
   m.position[flake][0] -= 0.001;
   m.position[hanging][1] += 0.001;
   EXPECT_EQ(rift::pd::cavity_volume_change<2>(m, 0), before);
+}
+
+}  // namespace
+
+namespace {
+
+// `rift run` on the breakthrough block above (plus an interface the crack never reaches): the
+// history's vented_borehole_0 column is 1 from the load step the fluid escapes, and the outcome
+// printed is the one before it, with both times named (a laboratory test ends at breakthrough). The
+// crack stopping short of the face never vents, and the outcome is the end's.
+TEST(InjectedFluid, RunReportsTheOutcomeBeforeTheFluidEscapes) {
+  for (const double crack_end : {0.03, 0.015}) {
+    char crack[512];
+    std::snprintf(crack, sizeof crack,
+                  "end_time = 1.0\nload_steps = 2\nmax_iterations = 200\n[[cracks]]\npoints = [[0.004, 0.0], [%g, 0.0]]\n"
+                  "[[interfaces]]\npoints = [[-0.02, 0.012], [0.02, 0.012]]\ntensile_strength = 1e6\nfriction_coefficient = 0.89\n"
+                  "[output]\ndamage_histogram = false\ndamage_image = false\n",
+                  crack_end);
+    const auto scene = rift::scene::parse_string(block_with_injected_borehole(0.025, 0.005, 1e-10) + crack, "vent.toml");
+    rift::run::Options options;
+    options.output_dir = ::testing::TempDir() + "rift_vent_" + std::to_string(crack_end > 0.025);
+    options.quiet = true;
+    const auto result = rift::run::run(scene, options);
+    std::ifstream history(result.history_csv);
+    std::string header, row1, row2;
+    std::getline(history, header), std::getline(history, row1), std::getline(history, row2);
+    std::vector<std::string> columns, first, second;
+    auto split = [](const std::string& line, std::vector<std::string>& out) {
+      std::stringstream ss(line);
+      for (std::string cell; std::getline(ss, cell, ',');) out.push_back(cell);
+    };
+    split(header, columns), split(row1, first), split(row2, second);
+    std::size_t vented = columns.size();
+    for (std::size_t k = 0; k < columns.size(); ++k)
+      if (columns[k] == "vented_borehole_0") vented = k;
+    ASSERT_LT(vented, columns.size());
+    ASSERT_EQ(first.size(), columns.size());
+    ASSERT_EQ(second.size(), columns.size());
+    const bool vents = crack_end > 0.025;
+    EXPECT_EQ(std::stod(first[vented]), vents ? 1.0 : 0.0);
+    EXPECT_EQ(std::stod(second[vented]), vents ? 1.0 : 0.0);
+    ASSERT_EQ(result.interface_outcomes.size(), 1u);
+    EXPECT_EQ(result.interface_outcomes[0], "not reached");
+    std::string note;
+    for (const auto& n : result.notes)
+      if (n.rfind("interface 0:", 0) == 0) note = n;
+    const bool named = note.find("at t = 0 s, the last output before the fluid escaped through the outer surface at t = 0.5 s") != std::string::npos;
+    EXPECT_EQ(named, vents) << note;
+  }
 }
 
 }  // namespace

@@ -208,6 +208,7 @@ Result run_dim(const scene::Scene& s, const Options& o) {
       injected.push_back(s.cracks.size() + k);
       columns.push_back("pressure_borehole_" + std::to_string(k));
       columns.push_back("cavity_volume_borehole_" + std::to_string(k));
+      columns.push_back("vented_borehole_" + std::to_string(k));
     }
   for (std::size_t k = 0; k < s.interfaces.size(); ++k)
     for (const char* q : {"crossed", "dilated", "crossing_distance", "opened_length"})
@@ -221,6 +222,10 @@ Result run_dim(const scene::Scene& s, const Options& o) {
   io::History history(res.output_dir + "/history.csv", columns);
   res.history_csv = history.path();
 
+  // The outcome at the interfaces as of the last history row before the fluid first escaped through
+  // the outer surface (a laboratory test ends there, its pressure lost), and when it escaped.
+  std::vector<pd::InterfaceOutcome> outcomes_before_vent;
+  double read_time = 0.0, vent_time = -1.0;
   auto history_row = [&](long step, std::vector<double> extra) {
     auto e = pd::summarize<D>(m);
     check_finite<D>(m, step, e);
@@ -236,9 +241,16 @@ Result run_dim(const scene::Scene& s, const Options& o) {
       else if (q == "max_damage") row.push_back(dmax);
     }
     for (auto i : probes) row.push_back(m.damage[i]);
-    for (auto c : injected) row.insert(row.end(), {m.fluid_network.pressure[c], m.fluid_network.cavity_volume[c]});
-    for (const auto& o : pd::classify_interfaces<D>(m))
-      row.insert(row.end(), {double(o.crossed), double(o.dilated), o.crossing_distance, o.opened_length});
+    bool vented = false;
+    for (auto c : injected) {
+      const bool v = c < m.fluid_network.vented.size() && m.fluid_network.vented[c] != 0;
+      row.insert(row.end(), {m.fluid_network.pressure[c], m.fluid_network.cavity_volume[c], double(v)});
+      vented = vented || v;
+    }
+    const auto outcomes = pd::classify_interfaces<D>(m);
+    for (const auto& o : outcomes) row.insert(row.end(), {double(o.crossed), double(o.dilated), o.crossing_distance, o.opened_length});
+    if (!vented && vent_time < 0.0) outcomes_before_vent = outcomes, read_time = m.time;
+    if (vented && vent_time < 0.0) vent_time = m.time;
     for (const auto& r : p.loads.reactions(m))
       for (int k = 0; k < D; ++k) row.push_back(r[k]);
     row.insert(row.end(), extra.begin(), extra.end());
@@ -254,6 +266,7 @@ Result run_dim(const scene::Scene& s, const Options& o) {
       std::fprintf(stderr, "rift: warning: the in-situ stage did not converge in %d iterations (residual %.3g > %.3g)\n", r.iterations,
                    r.residual, s.in_situ.tolerance);
   }
+  outcomes_before_vent = pd::classify_interfaces<D>(m);
   p.start();
   const auto loop_start = std::chrono::steady_clock::now();
   Progress progress(p.steps, s.solver.end_time, o.quiet);
@@ -299,12 +312,14 @@ Result run_dim(const scene::Scene& s, const Options& o) {
   for (double d : m.damage) res.max_damage = std::max(res.max_damage, d);
   res.steps = p.steps;
   res.time = m.time;
-  const auto outcomes = pd::classify_interfaces<D>(m);
+  const auto outcomes = vent_time < 0.0 ? pd::classify_interfaces<D>(m) : outcomes_before_vent;
   for (std::size_t k = 0; k < outcomes.size(); ++k) {
     const auto& o = outcomes[k];
     res.interface_outcomes.push_back(o.name());
-    res.notes.push_back(fmt::format("interface {}: {} (broken rock up to {:.3g} mm past it, open and wet along {:.3g} mm of it)", k, o.name(),
-                                    1e3 * o.crossing_distance, 1e3 * o.opened_length));
+    const std::string when =
+        vent_time < 0.0 ? "" : fmt::format(", at t = {:g} s, the last output before the fluid escaped through the outer surface at t = {:g} s", read_time, vent_time);
+    res.notes.push_back(fmt::format("interface {}: {} (broken rock up to {:.3g} mm past it, open and wet along {:.3g} mm of it{})", k, o.name(),
+                                    1e3 * o.crossing_distance, 1e3 * o.opened_length, when));
   }
   progress.finish(p.steps, m.time, res.final_energy.broken_fraction);
   if (s.output.damage_histogram) {
