@@ -348,3 +348,41 @@ pressure = 1e6
 }
 
 }  // namespace
+
+namespace {
+
+// Breakthrough is kept (pd/fluid_network.hpp broke_through): the block of the outcome test above
+// with its interface failed along its whole length, from face to face, and the upper half lifted
+// 10 um lets the borehole's fluid reach the outer surface (vented); shut again (the fluid at zero
+// pressure, the faces pressed back), the interface keeps the fluid out and the network no longer
+// vents, but the breakthrough that ends a laboratory test stays recorded.
+TEST(InterfaceOutcome, BreakthroughThroughAnInterfaceIsKeptWhenItShuts) {
+  const std::string hole = "[regions.hole]\nshape = \"cylinder\"\ncenter = [0.0, -0.012]\nradius = 0.0015\n"
+                           "[[boreholes]]\nregion = \"hole\"\npressure = 1e6\n";
+  auto s = block_with_interface("[-0.03, 0.0]", "[0.03, 0.0]", "tensile_strength = 1e6\nfriction_coefficient = 0.89", hole, "1e-3");
+  auto m = rift::pd::discretize<2>(s);
+  auto& b = m.bonds;
+  for (std::size_t i = 0; i < m.size(); ++i)  // the crack from the borehole up to the interface
+    for (auto k = b.offset[i]; k < b.offset[i + 1]; ++k) {
+      const auto j = static_cast<std::size_t>(b.neighbor[k]);
+      const auto &p = m.reference_position[i], &q = m.reference_position[j];
+      if (p[0] * q[0] < 0 && 0.5 * (p[1] + q[1]) > -0.012 && 0.5 * (p[1] + q[1]) < 0.0) b.intact[k] = rift::pd::bond_broken;
+    }
+  const auto& ib = m.interface_bonds;
+  for (std::size_t i = 0; i + 1 < ib.offset.size(); ++i)
+    for (auto q = ib.offset[i]; q < ib.offset[i + 1]; ++q)
+      b.intact[static_cast<std::size_t>(ib.slot[static_cast<std::size_t>(q)])] = rift::pd::bond_interface_failed;
+  m.fluid_network.pressure.assign(m.fluid_network.dry.size(), 1e6);
+  const std::size_t source = s.cracks.size();  // the borehole
+  for (std::size_t i = 0; i < m.size(); ++i)
+    if (m.reference_position[i][1] > 0.0) m.position[i][1] += 1e-5;
+  rift::pd::update_fluid_network<2>(m);
+  EXPECT_TRUE(m.fluid_network.vented.at(source));
+  EXPECT_TRUE(m.fluid_network.broke_through.at(source));
+  m.position = m.reference_position;
+  rift::pd::update_fluid_network<2>(m);
+  EXPECT_FALSE(m.fluid_network.vented.at(source));
+  EXPECT_TRUE(m.fluid_network.broke_through.at(source));
+}
+
+}  // namespace

@@ -173,7 +173,7 @@ ZhouRun run_zhou(const ZhouTest& t, double spacing, const std::string& damage_cs
     const auto r = sim.relax(dr, s.solver, time);
     // the test ends when the fracture reaches the block's faces and the fluid escapes, as the
     // laboratory test did (its pressure lost): the outcome is that of the last load step before
-    if (m.fluid_network.vented.at(source)) break;
+    if (m.fluid_network.broke_through.at(source)) break;
     out.unconverged += r.converged ? 0 : 1;
     pd::update_damage<2>(m);
     out.outcome = pd::classify_interfaces<2>(m).at(0);

@@ -151,6 +151,7 @@ struct FluidNetwork {
   std::vector<double> pore_pressure;     // the pressure of the last equilibrium (or time step), which the wet rock feels, Pa (effective_stretch.hpp)
   std::vector<double> cavity_volume;     // the last cavity volume (injected sources), m^3
   std::vector<std::uint8_t> vented;      // the fluid reaches the outer surface: it escapes (breakthrough)
+  std::vector<std::uint8_t> broke_through;  // vented at any time so far (a laboratory test ends there)
   std::vector<double> escaped_volume;    // injected fluid that escaped while vented (at zero pressure), m^3
 };
 

@@ -205,11 +205,15 @@ void update_fluid_network(Model<D>& m) {
       if (f.dry[w.source[static_cast<std::size_t>(k)]] && w.neighbor[k] >= 0) reach(i, static_cast<std::size_t>(w.neighbor[k]));
   }
   // breakthrough: a particle on the outer surface that the fluid reached across broken bonds (not
-  // the wall of a borehole that itself reaches the surface, whose casing keeps the fluid in)
+  // the wall of a borehole that itself reaches the surface, whose casing keeps the fluid in). A
+  // network can close again (the fluid at zero pressure, failed interface bonds on its path shut),
+  // so broke_through keeps that it once did.
   f.vented.assign(f.dry.size(), 0);
+  f.broke_through.resize(f.dry.size(), 0);
   if (f.outer_surface.size() == n)
     for (std::size_t q = next_to_source; q < queue.size(); ++q)
       if (f.outer_surface[queue[q]]) f.vented[static_cast<std::size_t>(f.source[queue[q]])] = 1;
+  for (std::size_t s = 0; s < f.vented.size(); ++s) f.broke_through[s] |= f.vented[s];
   mark_immersed_fragments<D>(m);
   // the broken bonds each fluid fills, both entries of each (network_load.hpp)
   f.network_bonds.assign(f.dry.size(), {});

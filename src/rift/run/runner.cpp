@@ -243,7 +243,7 @@ Result run_dim(const scene::Scene& s, const Options& o) {
     for (auto i : probes) row.push_back(m.damage[i]);
     bool vented = false;
     for (auto c : injected) {
-      const bool v = c < m.fluid_network.vented.size() && m.fluid_network.vented[c] != 0;
+      const bool v = c < m.fluid_network.broke_through.size() && m.fluid_network.broke_through[c] != 0;
       row.insert(row.end(), {m.fluid_network.pressure[c], m.fluid_network.cavity_volume[c], double(v)});
       vented = vented || v;
     }
