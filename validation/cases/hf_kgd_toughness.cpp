@@ -146,15 +146,18 @@ KgdState read_kgd(const pd::Model<2>& m, double spacing, double pressure, double
   return k;
 }
 
-}  // namespace
-
-Result hf_kgd_toughness(const Settings& settings) {
+// The example's scene with its spacing and horizon scaled by `coarsening` and its square block's
+// half-width set to `half_width`, the crack still between two rows. `mean_length`: l is judged by
+// its mean over the second half's load steps, not at the two times (a coarse crack grows a column
+// at a time, a large share of its length: the reading at a given time depends on where in its stick
+// and slip that time falls).
+Result kgd_case(const std::string& name, double coarsening, double half_width, bool mean_length) {
   auto s = scene::parse_file(source_path("examples/hf_kgd_toughness.toml"));
   auto& body = s.bodies[0];
-  if (settings.quick) {  // twice the spacing and horizon over the same block, the crack still between two rows
-    body.horizon *= 2.0;
-    body.spacing *= 2.0;
-  }
+  body.horizon *= coarsening;
+  body.spacing *= coarsening;
+  for (auto& region : s.regions)
+    if (region.name == "block") region.min = {-half_width, -half_width, 0.0}, region.max = {half_width, half_width, 0.0};
   const double spacing = body.spacing;
   body.lattice_origin = {-0.5 * spacing, -0.5 * spacing, 0.0};
   for (auto& point : s.cracks[0].points) point[1] = 0.5 * spacing;
@@ -217,7 +220,7 @@ Result hf_kgd_toughness(const Settings& settings) {
     const double p = 0.1831 * std::pow(std::pow(K_prime, 4) / (E_prime * Qt), 1.0 / 3.0);
     const double rl = k.half_length / l, rw = k.inlet_opening / w0, rp = k.pressure / p;
     if (std::abs(rl - 1.0) >= std::abs(worst_l - 1.0)) worst_l = rl;
-    pass = pass && std::abs(rl - 1.0) <= 0.05 && std::abs(rw - 1.0) <= 0.10 && std::abs(rp - 1.0) <= 0.15;
+    pass = pass && (mean_length || std::abs(rl - 1.0) <= 0.05) && std::abs(rw - 1.0) <= 0.10 && std::abs(rp - 1.0) <= 0.15;
     char b[260];
     std::snprintf(b, sizeof b, "%st = %.2f s: l %.2f mm (%.3f; damage above 0.3 reaches %.3f), w0 %.2f um (%.3f), p %.3f MPa (%.3f)",
                   series.empty() ? "" : "; ", k.time, k.half_length * 1e3, rl, k.damaged_half_length / l, k.inlet_opening * 1e6, rw,
@@ -225,22 +228,42 @@ Result hf_kgd_toughness(const Settings& settings) {
     series += b;
   }
   Result res;
-  res.name = "hf_kgd_toughness";
-  res.measured = worst_l;
+  res.name = name;
+  const double mean_l = l_count ? l_sum / l_count : 0.0;
+  if (mean_length) pass = pass && std::abs(mean_l - 1.0) <= 0.05;
+  res.measured = mean_length ? mean_l : worst_l;
   res.reference = 1.0;
   res.tolerance = 0.05;
-  res.unit = "half-length / KGD toughness solution, worse of two times";
+  res.unit = mean_length ? "half-length / KGD toughness solution, mean over the second half's load steps"
+                         : "half-length / KGD toughness solution, worse of two times";
   char buf[1200];
   std::snprintf(buf, sizeof buf, "%s (limits: l 5%%, w0 10%%, p 15%%); K_Ic = sqrt(E' G0) = %.3f MPa m^0.5; %zu particles, spacing %.2g mm, "
                 "horizon %.4g mm; load steps without equilibrium: %d (%ld relaxation iterations in all); l / l_KGD over the %d load steps "
                 "of the second half: mean %.3f, from %.3f to %.3f (stick and slip); between the two times, bonds broken per unit of growth: %.2f "
                 "times a straight cut's (%.0f per mm), energy dissipated per unit of new crack area: %.2f G0",
                 series.c_str(), K_Ic / 1e6, m.size(), spacing * 1e3, body.horizon * 1e3, unconverged, iterations, l_count,
-                l_count ? l_sum / l_count : 0.0, l_low, l_high, dissipation, per_metre * 1e-3, dissipation_energy);
+                mean_l, l_low, l_high, dissipation, per_metre * 1e-3, dissipation_energy);
   res.details = buf;
   res.source = "Detournay (2004) KGD fracture, toughness-dominated (zero viscosity) solution";
   res.pass = pass;
   return res;
 }
+
+}  // namespace
+
+// Quick: twice the example's spacing (2 mm) over its 400 mm square.
+Result hf_kgd_toughness(const Settings& settings) {
+  return kgd_case("hf_kgd_toughness", settings.quick ? 2.0 : 1.0, 0.2, false);
+}
+
+// CI's version: 3 mm spacing (3 times the example's) over a 300 mm square, 3.4 min on one thread.
+// The crack of t = 1 s, 33 mm, is a fifth of the half-width (a pressurized cut at a / W = 0.22 opens
+// about 1.05 times Sneddon's, from the sizes in the header) and 11 spacings long: it grows a column,
+// a tenth of its length, at a time, so l is judged by its mean over the second half's load steps.
+// Measured: l / l_KGD mean 0.967 (0.898 to 1.015; 0.964 and 0.967 at t = 0.5 and 1 s), w0 0.979 /
+// 1.017, p 0.996 / 0.970. In the example's 400 mm square at 3 mm: mean 0.954 (0.921 to 0.988), w0
+// 0.980 / 0.974, p 1.010 / 1.025 (10 min). At 4 mm (horizon 12 mm, the crack 8 spacings long) the
+// grown crack is too tough: 1.27 G0 dissipated per unit of new crack area, l mean 0.907.
+Result hf_kgd_toughness_coarse(const Settings&) { return kgd_case("hf_kgd_toughness_coarse", 3.0, 0.15, true); }
 
 }  // namespace rift::validation
