@@ -301,9 +301,14 @@ Result run_dim(const scene::Scene& s, const Options& o) {
       auto e = history_row(step, extra);
       write_snapshot<D>(fields, m, s);
       progress.update(step, m.time, e.broken_fraction, true);
-      if (!r.converged && !o.quiet)
-        std::fprintf(stderr, "rift: warning: load step %ld did not converge in %d iterations (residual %.3g > %.3g)\n", step,
-                     r.iterations, r.residual, s.solver.tolerance);
+      if (!r.converged && !o.quiet) {
+        if (at_equilibrium && r.residual <= s.solver.tolerance)  // the last equilibrium was reached but broke bonds
+          std::fprintf(stderr, "rift: warning: load step %ld: bonds still breaking after %d equilibria (solver max_breaking_passes)\n",
+                       step, r.breaking_passes);
+        else
+          std::fprintf(stderr, "rift: warning: load step %ld did not converge in %d iterations (residual %.3g > %.3g)\n", step,
+                       r.iterations, r.residual, s.solver.tolerance);
+      }
     }
   }
   res.loop_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - loop_start).count();
