@@ -1,0 +1,180 @@
+// Viscous flow of the fracturing fluid along its network of broken bonds: lubrication theory, the
+// cubic law. A crack of opening w carries, per unit width, the flux q = -(w^3 / (12 mu)) grad p
+// (plane Poiseuille flow between its faces); the rock itself is impermeable. On the lattice the
+// fluid's pressure lives on the particles the fluid reaches, and a broken bond i-j carries the
+// volume flux C_ij (p_i - p_j) from i to j, with
+//   C_ij = V_ij w_ij^3 / (12 mu S(n)),   S(n) = sum_{xi . n > 0} (xi . n) (|xi|^2 - (xi . n)^2) / (D - 1) V_j / V_i,
+// w_ij the bond's opening, V_ij its neighbour's volume share (partial near the horizon's edge), n
+// the crack's normal and S summed over a whole family. Why: of the bonds of offset xi, (xi . n) / V
+// per unit area of crack cross it, and of those |xi . t| per unit width also cross a cut along n,
+// each carrying C (xi . t) grad p; their sum is the cubic law's q when C is as above (t averaged
+// over the crack's plane in 3D). A straight crack of any direction through a uniform lattice then
+// carries the cubic law's flux (tests/test_network_flow.cpp).
+// The crack's volume: (xi . n) / V bonds of offset xi cross a unit area of it, so a bond of
+// opening w stands for the volume V_ij w / N(n), N(n) = sum_{xi . n > 0} (xi . n) V_j / V_i, and
+// the broken bonds of a straight crack hold w per unit area.
+// The opening of a broken bond is the jump of displacement across the crack: its deformed vector
+// less what the rock around its ends strains over it, y - (I + eps) xi, eps the mean of its ends'
+// bulk strains (bulk_strain.hpp). The rock's own strain over a bond of three spacings is not small
+// beside a hydraulic fracture's opening (5 MPa over E = 8.4 GPa: 5 um over 9 mm, against openings
+// of 20-30 um). Its normal is the jump's direction (an opening, mode I, crack); across a failed
+// interface bond it is the interface's normal and the opening the jump's normal part (slip along
+// the interface opens nothing). S and N are the means of the bond's two ends'.
+// The pressure solve (solve_network_pressure) is backward Euler of each node's mass balance, an SPD
+// system (Eigen's sparse LDLT). Status: the building block of a viscous fluid; runs still use the
+// lumped, inviscid fluid of fluid_network.hpp until the coupling with the relaxation is in.
+#pragma once
+#include <Eigen/Sparse>
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdint>
+#include <stdexcept>
+#include <vector>
+
+#include "rift/pd/bulk_strain.hpp"
+#include "rift/pd/model.hpp"
+
+namespace rift::pd {
+
+/// The jump of displacement across bond k of particle i: y_ij - (I + eps) xi, eps the mean of the
+/// two ends' bulk strains (3 x 3, row-major).
+template <int D>
+Vec<D> crack_jump(const Model<D>& m, std::size_t i, std::int64_t k, const std::array<double, 9>& eps_i, const std::array<double, 9>& eps_j) {
+  const auto j = static_cast<std::size_t>(m.bonds.neighbor[static_cast<std::size_t>(k)]);
+  const auto& xi = m.bonds.family_of(k).xi;
+  Vec<D> jump{};
+  for (int p = 0; p < D; ++p) {
+    double strained = xi[p];
+    for (int q = 0; q < D; ++q) strained += 0.5 * (eps_i[3 * p + q] + eps_j[3 * p + q]) * xi[q];
+    jump[p] = m.position[j][p] - m.position[i][p] - strained;
+  }
+  return jump;
+}
+
+/// Moments of particle i's family about a crack of normal n, over the bonds with xi . n > 0,
+/// weighted by V_j / V_i: N = sum (xi . n) (the bonds that cross a unit area of it) and
+/// S = sum (xi . n) (|xi|^2 - (xi . n)^2) / (D - 1) (their transverse reach).
+struct CrackMoments {
+  double normal = 0.0, transverse = 0.0;
+};
+template <int D>
+CrackMoments crack_moments(const Model<D>& m, std::size_t i, const Vec<D>& n) {
+  const Bonds& b = m.bonds;
+  CrackMoments c;
+  for (auto k = b.offset[i]; k < b.offset[i + 1]; ++k) {
+    const auto& xi = b.family_of(k).xi;
+    double along = 0.0, squared = 0.0;
+    for (int p = 0; p < D; ++p) along += xi[p] * n[p], squared += xi[p] * xi[p];
+    if (along <= 0.0) continue;
+    c.normal += along * b.volume(k);
+    c.transverse += along * (squared - along * along) * b.volume(k);
+  }
+  c.normal /= m.volume[i];
+  c.transverse /= (D - 1) * m.volume[i];
+  return c;
+}
+
+/// A broken bond that carries fluid: its ends, its conductance C and its share of the crack's volume.
+struct FlowBond {
+  std::size_t i = 0, j = 0;
+  double opening = 0.0;      // |jump| (across a failed interface bond its normal part), m
+  double conductance = 0.0;  // flux from i to j per unit of p_i - p_j, m^3 / (Pa s)
+  double volume = 0.0;       // the crack's volume this bond stands for, m^3
+};
+
+/// The broken bonds between particles that `carries` marks (each bond once, i < j), with their
+/// openings and conductances for a fluid of viscosity mu (Pa s).
+template <int D, class Carries>
+std::vector<FlowBond> flow_bonds(const Model<D>& m, double viscosity, Carries carries) {
+  const Bonds& b = m.bonds;
+  std::vector<FlowBond> out;
+  std::vector<std::array<double, 9>> strain(m.size());
+  std::vector<std::uint8_t> strained(m.size(), 0);
+  auto strain_of = [&](std::size_t i) -> const std::array<double, 9>& {
+    if (!strained[i]) strain[i] = bulk_strain<D>(m, i), strained[i] = 1;
+    return strain[i];
+  };
+  // the interface law of each failed interface bond
+  const InterfaceBonds& ib = m.interface_bonds;
+  std::vector<std::int32_t> law_of;
+  if (!ib.empty()) {
+    law_of.assign(static_cast<std::size_t>(b.size()), -1);
+    for (std::size_t q = 0; q < ib.slot.size(); ++q) law_of[static_cast<std::size_t>(ib.slot[q])] = static_cast<std::int32_t>(ib.interface[q]);
+  }
+  for (std::size_t i = 0; i < m.size(); ++i)
+    for (auto k = b.offset[i]; k < b.offset[i + 1]; ++k) {
+      const auto j = static_cast<std::size_t>(b.neighbor[static_cast<std::size_t>(k)]);
+      if (j <= i || b.intact[static_cast<std::size_t>(k)] == bond_intact || !carries(i, j)) continue;
+      const Vec<D> jump = crack_jump<D>(m, i, k, strain_of(i), strain_of(j));
+      double w = norm<D>(jump);
+      Vec<D> n{};
+      if (w > 0.0) n = (1.0 / w) * jump;
+      if (!law_of.empty() && law_of[static_cast<std::size_t>(k)] >= 0) {
+        const auto& law = ib.laws[static_cast<std::size_t>(law_of[static_cast<std::size_t>(k)])];
+        double across = 0.0;  // the side of j: sign of xi . normal
+        for (int p = 0; p < D; ++p) n[p] = law.normal[p], across += b.family_of(k).xi[p] * law.normal[p];
+        w = std::max(0.0, (across > 0.0 ? 1.0 : -1.0) * dot<D>(jump, n));
+      }
+      FlowBond f{i, j, w, 0.0};
+      if (w > 0.0) {
+        const CrackMoments ci = crack_moments<D>(m, i, n), cj = crack_moments<D>(m, j, n);
+        f.conductance = b.volume(k) * w * w * w / (6.0 * viscosity * (ci.transverse + cj.transverse));
+        f.volume = 2.0 * b.volume(k) * w / (ci.normal + cj.normal);
+      }
+      out.push_back(f);
+    }
+  return out;
+}
+
+/// The pressure on the nodes of a flow network: for each free node a,
+///   storage_a (p_a - previous_a) + sum_b C_ab (p_a - p_b) = source_a,
+/// (backward Euler of the fluid's mass balance, storage = V / (K_f dt); 0 for steady flow), and
+/// p_a = fixed_value_a where fixed_a. Nodes are indices into the vectors; bonds join them.
+/// A free node that stores nothing and meets no open bond keeps its previous pressure. Throws
+/// std::runtime_error where a part of the network stores nothing and meets no fixed node.
+inline std::vector<double> solve_network_pressure(const std::vector<FlowBond>& bonds, const std::vector<double>& storage,
+                                                  const std::vector<double>& previous, const std::vector<double>& source,
+                                                  const std::vector<std::uint8_t>& fixed, const std::vector<double>& fixed_value) {
+  const std::size_t n = storage.size();
+  // a free node that stores nothing and meets no open bond keeps its previous pressure
+  std::vector<std::uint8_t> held(fixed);
+  std::vector<double> diagonal(storage);
+  for (const auto& f : bonds) diagonal[f.i] += f.conductance, diagonal[f.j] += f.conductance;
+  std::vector<double> value(fixed_value);
+  for (std::size_t a = 0; a < n; ++a)
+    if (!fixed[a] && diagonal[a] == 0.0) held[a] = 1, value[a] = previous[a];
+  std::vector<std::int64_t> row(n, -1);
+  std::int64_t free_nodes = 0;
+  for (std::size_t a = 0; a < n; ++a)
+    if (!held[a]) row[a] = free_nodes++;
+  std::vector<double> p(value);
+  if (free_nodes == 0) return p;
+  std::vector<Eigen::Triplet<double>> entries;
+  Eigen::VectorXd rhs = Eigen::VectorXd::Zero(free_nodes);
+  for (std::size_t a = 0; a < n; ++a)
+    if (!held[a]) {
+      entries.emplace_back(row[a], row[a], storage[a]);
+      rhs[row[a]] += storage[a] * previous[a] + source[a];
+    }
+  for (const auto& f : bonds) {
+    const double C = f.conductance;
+    if (C == 0.0) continue;
+    const auto ra = row[f.i], rb = row[f.j];
+    if (ra >= 0) entries.emplace_back(ra, ra, C);
+    if (rb >= 0) entries.emplace_back(rb, rb, C);
+    if (ra >= 0 && rb >= 0) entries.emplace_back(ra, rb, -C), entries.emplace_back(rb, ra, -C);
+    if (ra >= 0 && rb < 0) rhs[ra] += C * value[f.j];
+    if (rb >= 0 && ra < 0) rhs[rb] += C * value[f.i];
+  }
+  Eigen::SparseMatrix<double> A(free_nodes, free_nodes);
+  A.setFromTriplets(entries.begin(), entries.end());
+  Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> solver(A);
+  if (solver.info() != Eigen::Success) throw std::runtime_error("network flow: a part of the network holds no fluid and meets no fixed pressure");
+  const Eigen::VectorXd x = solver.solve(rhs);
+  for (std::size_t a = 0; a < n; ++a)
+    if (!held[a]) p[a] = x[row[a]];
+  return p;
+}
+
+}  // namespace rift::pd
