@@ -26,8 +26,9 @@ using rift::operator+;
 
 constexpr double viscosity = 0.1, gradient = 1e8;  // Pa s, Pa/m
 
-// A 60 x 60 mm plane strain block, 1 mm thick, lattice sites at (i, j + 1/2) spacings.
-rift::pd::Model<2> block() {
+// A 60 x 60 mm plane strain block, 1 mm thick, lattice sites at (i, j + 1/2) spacings, with what
+// `extra` adds to the scene.
+rift::pd::Model<2> block(const std::string& extra = "") {
   const std::string text = rift::test::plane_strain_rock("critical_stretch = 1.0\n") + R"([regions.block]
 shape = "box"
 min = [-0.03, -0.03]
@@ -40,7 +41,7 @@ horizon = 3.015
 lattice_origin = [0.0005, 0.0]
 [solver]
 type = "dynamic_relaxation"
-)";
+)" + extra;
   return rift::pd::discretize<2>(rift::scene::parse_string(text, "flow.toml"));
 }
 
@@ -105,6 +106,21 @@ TEST(NetworkFlow, TheRocksStrainIsNoOpening) {
   const auto r = poiseuille(0.0, 20e-6, 1e-3, -5e-4);
   EXPECT_NEAR(r.opening, 20e-6, 1e-12);
   EXPECT_NEAR(r.flux / r.expected, 1.0, 1e-6);
+}
+
+// Across a failed pre-existing fracture the opening is its faces' normal opening
+// (interface_contact.hpp): the upper half lifted by w and slid by 3 w along it opens it by w.
+TEST(NetworkFlow, SlipAlongAFailedInterfaceOpensNothing) {
+  auto m = block("[[interfaces]]\npoints = [[-0.03, 0.0], [0.03, 0.0]]\ntensile_strength = 1e6\nfriction_coefficient = 0.89\n");
+  const double w = 20e-6;
+  const auto& ib = m.interface_bonds;
+  ASSERT_FALSE(ib.empty());
+  for (auto q : ib.slot) m.bonds.intact[static_cast<std::size_t>(q)] = rift::pd::bond_interface_failed;
+  for (std::size_t i = 0; i < m.size(); ++i)
+    if (m.reference_position[i][1] > 0.0) m.position[i] = m.position[i] + rift::Vec<2>{3.0 * w, w};
+  const auto bonds = rift::pd::flow_bonds<2>(m, viscosity, [](std::size_t, std::size_t) { return true; });
+  ASSERT_EQ(bonds.size(), ib.slot.size() / 2);
+  for (const auto& f : bonds) EXPECT_NEAR(f.opening, w, 1e-15);
 }
 
 // At 45 degrees to the rows the broken bonds form a staircase; the transverse moment of the

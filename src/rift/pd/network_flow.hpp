@@ -18,8 +18,9 @@
 // bulk strains (bulk_strain.hpp). The rock's own strain over a bond of three spacings is not small
 // beside a hydraulic fracture's opening (5 MPa over E = 8.4 GPa: 5 um over 9 mm, against openings
 // of 20-30 um). Its normal is the jump's direction (an opening, mode I, crack); across a failed
-// interface bond it is the interface's normal and the opening the jump's normal part (slip along
-// the interface opens nothing). S and N are the means of the bond's two ends'.
+// interface bond it is the interface's normal and the opening its faces' normal opening
+// (interface_contact.hpp interface_opening, as the interface law and the outcome reader take it:
+// slip along the interface opens nothing). S and N are the means of the bond's two ends'.
 // The pressure solve (solve_network_pressure) is backward Euler of each node's mass balance, an SPD
 // system (Eigen's sparse LDLT). Status: the building block of a viscous fluid; runs still use the
 // lumped, inviscid fluid of fluid_network.hpp until the coupling with the relaxation is in.
@@ -33,6 +34,7 @@
 #include <vector>
 
 #include "rift/pd/bulk_strain.hpp"
+#include "rift/pd/interface_contact.hpp"
 #include "rift/pd/model.hpp"
 
 namespace rift::pd {
@@ -95,26 +97,20 @@ std::vector<FlowBond> flow_bonds(const Model<D>& m, double viscosity, Carries ca
     if (!strained[i]) strain[i] = bulk_strain<D>(m, i), strained[i] = 1;
     return strain[i];
   };
-  // the interface law of each failed interface bond
-  const InterfaceBonds& ib = m.interface_bonds;
-  std::vector<std::int32_t> law_of;
-  if (!ib.empty()) {
-    law_of.assign(static_cast<std::size_t>(b.size()), -1);
-    for (std::size_t q = 0; q < ib.slot.size(); ++q) law_of[static_cast<std::size_t>(ib.slot[q])] = static_cast<std::int32_t>(ib.interface[q]);
-  }
   for (std::size_t i = 0; i < m.size(); ++i)
     for (auto k = b.offset[i]; k < b.offset[i + 1]; ++k) {
       const auto j = static_cast<std::size_t>(b.neighbor[static_cast<std::size_t>(k)]);
       if (j <= i || b.intact[static_cast<std::size_t>(k)] == bond_intact || !carries(i, j)) continue;
-      const Vec<D> jump = crack_jump<D>(m, i, k, strain_of(i), strain_of(j));
-      double w = norm<D>(jump);
+      double w = 0.0;
       Vec<D> n{};
-      if (w > 0.0) n = (1.0 / w) * jump;
-      if (!law_of.empty() && law_of[static_cast<std::size_t>(k)] >= 0) {
-        const auto& law = ib.laws[static_cast<std::size_t>(law_of[static_cast<std::size_t>(k)])];
-        double across = 0.0;  // the side of j: sign of xi . normal
-        for (int p = 0; p < D; ++p) n[p] = law.normal[p], across += b.family_of(k).xi[p] * law.normal[p];
-        w = std::max(0.0, (across > 0.0 ? 1.0 : -1.0) * dot<D>(jump, n));
+      if (const auto q = interface_entry<D>(m, i, k); q >= 0) {  // a failed interface bond: its faces' normal opening
+        const auto& law = m.interface_bonds.laws[m.interface_bonds.interface[static_cast<std::size_t>(q)]];
+        for (int p = 0; p < D; ++p) n[p] = law.normal[p];
+        w = std::max(0.0, interface_opening<D>(m, i, j, law));
+      } else {
+        const Vec<D> jump = crack_jump<D>(m, i, k, strain_of(i), strain_of(j));
+        w = norm<D>(jump);
+        if (w > 0.0) n = (1.0 / w) * jump;
       }
       FlowBond f{i, j, w, 0.0};
       if (w > 0.0) {
