@@ -7,6 +7,7 @@
 #include "rift/load/traction_layer.hpp"
 #include "rift/pd/crack_pressure.hpp"
 #include "rift/pd/network_load.hpp"
+#include "rift/pd/viscous_fluid.hpp"
 
 namespace rift::load {
 
@@ -43,6 +44,10 @@ Boundaries<D>::Boundaries(const scene::Scene& s, pd::Model<D>& m) {
   for (const auto& c : s.cracks) pressure_sources_.push_back({c.pressure, c.pressure_time, false, 0.0, 0.0});
   for (const auto& b : s.boreholes)
     pressure_sources_.push_back({b.pressure, b.pressure_time, b.injection_rate.has_value(), b.injection_rate.value_or(0.0), b.fluid_bulk_modulus});
+  // a viscous injected fluid keeps its nodes' fluid on the model (pd/viscous_fluid.hpp)
+  m.fluid_network.viscous.assign(pressure_sources_.size(), {});
+  for (std::size_t h = 0; h < s.boreholes.size(); ++h)
+    if (s.boreholes[h].injection_rate) m.fluid_network.viscous[s.cracks.size() + h].viscosity = s.boreholes[h].fluid_viscosity;
   for (const auto& name : s.output.reactions) {
     reaction_names_.push_back(name);
     reaction_particles_.push_back(select<D>(s, m, name));
@@ -103,6 +108,10 @@ void Boundaries<D>::apply_body_forces(pd::Model<D>& m, double t) const {
     const auto& src = pressure_sources_[c];
     if (!src.injected) {
       fluid.pressure[c] = src.pressure * evaluate(src.time, t);
+      continue;
+    }
+    if (fluid.viscous[c].viscosity > 0.0) {  // flow along the cracks by the cubic law
+      fluid.pressure[c] = pd::viscous_fluid_pressure<D>(m, c, t, src.injection_rate, src.fluid_bulk_modulus, src.pressure);
       continue;
     }
     // mass balance of a lumped compressible fluid: the fluid's volume at zero pressure, V0 (1 + p0 / K_f)

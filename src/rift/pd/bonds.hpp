@@ -132,6 +132,16 @@ struct InterfaceBonds {
   bool empty() const { return slot.empty(); }
 };
 
+/// An injected fluid that flows along its cracks by the cubic law (viscous_fluid.hpp): what each
+/// node of its network holds, as the volume the fluid takes at zero pressure.
+struct ViscousFluid {
+  double viscosity = 0.0;  // Pa s; 0: the lumped fluid, one pressure
+  bool started = false;
+  double stored_time = 0.0, trial_time = 0.0;  // the last load step's end, and the one being solved, s
+  double stored_inlet = 0.0, trial_inlet = 0.0;  // the fluid in the borehole's node (its wall particles), m^3
+  std::vector<double> stored, trial;  // per particle: the fluid in its node (0 on the borehole's wall), m^3
+};
+
 /// The fluid each pressure source has in the cracks grown from it (fluid_network.hpp); empty
 /// without pressure sources.
 struct FluidNetwork {
@@ -153,6 +163,10 @@ struct FluidNetwork {
   std::vector<std::uint8_t> vented;      // the fluid reaches the outer surface: it escapes (breakthrough)
   std::vector<std::uint8_t> broke_through;  // vented at any time so far (a laboratory test ends there)
   std::vector<double> escaped_volume;    // injected fluid that escaped while vented (at zero pressure), m^3
+  std::vector<ViscousFluid> viscous;     // per source (empty: every fluid lumped)
+  // per particle, where a viscous fluid reaches or its network loads the rock (empty: no viscous fluid)
+  std::vector<double> local_pressure;       // that fluid's pressure there, Pa
+  std::vector<double> local_pore_pressure;  // local_pressure of the last equilibrium (effective_stretch.hpp), Pa
 };
 
 }  // namespace rift::pd

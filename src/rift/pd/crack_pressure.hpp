@@ -53,7 +53,11 @@ void add_crack_pressure(Model<D>& m, const std::vector<double>& pressure) {
     for (auto k = w.offset[i]; k < w.offset[i + 1]; ++k) {
       const int source = pressure_bond_source<D>(m, k, i);
       if (source < 0) continue;
-      const double p = pressure[static_cast<std::size_t>(source)] * w.coefficient[k];
+      double p_fluid = pressure[static_cast<std::size_t>(source)];
+      if (is_viscous(m.fluid_network, static_cast<std::size_t>(source)))  // the local pressure (viscous_fluid.hpp)
+        p_fluid = w.neighbor[k] >= 0 ? 0.5 * (m.fluid_network.local_pressure[i] + m.fluid_network.local_pressure[static_cast<std::size_t>(w.neighbor[k])])
+                                     : m.fluid_network.local_pressure[i];
+      const double p = p_fluid * w.coefficient[k];
       const auto& xi = w.xi[k];
       const double length = w.length(static_cast<std::size_t>(k));
       Vec<D> eta;

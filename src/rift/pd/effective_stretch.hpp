@@ -35,13 +35,18 @@ template <int D>
 void update_pore_stretch(Model<D>& m) {
   FluidNetwork& f = m.fluid_network;
   const std::size_t n = m.size();
+  // a viscous fluid's pressure at the particle (viscous_fluid.hpp), a lumped one's everywhere
+  const bool local = f.local_pore_pressure.size() == n;
   auto pore_pressure = [&](std::size_t i) {
     const int s = f.source[i];
-    return f.in_crack[i] && s >= 0 && static_cast<std::size_t>(s) < f.pore_pressure.size() ? f.pore_pressure[static_cast<std::size_t>(s)] : 0.0;
+    if (!f.in_crack[i] || s < 0 || static_cast<std::size_t>(s) >= f.pore_pressure.size()) return 0.0;
+    const auto source = static_cast<std::size_t>(s);
+    if (local && source < f.viscous.size() && f.viscous[source].viscosity > 0.0) return f.local_pore_pressure[i];
+    return f.pore_pressure[source];
   };
   bool any = false;
   if (f.in_crack.size() == n && f.source.size() == n)
-    for (std::size_t i = 0; i < n && !any; ++i) any = pore_pressure(i) > 0.0;
+    for (std::size_t i = 0; i < n && !any; ++i) any = pore_pressure(i) != 0.0;
   if (!any) {
     f.pore_stretch.clear();
     return;
@@ -55,8 +60,9 @@ void update_pore_stretch(Model<D>& m) {
 template <int D>
 void equilibrate_pore_pressure(Model<D>& m) {
   FluidNetwork& f = m.fluid_network;
-  if (f.pore_pressure == f.pressure) return;
+  if (f.pore_pressure == f.pressure && f.local_pore_pressure == f.local_pressure) return;
   f.pore_pressure = f.pressure;
+  f.local_pore_pressure = f.local_pressure;
   update_pore_stretch<D>(m);
 }
 

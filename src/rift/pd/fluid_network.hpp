@@ -229,20 +229,29 @@ void update_fluid_network(Model<D>& m) {
   update_pore_stretch<D>(m);  // the rock the fluid reached is wet at once
 }
 
+/// Whether source s's fluid flows by the cubic law, with a pressure per particle (viscous_fluid.hpp).
+inline bool is_viscous(const FluidNetwork& f, std::size_t s) {
+  return s < f.viscous.size() && f.viscous[s].viscosity > 0.0 && !f.local_pressure.empty();
+}
+
 /// Adds the fluid's load on the broken bonds of each network to m.body_force: p_s g_s (g: the
-/// network load, network_load.hpp; pressure[s] as in add_crack_pressure).
+/// network load, network_load.hpp; pressure[s] as in add_crack_pressure), or for a viscous fluid
+/// p_i g_s,i with p_i its local pressure at particle i.
 template <int D>
 void add_network_pressure(Model<D>& m, const std::vector<double>& pressure) {
   const FluidNetwork& f = m.fluid_network;
   for (std::size_t s = 0; s < f.network_load.size() && s < pressure.size(); ++s) {
     const auto& g = f.network_load[s];
-    if (g.empty() || pressure[s] == 0.0) continue;
+    const bool local = is_viscous(f, s);
+    if (g.empty() || (pressure[s] == 0.0 && !local)) continue;
     const double p = pressure[s];
     const std::size_t n = m.size();
 #pragma omp parallel for if(rift::parallel::worth_a_team(n)) schedule(static)
     for (std::size_t i = 0; i < n; ++i)
-      if (f.immersed.empty() || !f.immersed[i])
-        for (int q = 0; q < D; ++q) m.body_force[i][q] += p * g[i * D + static_cast<std::size_t>(q)];
+      if (f.immersed.empty() || !f.immersed[i]) {
+        const double p_i = local ? f.local_pressure[i] : p;
+        for (int q = 0; q < D; ++q) m.body_force[i][q] += p_i * g[i * D + static_cast<std::size_t>(q)];
+      }
   }
 }
 
@@ -251,16 +260,16 @@ void add_network_pressure(Model<D>& m, const std::vector<double>& pressure) {
 /// to a fluid site adds coef |xi| V_i (-xi/|xi| . u_i) (its force keeps the reference direction),
 /// a cut bond between two particles adds coef |xi| V_i (|y| - |xi|) / 2 from each end (coef V_i is
 /// symmetric), the network's load g_s . u_i V_i. For a flat crack whose faces part by w this is w
-/// times the face area.
+/// times the face area. wall_only: the bonds to fluid sites alone (a borehole's own volume).
 template <int D>
-double cavity_volume_change(const Model<D>& m, int s) {
+double cavity_volume_change(const Model<D>& m, int s, bool wall_only = false) {
   const CrackBonds& w = m.crack_bonds;
   const auto& loads = m.fluid_network.network_load;
   const std::vector<double>* network = static_cast<std::size_t>(s) < loads.size() && !loads[static_cast<std::size_t>(s)].empty()
                                            ? &loads[static_cast<std::size_t>(s)] : nullptr;
   const auto sums = parallel::ordered_sums<1>(m.size(), [&](std::size_t i, std::array<double, 1>& acc) {
     for (auto k = w.offset[i]; k < w.offset[i + 1]; ++k) {
-      if (pressure_bond_source<D>(m, k, i) != s) continue;
+      if (pressure_bond_source<D>(m, k, i) != s || (wall_only && w.neighbor[k] >= 0)) continue;
       const auto& x = w.xi[k];
       const double xi = w.length(static_cast<std::size_t>(k));
       if (w.neighbor[k] < 0) {
@@ -272,7 +281,7 @@ double cavity_volume_change(const Model<D>& m, int s) {
         acc[0] += 0.5 * w.coefficient[k] * xi * m.volume[i] * (y - xi);
       }
     }
-    if (network && (m.fluid_network.immersed.empty() || !m.fluid_network.immersed[i]))
+    if (network && !wall_only && (m.fluid_network.immersed.empty() || !m.fluid_network.immersed[i]))
       for (int q = 0; q < D; ++q)
         acc[0] += (*network)[i * D + static_cast<std::size_t>(q)] * (m.position[i][q] - m.reference_position[i][q]) * m.volume[i];
   });

@@ -22,8 +22,8 @@
 // (interface_contact.hpp interface_opening, as the interface law and the outcome reader take it:
 // slip along the interface opens nothing). S and N are the means of the bond's two ends'.
 // The pressure solve (solve_network_pressure) is backward Euler of each node's mass balance, an SPD
-// system (Eigen's sparse LDLT). Status: the building block of a viscous fluid; runs still use the
-// lumped, inviscid fluid of fluid_network.hpp until the coupling with the relaxation is in.
+// system (Eigen's sparse LDLT). An injected borehole's fluid with a viscosity flows so
+// (viscous_fluid.hpp); without one it is the lumped, inviscid fluid of fluid_network.hpp.
 #pragma once
 #include <Eigen/Sparse>
 #include <algorithm>
@@ -39,12 +39,11 @@
 
 namespace rift::pd {
 
-/// The jump of displacement across bond k of particle i: y_ij - (I + eps) xi, eps the mean of the
-/// two ends' bulk strains (3 x 3, row-major).
+/// The jump of displacement across a bond i-j of reference vector xi: y_ij - (I + eps) xi, eps the
+/// mean of the two ends' bulk strains (3 x 3, row-major).
 template <int D>
-Vec<D> crack_jump(const Model<D>& m, std::size_t i, std::int64_t k, const std::array<double, 9>& eps_i, const std::array<double, 9>& eps_j) {
-  const auto j = static_cast<std::size_t>(m.bonds.neighbor[static_cast<std::size_t>(k)]);
-  const auto& xi = m.bonds.family_of(k).xi;
+Vec<D> crack_jump(const Model<D>& m, std::size_t i, std::size_t j, const std::array<double, 3>& xi, const std::array<double, 9>& eps_i,
+                  const std::array<double, 9>& eps_j) {
   Vec<D> jump{};
   for (int p = 0; p < D; ++p) {
     double strained = xi[p];
@@ -56,22 +55,27 @@ Vec<D> crack_jump(const Model<D>& m, std::size_t i, std::int64_t k, const std::a
 
 /// Moments of particle i's family about a crack of normal n, over the bonds with xi . n > 0,
 /// weighted by V_j / V_i: N = sum (xi . n) (the bonds that cross a unit area of it) and
-/// S = sum (xi . n) (|xi|^2 - (xi . n)^2) / (D - 1) (their transverse reach).
+/// S = sum (xi . n) (|xi|^2 - (xi . n)^2) / (D - 1) (their transverse reach). The family is every
+/// bond it ever had: intact or broken, and those a pre-crack cut.
 struct CrackMoments {
   double normal = 0.0, transverse = 0.0;
 };
 template <int D>
 CrackMoments crack_moments(const Model<D>& m, std::size_t i, const Vec<D>& n) {
-  const Bonds& b = m.bonds;
   CrackMoments c;
-  for (auto k = b.offset[i]; k < b.offset[i + 1]; ++k) {
-    const auto& xi = b.family_of(k).xi;
+  auto add = [&](const std::array<double, 3>& xi, double volume) {
     double along = 0.0, squared = 0.0;
     for (int p = 0; p < D; ++p) along += xi[p] * n[p], squared += xi[p] * xi[p];
-    if (along <= 0.0) continue;
-    c.normal += along * b.volume(k);
-    c.transverse += along * (squared - along * along) * b.volume(k);
-  }
+    if (along <= 0.0) return;
+    c.normal += along * volume;
+    c.transverse += along * (squared - along * along) * volume;
+  };
+  const Bonds& b = m.bonds;
+  for (auto k = b.offset[i]; k < b.offset[i + 1]; ++k) add(b.family_of(k).xi, b.volume(k));
+  const CrackBonds& w = m.crack_bonds;
+  if (!w.offset.empty())
+    for (auto k = w.offset[i]; k < w.offset[i + 1]; ++k)
+      if (w.neighbor[static_cast<std::size_t>(k)] >= 0) add(w.xi[static_cast<std::size_t>(k)], w.volume[static_cast<std::size_t>(k)]);
   c.normal /= m.volume[i];
   c.transverse /= (D - 1) * m.volume[i];
   return c;
@@ -85,11 +89,14 @@ struct FlowBond {
   double volume = 0.0;       // the crack's volume this bond stands for, m^3
 };
 
-/// The broken bonds between particles that `carries` marks (each bond once, i < j), with their
-/// openings and conductances for a fluid of viscosity mu (Pa s).
-template <int D, class Carries>
-std::vector<FlowBond> flow_bonds(const Model<D>& m, double viscosity, Carries carries) {
+/// The bonds that carry fluid between the particles of a list, each once (i < j), with their
+/// openings and conductances for a fluid of viscosity mu (Pa s): the broken bonds for which
+/// carries(i, k, j) holds (k the bond's index in m.bonds) and the bonds a pre-crack cut for which
+/// cut(i, k, j) holds (k its index in m.crack_bonds).
+template <int D, class Carries, class Cut>
+std::vector<FlowBond> flow_bonds(const Model<D>& m, double viscosity, const std::vector<std::size_t>& particles, Carries carries, Cut cut) {
   const Bonds& b = m.bonds;
+  const CrackBonds& cb = m.crack_bonds;
   std::vector<FlowBond> out;
   std::vector<std::array<double, 9>> strain(m.size());
   std::vector<std::uint8_t> strained(m.size(), 0);
@@ -97,30 +104,58 @@ std::vector<FlowBond> flow_bonds(const Model<D>& m, double viscosity, Carries ca
     if (!strained[i]) strain[i] = bulk_strain<D>(m, i), strained[i] = 1;
     return strain[i];
   };
-  for (std::size_t i = 0; i < m.size(); ++i)
+  // a bond of opening w and normal n between i and j, V_j its neighbour's volume share
+  auto add = [&](std::size_t i, std::size_t j, double w, const Vec<D>& n, double volume) {
+    FlowBond f{i, j, w, 0.0, 0.0};
+    if (w > 0.0) {
+      const CrackMoments ci = crack_moments<D>(m, i, n), cj = crack_moments<D>(m, j, n);
+      f.conductance = volume * w * w * w / (6.0 * viscosity * (ci.transverse + cj.transverse));
+      f.volume = 2.0 * volume * w / (ci.normal + cj.normal);
+    }
+    out.push_back(f);
+  };
+  auto opening = [&](std::size_t i, std::size_t j, const std::array<double, 3>& xi, Vec<D>& n) {
+    const Vec<D> jump = crack_jump<D>(m, i, j, xi, strain_of(i), strain_of(j));
+    const double w = norm<D>(jump);
+    n = w > 0.0 ? (1.0 / w) * jump : Vec<D>{};
+    return w;
+  };
+  for (const std::size_t i : particles) {
     for (auto k = b.offset[i]; k < b.offset[i + 1]; ++k) {
       const auto j = static_cast<std::size_t>(b.neighbor[static_cast<std::size_t>(k)]);
-      if (j <= i || b.intact[static_cast<std::size_t>(k)] == bond_intact || !carries(i, j)) continue;
-      double w = 0.0;
+      if (j <= i || b.intact[static_cast<std::size_t>(k)] == bond_intact || !carries(i, k, j)) continue;
       Vec<D> n{};
+      double w = 0.0;
       if (const auto q = interface_entry<D>(m, i, k); q >= 0) {  // a failed interface bond: its faces' normal opening
         const auto& law = m.interface_bonds.laws[m.interface_bonds.interface[static_cast<std::size_t>(q)]];
         for (int p = 0; p < D; ++p) n[p] = law.normal[p];
         w = std::max(0.0, interface_opening<D>(m, i, j, law));
       } else {
-        const Vec<D> jump = crack_jump<D>(m, i, k, strain_of(i), strain_of(j));
-        w = norm<D>(jump);
-        if (w > 0.0) n = (1.0 / w) * jump;
+        w = opening(i, j, b.family_of(k).xi, n);
       }
-      FlowBond f{i, j, w, 0.0};
-      if (w > 0.0) {
-        const CrackMoments ci = crack_moments<D>(m, i, n), cj = crack_moments<D>(m, j, n);
-        f.conductance = b.volume(k) * w * w * w / (6.0 * viscosity * (ci.transverse + cj.transverse));
-        f.volume = 2.0 * b.volume(k) * w / (ci.normal + cj.normal);
-      }
-      out.push_back(f);
+      add(i, j, w, n, b.volume(k));
     }
+    if (cb.offset.empty()) continue;
+    for (auto k = cb.offset[i]; k < cb.offset[i + 1]; ++k) {
+      const auto neighbor = cb.neighbor[static_cast<std::size_t>(k)];
+      if (neighbor < 0 || static_cast<std::size_t>(neighbor) <= i || !cut(i, k, static_cast<std::size_t>(neighbor))) continue;
+      const auto j = static_cast<std::size_t>(neighbor);
+      Vec<D> n{};
+      const double w = opening(i, j, cb.xi[static_cast<std::size_t>(k)], n);
+      add(i, j, w, n, cb.volume[static_cast<std::size_t>(k)]);
+    }
+  }
   return out;
+}
+
+/// Every broken bond of the model between particles that carries(i, j) accepts (no cut bonds).
+template <int D, class Carries>
+std::vector<FlowBond> flow_bonds(const Model<D>& m, double viscosity, Carries carries) {
+  std::vector<std::size_t> all(m.size());
+  for (std::size_t i = 0; i < all.size(); ++i) all[i] = i;
+  return flow_bonds<D>(
+      m, viscosity, all, [&](std::size_t i, std::int64_t, std::size_t j) { return carries(i, j); },
+      [](std::size_t, std::int64_t, std::size_t) { return false; });
 }
 
 /// The pressure on the nodes of a flow network: for each free node a,

@@ -385,12 +385,14 @@ void parse_boreholes(R& root, Scene& s) {
     if (auto q = r.number("injection_rate")) {
       b.injection_rate = r.non_negative("injection_rate", *q);
       b.fluid_bulk_modulus = r.positive("fluid_bulk_modulus", r.required_number("fluid_bulk_modulus", "bulk modulus of the injected fluid, Pa"));
+      b.fluid_viscosity = r.non_negative("fluid_viscosity", r.number("fluid_viscosity", 0.0));
       if (r.has("time"))
         r.fail("time", "with injection_rate the pressure follows from the injected volume; `pressure` is its value at t = 0 and takes no time function");
-    } else if (r.has("fluid_bulk_modulus")) {
-      r.fail("fluid_bulk_modulus", "only with injection_rate (the pressure is prescribed otherwise)");
+    } else {
+      for (const char* key : {"fluid_bulk_modulus", "fluid_viscosity"})
+        if (r.has(key)) r.fail(key, "only with injection_rate (the pressure is prescribed otherwise)");
     }
-    r.finish({"region", "pressure", "time", "injection_rate", "fluid_bulk_modulus"});
+    r.finish({"region", "pressure", "time", "injection_rate", "fluid_bulk_modulus", "fluid_viscosity"});
     s.boreholes.push_back(b);
   });
 }

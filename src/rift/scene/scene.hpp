@@ -124,6 +124,10 @@ struct Borehole {
   /// fluid's bulk modulus; the pressure follows from the mass balance (pd/fluid_network.hpp).
   std::optional<double> injection_rate;
   double fluid_bulk_modulus = 0.0;  // Pa
+  /// The fluid's dynamic viscosity, Pa s: 0 keeps the lumped, inviscid fluid (one pressure in the
+  /// borehole and every crack joined to it); above 0 the fluid flows along the cracks by the cubic
+  /// law (pd/viscous_fluid.hpp).
+  double fluid_viscosity = 0.0;
 };
 
 /// Peridynamics: the far-field principal stresses of the rock (Pa, compression negative), applied

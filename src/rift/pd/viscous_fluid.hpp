@@ -1,0 +1,150 @@
+// An injected fluid that flows along its cracks: lubrication flow by the cubic law
+// (network_flow.hpp) in place of the lumped fluid's one pressure (fluid_network.hpp). This is what
+// makes a hydraulic fracture viscosity-dominated (Adachi and Detournay 2002; Detournay 2004): the
+// pressure falls from the borehole to the tip, most of it near the tip.
+// The network's nodes: the borehole, with the particles of its wall (those with bonds to its fluid
+// sites), which share its pressure, and every other particle the fluid reaches. A node holds the
+// fluid of half the crack volume of each flow bond it ends (network_flow.hpp: w per unit crack
+// area), the borehole's node also the borehole's own volume (cavity_volume_change, wall_only).
+// Each node's fluid, as the volume it takes at zero pressure, M = V (1 + p / K_f), obeys the mass
+// balance over a load step of length dt, backward Euler,
+//   V_a (1 + p_a / K_f) - M_a^n = dt (sum_b C_ab (p_b - p_a) + Q delta_a0),
+// with V and C from the current positions: solved at every relaxation iteration, as the lumped
+// fluid's pressure is, so that the relaxation finds rock and fluid in equilibrium together. Where
+// the conductances are large this is the lumped fluid: one pressure with K_f (sum M + Q dt) / sum V
+// - K_f (tests/test_viscous_fluid.cpp). A node the crack opens holds no fluid yet (M = 0) and fills
+// through its bonds. The fluid may go into tension near the tip (the zero-lag model of Adachi and
+// Detournay 2002: no fluid lag, as under a large confining stress). Once the network reaches the
+// outer surface (breakthrough) the nodes there are held at zero pressure and the fluid escapes.
+// The rock is loaded by p_i g_s,i (network_load.hpp), p_i the pressure at particle i; a particle the
+// network's load reaches but the fluid does not (LPS coupling) takes the mean of the wet particles
+// of its family.
+#pragma once
+#include <algorithm>
+#include <cstdint>
+#include <vector>
+
+#include "rift/pd/fluid_network.hpp"
+#include "rift/pd/network_flow.hpp"
+
+namespace rift::pd {
+
+/// Source s's viscous fluid at time t (call after update_fluid_network and update_network_load):
+/// solves its nodes' pressures, writes them to m.fluid_network.local_pressure and the fluid each
+/// node holds to its trial state, and returns the pressure in the borehole. A call at a later time
+/// than the last first stores the last call's state as the end of the previous load step.
+template <int D>
+double viscous_fluid_pressure(Model<D>& m, std::size_t s, double t, double injection_rate, double bulk_modulus, double initial_pressure) {
+  FluidNetwork& f = m.fluid_network;
+  ViscousFluid& v = f.viscous[s];
+  const std::size_t n = m.size();
+  if (!v.started) {  // the borehole holds V0 (1 + p0 / K_f) at t = 0
+    v.started = true;
+    v.stored_time = v.trial_time = 0.0;
+    v.stored_inlet = v.trial_inlet = f.reference_volume[s] * (1.0 + initial_pressure / bulk_modulus);
+  }
+  if (v.stored.size() != n) v.stored.assign(n, 0.0), v.trial.assign(n, 0.0);
+  if (t > v.trial_time) {  // a new load step: the last state is the previous one's end
+    v.stored_inlet = v.trial_inlet;
+    v.stored = v.trial;
+    v.stored_time = v.trial_time;
+    v.trial_time = t;
+  }
+  const double dt = std::max(t - v.stored_time, 1e-12);
+  if (f.local_pressure.size() != n) f.local_pressure.assign(n, 0.0);
+
+  // the nodes: 0 the borehole and its wall, then every other particle the fluid reaches
+  const CrackBonds& w = m.crack_bonds;
+  std::vector<std::int64_t> node(n, -1);
+  std::vector<std::size_t> wet, particle_of_node(1, 0);
+  for (std::size_t i = 0; i < n; ++i) {
+    if (f.source[i] != static_cast<int>(s) || (!f.immersed.empty() && f.immersed[i])) continue;
+    wet.push_back(i);
+    bool wall = false;
+    for (auto k = w.offset[i]; k < w.offset[i + 1] && !wall; ++k)
+      wall = w.neighbor[static_cast<std::size_t>(k)] < 0 && w.source[static_cast<std::size_t>(k)] == s;
+    if (wall) {
+      node[i] = 0;
+    } else {
+      node[i] = static_cast<std::int64_t>(particle_of_node.size());
+      particle_of_node.push_back(i);
+    }
+  }
+  const std::size_t nodes = particle_of_node.size();
+  const auto bonds = flow_bonds<D>(
+      m, v.viscosity, wet, [&](std::size_t i, std::int64_t k, std::size_t j) { return node[j] >= 0 && carries_fluid<D>(m, k, i, j); },
+      [&](std::size_t, std::int64_t k, std::size_t j) { return node[j] >= 0 && f.dry[w.source[static_cast<std::size_t>(k)]]; });
+  std::vector<double> volume(nodes, 0.0);
+  volume[0] = f.reference_volume[s] + cavity_volume_change<D>(m, static_cast<int>(s), true);
+  std::vector<FlowBond> links;
+  for (const auto& b : bonds) {
+    const auto a = static_cast<std::size_t>(node[b.i]), c = static_cast<std::size_t>(node[b.j]);
+    volume[a] += 0.5 * b.volume;
+    volume[c] += 0.5 * b.volume;
+    if (a != c && b.conductance > 0.0) links.push_back({a, c, b.opening, b.conductance, 0.0});
+  }
+  // held at zero pressure: the nodes on the outer surface once the fluid breaks through
+  std::vector<std::uint8_t> fixed(nodes, 0);
+  if (s < f.vented.size() && f.vented[s] && f.outer_surface.size() == n)
+    for (std::size_t a = 1; a < nodes; ++a) fixed[a] = f.outer_surface[particle_of_node[a]];
+  std::vector<double> storage(nodes), source(nodes), zero(nodes, 0.0), held(nodes);
+  for (std::size_t a = 0; a < nodes; ++a) {
+    held[a] = a == 0 ? v.stored_inlet : v.stored[particle_of_node[a]];
+    storage[a] = volume[a] / (bulk_modulus * dt);
+    source[a] = (held[a] - volume[a]) / dt + (a == 0 ? injection_rate : 0.0);
+  }
+  // cavitation: the fluid takes no tension. A node whose pressure would fall below zero is held at
+  // zero and only partly filled (the fluid lag behind a tip that opens faster than the fluid
+  // follows), until what flows in fills it (an active set, a few solves).
+  std::vector<std::uint8_t> cavitated(nodes, 0), held_at_zero(fixed);
+  std::vector<double> p, inflow(nodes);
+  for (int pass = 0; pass < 30; ++pass) {
+    for (std::size_t a = 0; a < nodes; ++a) held_at_zero[a] = fixed[a] || cavitated[a];
+    p = solve_network_pressure(links, storage, zero, source, held_at_zero, zero);
+    std::fill(inflow.begin(), inflow.end(), 0.0);
+    for (const auto& l : links) inflow[l.i] += l.conductance * (p[l.j] - p[l.i]), inflow[l.j] += l.conductance * (p[l.i] - p[l.j]);
+    bool changed = false;
+    for (std::size_t a = 0; a < nodes; ++a) {
+      if (fixed[a]) continue;
+      if (!cavitated[a] && p[a] < 0.0) cavitated[a] = 1, changed = true;
+      else if (cavitated[a] && held[a] + dt * (inflow[a] + (a == 0 ? injection_rate : 0.0)) > volume[a]) cavitated[a] = 0, changed = true;
+    }
+    if (!changed) break;
+  }
+  // what each node holds: a wet node V (1 + p / K_f), a cavitated one what it held and what flowed in
+  auto holds = [&](std::size_t a) {
+    if (!cavitated[a]) return volume[a] * (1.0 + p[a] / bulk_modulus);
+    return std::clamp(held[a] + dt * (inflow[a] + (a == 0 ? injection_rate : 0.0)), 0.0, volume[a]);
+  };
+  // the fluid each node holds now, and the pressure at each particle
+  v.trial_inlet = holds(0);
+  std::fill(v.trial.begin(), v.trial.end(), 0.0);
+  for (std::size_t a = 1; a < nodes; ++a) v.trial[particle_of_node[a]] = holds(a);
+  for (const std::size_t i : wet) f.local_pressure[i] = p[static_cast<std::size_t>(node[i])];
+  // a particle the network loads that the fluid does not reach: the mean of its family's wet particles
+  if (s < f.network_load.size() && !f.network_load[s].empty()) {
+    const auto& g = f.network_load[s];
+    const Bonds& b = m.bonds;
+    for (std::size_t i = 0; i < n; ++i) {
+      if (node[i] >= 0) continue;
+      bool loaded = false;
+      for (int q = 0; q < D; ++q) loaded = loaded || g[i * D + static_cast<std::size_t>(q)] != 0.0;
+      if (!loaded) continue;
+      double sum = 0.0;
+      int count = 0;
+      for (auto k = b.offset[i]; k < b.offset[i + 1]; ++k) {
+        const auto j = static_cast<std::size_t>(b.neighbor[k]);
+        if (node[j] >= 0) sum += p[static_cast<std::size_t>(node[j])], ++count;
+      }
+      f.local_pressure[i] = count > 0 ? sum / count : p[0];
+    }
+  }
+  if (s < f.cavity_volume.size()) {
+    double total = 0.0;
+    for (double x : volume) total += x;
+    f.cavity_volume[s] = total;
+  }
+  return p[0];
+}
+
+}  // namespace rift::pd
