@@ -3,7 +3,8 @@
 // makes a hydraulic fracture viscosity-dominated (Adachi and Detournay 2002; Detournay 2004): the
 // pressure falls from the borehole to the tip, most of it near the tip.
 // The network's nodes: the borehole, with the particles of its wall (those with bonds to its fluid
-// sites), which share its pressure, and every other particle the fluid reaches. A node holds the
+// sites) and the faces of a dry pre-crack that starts in it (a notch), which share its pressure,
+// and every other particle the fluid reaches. A node holds the
 // fluid of half the crack volume of each flow bond it ends (network_flow.hpp: w per unit crack
 // area), the borehole's node also the borehole's own volume (cavity_volume_change, wall_only).
 // Each node's fluid, as the volume it takes at zero pressure, M = V (1 + p / K_f), obeys the mass
@@ -53,17 +54,29 @@ double viscous_fluid_pressure(Model<D>& m, std::size_t s, double t, double injec
   const double dt = std::max(t - v.stored_time, 1e-12);
   if (f.local_pressure.size() != n) f.local_pressure.assign(n, 0.0);
 
-  // the nodes: 0 the borehole and its wall, then every other particle the fluid reaches
+  // the nodes: 0 the borehole with its wall and its notches, then every other particle the fluid reaches
   const CrackBonds& w = m.crack_bonds;
-  std::vector<std::int64_t> node(n, -1);
-  std::vector<std::size_t> wet, particle_of_node(1, 0);
+  std::vector<std::size_t> wet;
+  std::vector<std::uint8_t> wall(n, 0), notch(f.dry.size(), 0);
   for (std::size_t i = 0; i < n; ++i) {
     if (f.source[i] != static_cast<int>(s) || (!f.immersed.empty() && f.immersed[i])) continue;
     wet.push_back(i);
-    bool wall = false;
-    for (auto k = w.offset[i]; k < w.offset[i + 1] && !wall; ++k)
-      wall = w.neighbor[static_cast<std::size_t>(k)] < 0 && w.source[static_cast<std::size_t>(k)] == s;
-    if (wall) {
+    for (auto k = w.offset[i]; k < w.offset[i + 1] && !wall[i]; ++k)
+      wall[i] = w.neighbor[static_cast<std::size_t>(k)] < 0 && w.source[static_cast<std::size_t>(k)] == s;
+  }
+  // a dry pre-crack that a wall particle's bonds cross starts in the borehole: a notch, whose faces
+  // share its pressure (a pre-crack closed at first carries no flow, and the fluid would never enter)
+  for (const std::size_t i : wet)
+    if (wall[i])
+      for (auto k = w.offset[i]; k < w.offset[i + 1]; ++k)
+        if (w.neighbor[static_cast<std::size_t>(k)] >= 0 && f.dry[w.source[static_cast<std::size_t>(k)]]) notch[w.source[static_cast<std::size_t>(k)]] = 1;
+  std::vector<std::int64_t> node(n, -1);
+  std::vector<std::size_t> particle_of_node(1, 0);
+  for (const std::size_t i : wet) {
+    bool in_borehole = wall[i];
+    for (auto k = w.offset[i]; k < w.offset[i + 1] && !in_borehole; ++k)
+      in_borehole = w.neighbor[static_cast<std::size_t>(k)] >= 0 && notch[w.source[static_cast<std::size_t>(k)]];
+    if (in_borehole) {
       node[i] = 0;
     } else {
       node[i] = static_cast<std::int64_t>(particle_of_node.size());
