@@ -14,9 +14,10 @@
 // fluid's pressure is, so that the relaxation finds rock and fluid in equilibrium together. Where
 // the conductances are large this is the lumped fluid: one pressure with K_f (sum M + Q dt) / sum V
 // - K_f (tests/test_viscous_fluid.cpp). A node the crack opens holds no fluid yet (M = 0) and fills
-// through its bonds. The fluid may go into tension near the tip (the zero-lag model of Adachi and
-// Detournay 2002: no fluid lag, as under a large confining stress). Once the network reaches the
-// outer surface (breakthrough) the nodes there are held at zero pressure and the fluid escapes.
+// through its bonds. The fluid takes no tension: a node that would go below zero cavitates, held at
+// zero and partly filled (the fluid lag of Garagash and Detournay 2000; under a large confining
+// stress it vanishes, the zero-lag model of Adachi and Detournay 2002). Once the network reaches
+// the outer surface (breakthrough) the nodes there are held at zero pressure and the fluid escapes.
 // The rock is loaded by p_i g_s,i (network_load.hpp), p_i the pressure at particle i; a particle the
 // network's load reaches but the fluid does not (LPS coupling) takes the mean of the wet particles
 // of its family.
