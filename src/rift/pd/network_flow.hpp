@@ -17,8 +17,7 @@
 // less what the rock around its ends strains over it, y - (I + eps) xi, eps the mean of its ends'
 // bulk strains (bulk_strain.hpp). The rock's own strain over a bond of three spacings is not small
 // beside a hydraulic fracture's opening (5 MPa over E = 8.4 GPa: 5 um over 9 mm, against openings
-// of 20-30 um). Its normal is the jump's direction (an opening, mode I, crack), and a jump that
-// shortens the bond is a closed crack (faces in contact: no opening); across a failed
+// of 20-30 um). Its normal is the jump's direction (an opening, mode I, crack); across a failed
 // interface bond it is the interface's normal and the opening its faces' normal opening
 // (interface_contact.hpp interface_opening, as the interface law and the outcome reader take it:
 // slip along the interface opens nothing). S and N are the means of the bond's two ends'.
@@ -115,12 +114,9 @@ std::vector<FlowBond> flow_bonds(const Model<D>& m, double viscosity, const std:
     }
     out.push_back(f);
   };
-  // a jump that shortens the bond closes the crack: its faces are in contact, no opening
   auto opening = [&](std::size_t i, std::size_t j, const std::array<double, 3>& xi, Vec<D>& n) {
     const Vec<D> jump = crack_jump<D>(m, i, j, xi, strain_of(i), strain_of(j));
-    double along = 0.0;
-    for (int p = 0; p < D; ++p) along += jump[p] * xi[p];
-    const double w = along > 0.0 ? norm<D>(jump) : 0.0;
+    const double w = norm<D>(jump);
     n = w > 0.0 ? (1.0 / w) * jump : Vec<D>{};
     return w;
   };
