@@ -110,7 +110,7 @@ void Boundaries<D>::apply_body_forces(pd::Model<D>& m, double t) const {
       fluid.pressure[c] = src.pressure * evaluate(src.time, t);
       continue;
     }
-    if (fluid.viscous[c].viscosity > 0.0) {  // flow along the cracks by the cubic law
+    if (fluid.flows(c)) {  // flow along the cracks by the cubic law
       fluid.pressure[c] = pd::viscous_fluid_pressure<D>(m, c, t, src.injection_rate, src.fluid_bulk_modulus, src.pressure);
       continue;
     }

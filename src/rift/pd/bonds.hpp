@@ -167,6 +167,9 @@ struct FluidNetwork {
   // per particle, where a viscous fluid reaches or its network loads the rock (empty: no viscous fluid)
   std::vector<double> local_pressure;       // that fluid's pressure there, Pa
   std::vector<double> local_pore_pressure;  // local_pressure of the last equilibrium (effective_stretch.hpp), Pa
+
+  /// Whether source s's fluid flows along its cracks by the cubic law (viscous_fluid.hpp).
+  bool flows(std::size_t s) const { return s < viscous.size() && viscous[s].viscosity > 0.0; }
 };
 
 }  // namespace rift::pd

@@ -41,7 +41,7 @@ void update_pore_stretch(Model<D>& m) {
     const int s = f.source[i];
     if (!f.in_crack[i] || s < 0 || static_cast<std::size_t>(s) >= f.pore_pressure.size()) return 0.0;
     const auto source = static_cast<std::size_t>(s);
-    if (local && source < f.viscous.size() && f.viscous[source].viscosity > 0.0) return f.local_pore_pressure[i];
+    if (local && f.flows(source)) return f.local_pore_pressure[i];
     return f.pore_pressure[source];
   };
   bool any = false;

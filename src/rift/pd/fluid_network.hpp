@@ -231,7 +231,7 @@ void update_fluid_network(Model<D>& m) {
 
 /// Whether source s's fluid flows by the cubic law, with a pressure per particle (viscous_fluid.hpp).
 inline bool is_viscous(const FluidNetwork& f, std::size_t s) {
-  return s < f.viscous.size() && f.viscous[s].viscosity > 0.0 && !f.local_pressure.empty();
+  return f.flows(s) && !f.local_pressure.empty();
 }
 
 /// Adds the fluid's load on the broken bonds of each network to m.body_force: p_s g_s (g: the

@@ -31,6 +31,7 @@
 #include <cmath>
 #include <cstdint>
 #include <stdexcept>
+#include <unordered_map>
 #include <vector>
 
 #include "rift/pd/bulk_strain.hpp"
@@ -98,11 +99,12 @@ std::vector<FlowBond> flow_bonds(const Model<D>& m, double viscosity, const std:
   const Bonds& b = m.bonds;
   const CrackBonds& cb = m.crack_bonds;
   std::vector<FlowBond> out;
-  std::vector<std::array<double, 9>> strain(m.size());
-  std::vector<std::uint8_t> strained(m.size(), 0);
+  // the bulk strain of each bond end, once (the particles near the crack, not the model)
+  std::unordered_map<std::size_t, std::array<double, 9>> strain;
   auto strain_of = [&](std::size_t i) -> const std::array<double, 9>& {
-    if (!strained[i]) strain[i] = bulk_strain<D>(m, i), strained[i] = 1;
-    return strain[i];
+    auto [it, added] = strain.try_emplace(i);
+    if (added) it->second = bulk_strain<D>(m, i);
+    return it->second;
   };
   // a bond of opening w and normal n between i and j, V_j its neighbour's volume share
   auto add = [&](std::size_t i, std::size_t j, double w, const Vec<D>& n, double volume) {

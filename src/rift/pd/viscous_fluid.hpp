@@ -117,18 +117,19 @@ double viscous_fluid_pressure(Model<D>& m, std::size_t s, double t, double injec
     p = solve_network_pressure(links, storage, zero, source, held_at_zero, zero);
     std::fill(inflow.begin(), inflow.end(), 0.0);
     for (const auto& l : links) inflow[l.i] += l.conductance * (p[l.j] - p[l.i]), inflow[l.j] += l.conductance * (p[l.i] - p[l.j]);
+    inflow[0] += injection_rate;  // the pump
     bool changed = false;
     for (std::size_t a = 0; a < nodes; ++a) {
       if (fixed[a]) continue;
       if (!cavitated[a] && p[a] < 0.0) cavitated[a] = 1, changed = true;
-      else if (cavitated[a] && held[a] + dt * (inflow[a] + (a == 0 ? injection_rate : 0.0)) > volume[a]) cavitated[a] = 0, changed = true;
+      else if (cavitated[a] && held[a] + dt * inflow[a] > volume[a]) cavitated[a] = 0, changed = true;
     }
     if (!changed) break;
   }
   // what each node holds: a wet node V (1 + p / K_f), a cavitated one what it held and what flowed in
   auto holds = [&](std::size_t a) {
     if (!cavitated[a]) return volume[a] * (1.0 + p[a] / bulk_modulus);
-    return std::clamp(held[a] + dt * (inflow[a] + (a == 0 ? injection_rate : 0.0)), 0.0, volume[a]);
+    return std::clamp(held[a] + dt * inflow[a], 0.0, volume[a]);
   };
   // the fluid each node holds now, and the pressure at each particle
   v.trial_inlet = holds(0);
