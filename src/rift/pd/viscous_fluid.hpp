@@ -4,9 +4,17 @@
 // pressure falls from the borehole to the tip, most of it near the tip.
 // The network's nodes: the borehole, with the particles of its wall (those with bonds to its fluid
 // sites) and the faces of a dry pre-crack that starts in it (a notch), which share its pressure,
-// and every other particle the fluid reaches. A node holds the
-// fluid of half the crack volume of each flow bond it ends (network_flow.hpp: w per unit crack
-// area), the borehole's node also the borehole's own volume (cavity_volume_change, wall_only).
+// and every other particle the fluid reaches. A node holds half the crack volume of each flow bond
+// it ends (network_flow.hpp: w per unit crack area), the borehole's node also the borehole's own
+// volume (cavity_volume_change, wall_only). The bonds' volumes are scaled so that together they are
+// the work conjugate of the fluid's load on the network (the lumped fluid's cavity volume less the
+// borehole's): the openings say where the fluid is, the conjugate how much room there is. With it
+// the fluid's work p dV is the work of its load on the rock, so rock and fluid relax together as one
+// conservative system; and faces pressed together, which overlap by up to a tenth of a spacing
+// before the short-range contact holds them (|jump| counts that as opening), or a loose fragment in
+// the crack (whose every broken bond opens as it moves) add nothing. Under 15 MPa of confinement the
+// unscaled openings made the borehole's pressure fall below the confining stress, to zero, while
+// the crack took fluid; scaled, it stays above it and rises with the injection.
 // Each node's fluid, as the volume it takes at zero pressure, M = V (1 + p / K_f), obeys the mass
 // balance over a load step of length dt, backward Euler,
 //   V_a (1 + p_a / K_f) - M_a^n = dt (sum_b C_ab (p_b - p_a) + Q delta_a0),
@@ -30,6 +38,24 @@
 #include "rift/pd/network_flow.hpp"
 
 namespace rift::pd {
+
+/// A node whose crack the rock has closed (every bond of it shut: no volume, no conductance) cannot
+/// keep the fluid it held: the faces squeeze it out into the open neighbour of largest volume, or
+/// into the borehole's node where no neighbour is open. What every node holds is conserved.
+inline void squeeze_out_closed_nodes(const std::vector<FlowBond>& bonds, const std::vector<std::int64_t>& node, const std::vector<double>& volume,
+                                     std::vector<double>& held) {
+  std::vector<std::int64_t> outlet(volume.size(), -1);
+  for (const auto& b : bonds) {
+    const auto a = static_cast<std::size_t>(node[b.i]), c = static_cast<std::size_t>(node[b.j]);
+    if (volume[c] > 0.0 && (outlet[a] < 0 || volume[c] > volume[static_cast<std::size_t>(outlet[a])])) outlet[a] = static_cast<std::int64_t>(c);
+    if (volume[a] > 0.0 && (outlet[c] < 0 || volume[a] > volume[static_cast<std::size_t>(outlet[c])])) outlet[c] = static_cast<std::int64_t>(a);
+  }
+  for (std::size_t a = 1; a < volume.size(); ++a) {
+    if (volume[a] > 0.0 || held[a] == 0.0) continue;
+    held[outlet[a] >= 0 ? static_cast<std::size_t>(outlet[a]) : 0] += held[a];
+    held[a] = 0.0;
+  }
+}
 
 /// Source s's viscous fluid at time t (call after update_fluid_network and update_network_load):
 /// solves its nodes' pressures, writes them to m.fluid_network.local_pressure and the fluid each
@@ -89,12 +115,18 @@ double viscous_fluid_pressure(Model<D>& m, std::size_t s, double t, double injec
       m, v.viscosity, wet, [&](std::size_t i, std::int64_t k, std::size_t j) { return node[j] >= 0 && carries_fluid<D>(m, k, i, j); },
       [&](std::size_t, std::int64_t k, std::size_t j) { return node[j] >= 0 && f.dry[w.source[static_cast<std::size_t>(k)]]; });
   std::vector<double> volume(nodes, 0.0);
-  volume[0] = f.reference_volume[s] + cavity_volume_change<D>(m, static_cast<int>(s), true);
+  const double borehole_change = cavity_volume_change<D>(m, static_cast<int>(s), true);
+  volume[0] = f.reference_volume[s] + borehole_change;
+  // the bonds' volumes, scaled to the work conjugate of the network's load (see the top)
+  double opened = 0.0;
+  for (const auto& b : bonds) opened += b.volume;
+  const double network_volume = cavity_volume_change<D>(m, static_cast<int>(s)) - borehole_change;
+  const double scale = opened > 0.0 ? std::max(0.0, network_volume / opened) : 0.0;
   std::vector<FlowBond> links;
   for (const auto& b : bonds) {
     const auto a = static_cast<std::size_t>(node[b.i]), c = static_cast<std::size_t>(node[b.j]);
-    volume[a] += 0.5 * b.volume;
-    volume[c] += 0.5 * b.volume;
+    volume[a] += 0.5 * scale * b.volume;
+    volume[c] += 0.5 * scale * b.volume;
     if (a != c && b.conductance > 0.0) links.push_back({a, c, b.opening, b.conductance, 0.0});
   }
   // held at zero pressure: the nodes on the outer surface once the fluid breaks through
@@ -102,8 +134,9 @@ double viscous_fluid_pressure(Model<D>& m, std::size_t s, double t, double injec
   if (s < f.vented.size() && f.vented[s] && f.outer_surface.size() == n)
     for (std::size_t a = 1; a < nodes; ++a) fixed[a] = f.outer_surface[particle_of_node[a]];
   std::vector<double> storage(nodes), source(nodes), zero(nodes, 0.0), held(nodes);
+  for (std::size_t a = 0; a < nodes; ++a) held[a] = a == 0 ? v.stored_inlet : v.stored[particle_of_node[a]];
+  squeeze_out_closed_nodes(bonds, node, volume, held);
   for (std::size_t a = 0; a < nodes; ++a) {
-    held[a] = a == 0 ? v.stored_inlet : v.stored[particle_of_node[a]];
     storage[a] = volume[a] / (bulk_modulus * dt);
     source[a] = (held[a] - volume[a]) / dt + (a == 0 ? injection_rate : 0.0);
   }
