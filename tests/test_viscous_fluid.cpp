@@ -3,11 +3,13 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <string>
 #include <vector>
 
 #include "rift/pd/dynamic_relaxation.hpp"
+#include "rift/pd/viscous_fluid.hpp"
 #include "rift/run/simulation.hpp"
 #include "rift/scene/parse.hpp"
 #include "rock_scene.hpp"
@@ -85,6 +87,22 @@ TEST(ViscousFluid, FreelyFlowingFluidIsTheLumpedFluid) {
   rift::run::Simulation<2> sim(scene);
   const double expected = sim.model.fluid_network.reference_volume[1] + 2e-10 * 1.0;
   EXPECT_NEAR(free_flowing.held / expected, 1.0, 1e-9);
+}
+
+// A node whose bonds have all shut (no volume) gives what it held to its open neighbour of largest
+// volume, or to the borehole's node (0) where none is open; the fluid held in all is unchanged.
+TEST(ViscousFluid, AShutNodeSqueezesItsFluidIntoItsOpenNeighbour) {
+  // particles 0..4 are nodes 0..4; bonds 1-2, 1-3 (3 the larger), 4-1 (both shut: 4 has no open neighbour)
+  const std::vector<rift::pd::FlowBond> bonds{{1, 2, 0.0, 0.0, 0.0}, {1, 3, 0.0, 0.0, 0.0}, {4, 1, 0.0, 0.0, 0.0}};
+  const std::vector<std::int64_t> node{0, 1, 2, 3, 4};
+  const std::vector<double> volume{5.0, 0.0, 1.0, 2.0, 0.0};
+  std::vector<double> held{4.0, 3.0, 1.0, 2.0, 0.5};
+  rift::pd::squeeze_out_closed_nodes(bonds, node, volume, held);
+  EXPECT_DOUBLE_EQ(held[0], 4.5);  // node 4's, through no open neighbour
+  EXPECT_DOUBLE_EQ(held[1], 0.0);
+  EXPECT_DOUBLE_EQ(held[2], 1.0);
+  EXPECT_DOUBLE_EQ(held[3], 5.0);  // node 1's
+  EXPECT_DOUBLE_EQ(held[4], 0.0);
 }
 
 }  // namespace
