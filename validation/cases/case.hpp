@@ -50,6 +50,7 @@ Result hf_kirsch(const Settings&);
 Result hf_breakdown(const Settings&);
 Result hf_kgd_toughness(const Settings&);
 Result hf_kgd_toughness_coarse(const Settings&);
+Result hf_kgd_viscosity(const Settings&);
 Result hf_zhou_crossing(const Settings&);
 Result hf_zhou_crossing_coarse(const Settings&);
 Result hf_injection_rate(const Settings&);

@@ -25,6 +25,7 @@ const std::vector<Entry>& all_cases() {
       {"hf_breakdown", hf_breakdown},
       {"hf_kgd_toughness", hf_kgd_toughness},
       {"hf_kgd_toughness_coarse", hf_kgd_toughness_coarse},
+      {"hf_kgd_viscosity", hf_kgd_viscosity},
       {"hf_zhou_crossing", hf_zhou_crossing},
       {"hf_zhou_crossing_coarse", hf_zhou_crossing_coarse},
       {"hf_injection_rate", hf_injection_rate},

@@ -1,0 +1,166 @@
+// Hydraulic fracture validation: the KGD fracture driven by a viscous fluid
+// (examples/hf_kgd_viscosity.toml). Plane strain LPS rock (E = 10 GPa, nu = 0.25, G0 = 50 J/m^2)
+// under an isotropic in-situ stress sigma0 = 15 MPa; a fluid of viscosity mu = 0.675 Pa s injected at
+// Q per unit height into a borehole with a short notch; the fluid flows along the crack by the cubic
+// law (pd/viscous_fluid.hpp) and the rock relaxes with it at each load step.
+// The zero-lag plane strain KGD solution (Detournay 2004; Garagash 2006) depends on one number, the
+// dimensionless toughness K_m = K' / (E'^3 mu' Q)^(1/4), K' = sqrt(32 / pi) K_Ic, mu' = 12 mu,
+// E' = E / (1 - nu^2):
+//   l = gamma (E' Q^3 t^4 / mu')^(1/6),  w0 = Omega0 (mu' Q^3 t^2 / E')^(1/6),  p0 - sigma0 = Pi0 (mu' E'^2 / t)^(1/3),
+// p0 the pressure at the inlet. K_m = 0 is the viscosity vertex (Adachi and Detournay 2002:
+// gamma = 0.6152, Omega0 = 1.1265); a large K_m the toughness vertex of hf_kgd_toughness. The
+// coefficients below were computed for this project by solving the zero-lag equations
+// (lubrication, elasticity and the tip's K = K_Ic) numerically; the closed-form approximation of
+// Dontsov (2017, Int J Fract 205:221) agrees within 0.55% on gamma and 0.8% on Omega0, and the
+// K_m = 0 row within 0.1% of Adachi and Detournay's. The example's K_m is 1.0: l = 34.4 mm,
+// w0 = 59.7 um and p0 - sigma0 = 5.41 MPa at t = 1 s.
+// Zero lag: the confining stress fills the tip with fluid after t_om = mu' E'^2 / sigma0^3 = 0.27 s
+// (Garagash and Detournay 2000), so the readings are at t = 0.5 s and 1 s (t / t_om = 1.8 and 3.7).
+// Read as for the toughness case (kgd_reading.hpp): l the reach of the broken bonds across the
+// crack line, w0 from a fit of w^(3/2) = w0^(3/2) - B x^2 (the M-vertex's opening is close to
+// w0 (1 - x^2 / l^2)^(2/3)), p0 the borehole's pressure. Limits as for the toughness case: l 5%,
+// w0 10%, p0 - sigma0 15%.
+// NOT YET PASSING (so not in CI). Measured, 2 mm (the example): l 0.576 / 0.631 at t = 0.5 / 1 s,
+// p0 - sigma0 1.047 / 0.929, w0 unreadable (the faces are not a clean crack); 3 mm: l mean 0.640.
+// The pressure is right, the crack short: the fluid's wet rock (pd/effective_stretch.hpp) breaks.
+// Its bonds fail on the effective stress sigma + p I, and every particle within a horizon of the
+// crack is wet (a broken bond across the crack reaches it); a horizon away from the faces the total
+// stress is nearer -sigma0 than -p, so there sigma + p I is a tension of up to p - sigma0 (8 MPa at
+// t = 0.3 s, against a strength of a few MPa): a band of damage five rows thick grows instead of a
+// crack (rows -2 to +3 wet at t = 0.45 s, 3 mm), and around the borehole a ring (its hoop stress
+// -2 sigma0 + p is no -p either). Probes: with no particle within a horizon of the borehole's wall
+// wet, the ring goes and at 2 mm l = 0.847 / 0.889, w0 1.142 / 1.197, p0 - sigma0 1.223 / 1.160, as
+// for a crack twice as tough (the K_m = 2 row: 0.875, 1.10, 1.165); that rule costs
+// hf_kgd_toughness_coarse its pass (l mean 0.940), so it is not in. Filling newly opened nodes at
+// once (zero lag) changed nothing (3 mm: 0.669). The lumped fluid in the same scene makes the same
+// ring, so it is the wet-rock rule under confinement, not the flow.
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdio>
+#include <stdexcept>
+
+#include "case.hpp"
+#include "kgd_reading.hpp"
+#include "rift/pd/dynamic_relaxation.hpp"
+#include "rift/pd/forces.hpp"
+#include "rift/run/simulation.hpp"
+#include "rift/scene/parse.hpp"
+
+namespace rift::validation {
+
+namespace {
+
+// gamma, Omega0 and Pi0 of the zero-lag KGD fracture against K_m (the header).
+struct ZeroLagKgd {
+  double toughness, length, opening, pressure;
+};
+constexpr std::array<ZeroLagKgd, 7> zero_lag_kgd{{{0.0, 0.6154, 1.1259, 0.5449},
+                                                  {0.5, 0.6133, 1.1277, 0.5461},
+                                                  {1.0, 0.5992, 1.1416, 0.5559},
+                                                  {1.5, 0.5677, 1.1815, 0.5859},
+                                                  {2.0, 0.5240, 1.2553, 0.6478},
+                                                  {3.0, 0.4343, 1.4818, 0.8768},
+                                                  {4.0, 0.3660, 1.7461, 1.2048}}};
+
+// The coefficients at K_m, linear between the table's rows.
+ZeroLagKgd zero_lag_kgd_at(double K_m) {
+  if (K_m < 0.0 || K_m > zero_lag_kgd.back().toughness) throw std::runtime_error("hf_kgd_viscosity: K_m outside the table (0 to 4)");
+  std::size_t k = 1;
+  while (k + 1 < zero_lag_kgd.size() && zero_lag_kgd[k].toughness < K_m) ++k;
+  const auto &a = zero_lag_kgd[k - 1], &b = zero_lag_kgd[k];
+  const double f = (K_m - a.toughness) / (b.toughness - a.toughness);
+  auto mix = [f](double x, double y) { return x + f * (y - x); };
+  return {K_m, mix(a.length, b.length), mix(a.opening, b.opening), mix(a.pressure, b.pressure)};
+}
+
+// The example with its spacing and horizon scaled by `coarsening`, the crack still between two rows.
+// `mean_length`: l judged by its mean over the second half's load steps (a coarse crack grows a
+// column at a time), w0 and p at the two times.
+Result viscous_kgd_case(const std::string& name, double coarsening, bool mean_length) {
+  auto s = scene::parse_file(source_path("examples/hf_kgd_viscosity.toml"));
+  auto& body = s.bodies[0];
+  body.spacing *= coarsening;
+  const double spacing = body.spacing;
+  body.lattice_origin = {-0.5 * spacing, -0.5 * spacing, 0.0};
+  for (auto& point : s.cracks[0].points) point[1] = 0.5 * spacing;
+  const auto& mat = s.materials[0];
+  const double E = mat.youngs_modulus(), nu = mat.poisson_ratio();
+  const double E_prime = E / (1.0 - nu * nu);
+  const double K_Ic = std::sqrt(E_prime * *mat.fracture_energy);
+  const double K_prime = std::sqrt(32.0 / M_PI) * K_Ic;
+  const double Q = *s.boreholes[0].injection_rate / s.thickness;  // per unit height
+  const double mu_prime = 12.0 * s.boreholes[0].fluid_viscosity;
+  const double K_m = K_prime / std::pow(E_prime * E_prime * E_prime * mu_prime * Q, 0.25);
+  const double sigma0 = -s.in_situ.principal(1);  // the compression across the crack
+  const ZeroLagKgd c = zero_lag_kgd_at(K_m);
+  auto l_kgd = [&](double t) { return c.length * std::pow(E_prime * Q * Q * Q * std::pow(t, 4) / mu_prime, 1.0 / 6.0); };
+  auto w0_kgd = [&](double t) { return c.opening * std::pow(mu_prime * Q * Q * Q * t * t / E_prime, 1.0 / 6.0); };
+  auto p_kgd = [&](double t) { return c.pressure * std::pow(mu_prime * E_prime * E_prime / t, 1.0 / 3.0); };
+  const double t_om = mu_prime * E_prime * E_prime / (sigma0 * sigma0 * sigma0);
+
+  run::Simulation<2> sim(s);
+  auto& m = sim.model;
+  const auto in_situ = sim.equilibrate_in_situ(s.in_situ);
+  pd::DynamicRelaxation<2> dr(m);
+  const std::size_t source = s.cracks.size();  // the borehole's fluid
+  const long steps = sim.steps;
+  std::vector<KgdState> read;
+  int unconverged = in_situ.converged ? 0 : 1;
+  long iterations = 0;
+  double l_low = 1e300, l_high = 0.0, l_sum = 0.0;
+  int l_count = 0;
+  for (long step = 1; step <= steps; ++step) {
+    const double t = s.solver.end_time * double(step) / double(steps);
+    const auto r = sim.relax(dr, s.solver, t);
+    unconverged += r.converged ? 0 : 1;
+    iterations += r.iterations;
+    if (step >= steps / 2) {
+      const double ratio = crack_reach(m, spacing) / l_kgd(t);
+      l_low = std::min(l_low, ratio), l_high = std::max(l_high, ratio), l_sum += ratio, ++l_count;
+    }
+    if (step == steps / 2 || step == steps) {
+      pd::update_damage<2>(m);
+      read.push_back(read_kgd(m, spacing, m.fluid_network.pressure[source], 0.0, 1.5));
+    }
+  }
+  double worst_l = 1.0;
+  bool pass = read.size() == 2;
+  std::string series;
+  for (const auto& k : read) {
+    const double rl = k.half_length / l_kgd(k.time), rw = k.inlet_opening / w0_kgd(k.time), rp = (k.pressure - sigma0) / p_kgd(k.time);
+    if (std::abs(rl - 1.0) >= std::abs(worst_l - 1.0)) worst_l = rl;
+    pass = pass && (mean_length || std::abs(rl - 1.0) <= 0.05) && std::abs(rw - 1.0) <= 0.10 && std::abs(rp - 1.0) <= 0.15;
+    char b[300];
+    std::snprintf(b, sizeof b, "%st = %.2f s (t / t_om %.1f): l %.2f mm (%.3f), w0 %.2f um (%.3f), p0 - sigma0 %.3f MPa (%.3f)",
+                  series.empty() ? "" : "; ", k.time, k.time / t_om, k.half_length * 1e3, rl, k.inlet_opening * 1e6, rw,
+                  (k.pressure - sigma0) / 1e6, rp);
+    series += b;
+  }
+  const double mean_l = l_count ? l_sum / l_count : 0.0;
+  if (mean_length) pass = pass && std::abs(mean_l - 1.0) <= 0.05;
+  Result res;
+  res.name = name;
+  res.measured = mean_length ? mean_l : worst_l;
+  res.reference = 1.0;
+  res.tolerance = 0.05;
+  res.unit = mean_length ? "half-length / zero-lag KGD solution, mean over the second half's load steps"
+                         : "half-length / zero-lag KGD solution, worse of two times";
+  char buf[1200];
+  std::snprintf(buf, sizeof buf, "%s (limits: l 5%%, w0 10%%, p0 - sigma0 15%%); K_m = %.3f (gamma %.4f, Omega0 %.4f, Pi0 %.4f), "
+                "sigma0 %.3g MPa, t_om %.3f s; %zu particles, spacing %.2g mm; load steps without equilibrium: %d (%ld relaxation "
+                "iterations in all); l / l_KGD over the %d load steps of the second half: mean %.3f, from %.3f to %.3f",
+                series.c_str(), K_m, c.length, c.opening, c.pressure, sigma0 / 1e6, t_om, m.size(), spacing * 1e3, unconverged, iterations,
+                l_count, mean_l, l_low, l_high);
+  res.details = buf;
+  res.source = "Zero-lag KGD fracture at the scene's K_m (Detournay 2004; Adachi and Detournay 2002 at K_m = 0)";
+  res.pass = pass;
+  return res;
+}
+
+}  // namespace
+
+// Quick: 3 mm spacing (1.5 times the example's), the CI version.
+Result hf_kgd_viscosity(const Settings& settings) { return viscous_kgd_case("hf_kgd_viscosity", settings.quick ? 1.5 : 1.0, settings.quick); }
+
+}  // namespace rift::validation
