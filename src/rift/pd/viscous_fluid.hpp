@@ -12,7 +12,8 @@
 // the fluid's work p dV is the work of its load on the rock, so rock and fluid relax together as one
 // conservative system; and faces pressed together, which overlap by up to a tenth of a spacing
 // before the short-range contact holds them (|jump| counts that as opening), or a loose fragment in
-// the crack (whose every broken bond opens as it moves) add nothing. Under 15 MPa of confinement the
+// the crack (whose every broken bond opens as it moves) add nothing to the room (they still take a
+// share of it, as the openings say). Under 15 MPa of confinement the
 // unscaled openings made the borehole's pressure fall below the confining stress, to zero, while
 // the crack took fluid; scaled, it stays above it and rises with the injection.
 // Each node's fluid, as the volume it takes at zero pressure, M = V (1 + p / K_f), obeys the mass
@@ -39,8 +40,8 @@
 
 namespace rift::pd {
 
-/// A node whose crack the rock has closed (every bond of it shut: no volume, no conductance) cannot
-/// keep the fluid it held: the faces squeeze it out into the open neighbour of largest volume, or
+/// A node with no room left (every bond of it shut, or the network's whole volume gone) cannot keep
+/// the fluid it held: the faces squeeze it out into the open neighbour of largest volume, or
 /// into the borehole's node where no neighbour is open. What every node holds is conserved.
 inline void squeeze_out_closed_nodes(const std::vector<FlowBond>& bonds, const std::vector<std::int64_t>& node, const std::vector<double>& volume,
                                      std::vector<double>& held) {
