@@ -80,6 +80,7 @@ ZeroLagKgd zero_lag_kgd_at(double K_m) {
 Result viscous_kgd_case(const std::string& name, double coarsening, bool mean_length) {
   auto s = scene::parse_file(source_path("examples/hf_kgd_viscosity.toml"));
   auto& body = s.bodies[0];
+  body.horizon *= coarsening;  // in metres: the same number of spacings
   body.spacing *= coarsening;
   const double spacing = body.spacing;
   body.lattice_origin = {-0.5 * spacing, -0.5 * spacing, 0.0};
