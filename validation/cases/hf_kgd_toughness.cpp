@@ -64,20 +64,12 @@ namespace {
 // and slip that time falls).
 Result kgd_case(const std::string& name, double coarsening, double half_width, bool mean_length) {
   auto s = scene::parse_file(source_path("examples/hf_kgd_toughness.toml"));
-  auto& body = s.bodies[0];
-  body.horizon *= coarsening;
-  body.spacing *= coarsening;
   for (auto& region : s.regions)
     if (region.name == "block") region.min = {-half_width, -half_width, 0.0}, region.max = {half_width, half_width, 0.0};
-  const double spacing = body.spacing;
-  body.lattice_origin = {-0.5 * spacing, -0.5 * spacing, 0.0};
-  for (auto& point : s.cracks[0].points) point[1] = 0.5 * spacing;
+  const KgdRock rock = coarsen_kgd_scene(s, coarsening);
+  const double spacing = rock.spacing, E_prime = rock.E_prime, K_Ic = rock.K_Ic, K_prime = rock.K_prime, Q = rock.Q;
+  const auto& body = s.bodies[0];
   const auto& mat = s.materials[0];
-  const double E = mat.youngs_modulus(), nu = mat.poisson_ratio();
-  const double E_prime = E / (1.0 - nu * nu);
-  const double K_Ic = std::sqrt(E_prime * *mat.fracture_energy);
-  const double K_prime = std::sqrt(32.0 / M_PI) * K_Ic;
-  const double Q = *s.boreholes[0].injection_rate / s.thickness;  // per unit height
   run::Simulation<2> sim(s);
   auto& m = sim.model;
   pd::DynamicRelaxation<2> dr(m);
@@ -90,9 +82,7 @@ Result kgd_case(const std::string& name, double coarsening, double half_width, b
   // reference cavity volume)
   double work = 0.0, last_pressure = 0.0, last_volume = m.fluid_network.reference_volume[source];
   auto l_kgd = [&](double t) { return 0.9324 * std::pow(E_prime * Q * t / K_prime, 2.0 / 3.0); };
-  // l / l_KGD at each load step of the second half: the crack grows a column at a time, stick and slip
-  double l_low = 1e300, l_high = 0.0, l_sum = 0.0;
-  int l_count = 0;
+  LengthRatios lengths;
   for (long step = 1; step <= steps; ++step) {
     const double t = s.solver.end_time * double(step) / double(steps);
     const auto r = sim.relax(dr, s.solver, t);
@@ -101,10 +91,7 @@ Result kgd_case(const std::string& name, double coarsening, double half_width, b
     const double pressure = m.fluid_network.pressure[source], volume = m.fluid_network.cavity_volume[source];
     work += 0.5 * (pressure + last_pressure) * (volume - last_volume);
     last_pressure = pressure, last_volume = volume;
-    if (step >= steps / 2) {
-      const double ratio = crack_reach(m, spacing) / l_kgd(t);
-      l_low = std::min(l_low, ratio), l_high = std::max(l_high, ratio), l_sum += ratio, ++l_count;
-    }
+    if (step >= steps / 2) lengths.add(crack_reach(m, spacing) / l_kgd(t));
     if (step == steps / 2 || step == steps) {
       pd::update_damage<2>(m);
       read.push_back(read_kgd(m, spacing, pressure, work, 2.0));
@@ -140,7 +127,7 @@ Result kgd_case(const std::string& name, double coarsening, double half_width, b
   }
   Result res;
   res.name = name;
-  const double mean_l = l_count ? l_sum / l_count : 0.0;
+  const double mean_l = lengths.mean();
   if (mean_length) pass = pass && std::abs(mean_l - 1.0) <= 0.05;
   res.measured = mean_length ? mean_l : worst_l;
   res.reference = 1.0;
@@ -152,8 +139,8 @@ Result kgd_case(const std::string& name, double coarsening, double half_width, b
                 "horizon %.4g mm; load steps without equilibrium: %d (%ld relaxation iterations in all); l / l_KGD over the %d load steps "
                 "of the second half: mean %.3f, from %.3f to %.3f (stick and slip); between the two times, bonds broken per unit of growth: %.2f "
                 "times a straight cut's (%.0f per mm), energy dissipated per unit of new crack area: %.2f G0",
-                series.c_str(), K_Ic / 1e6, m.size(), spacing * 1e3, body.horizon * 1e3, unconverged, iterations, l_count,
-                mean_l, l_low, l_high, dissipation, per_metre * 1e-3, dissipation_energy);
+                series.c_str(), K_Ic / 1e6, m.size(), spacing * 1e3, body.horizon * 1e3, unconverged, iterations, lengths.count,
+                mean_l, lengths.low, lengths.high, dissipation, per_metre * 1e-3, dissipation_energy);
   res.details = buf;
   res.source = "Detournay (2004) KGD fracture, toughness-dominated (zero viscosity) solution";
   res.pass = pass;

@@ -74,23 +74,13 @@ ZeroLagKgd zero_lag_kgd_at(double K_m) {
   return {K_m, mix(a.length, b.length), mix(a.opening, b.opening), mix(a.pressure, b.pressure)};
 }
 
-// The example with its spacing and horizon scaled by `coarsening`, the crack still between two rows.
+// The example with its spacing and horizon scaled by `coarsening` (coarsen_kgd_scene).
 // `mean_length`: l judged by its mean over the second half's load steps (a coarse crack grows a
 // column at a time), w0 and p at the two times.
 Result viscous_kgd_case(const std::string& name, double coarsening, bool mean_length) {
   auto s = scene::parse_file(source_path("examples/hf_kgd_viscosity.toml"));
-  auto& body = s.bodies[0];
-  body.horizon *= coarsening;  // in metres: the same number of spacings
-  body.spacing *= coarsening;
-  const double spacing = body.spacing;
-  body.lattice_origin = {-0.5 * spacing, -0.5 * spacing, 0.0};
-  for (auto& point : s.cracks[0].points) point[1] = 0.5 * spacing;
-  const auto& mat = s.materials[0];
-  const double E = mat.youngs_modulus(), nu = mat.poisson_ratio();
-  const double E_prime = E / (1.0 - nu * nu);
-  const double K_Ic = std::sqrt(E_prime * *mat.fracture_energy);
-  const double K_prime = std::sqrt(32.0 / M_PI) * K_Ic;
-  const double Q = *s.boreholes[0].injection_rate / s.thickness;  // per unit height
+  const KgdRock rock = coarsen_kgd_scene(s, coarsening);
+  const double spacing = rock.spacing, E_prime = rock.E_prime, K_prime = rock.K_prime, Q = rock.Q;
   const double mu_prime = 12.0 * s.boreholes[0].fluid_viscosity;
   const double K_m = K_prime / std::pow(E_prime * E_prime * E_prime * mu_prime * Q, 0.25);
   const double sigma0 = -s.in_situ.principal(1);  // the compression across the crack
@@ -109,17 +99,13 @@ Result viscous_kgd_case(const std::string& name, double coarsening, bool mean_le
   std::vector<KgdState> read;
   int unconverged = in_situ.converged ? 0 : 1;
   long iterations = 0;
-  double l_low = 1e300, l_high = 0.0, l_sum = 0.0;
-  int l_count = 0;
+  LengthRatios lengths;
   for (long step = 1; step <= steps; ++step) {
     const double t = s.solver.end_time * double(step) / double(steps);
     const auto r = sim.relax(dr, s.solver, t);
     unconverged += r.converged ? 0 : 1;
     iterations += r.iterations;
-    if (step >= steps / 2) {
-      const double ratio = crack_reach(m, spacing) / l_kgd(t);
-      l_low = std::min(l_low, ratio), l_high = std::max(l_high, ratio), l_sum += ratio, ++l_count;
-    }
+    if (step >= steps / 2) lengths.add(crack_reach(m, spacing) / l_kgd(t));
     if (step == steps / 2 || step == steps) {
       pd::update_damage<2>(m);
       read.push_back(read_kgd(m, spacing, m.fluid_network.pressure[source], 0.0, 1.5));
@@ -138,7 +124,7 @@ Result viscous_kgd_case(const std::string& name, double coarsening, bool mean_le
                   (k.pressure - sigma0) / 1e6, rp);
     series += b;
   }
-  const double mean_l = l_count ? l_sum / l_count : 0.0;
+  const double mean_l = lengths.mean();
   if (mean_length) pass = pass && std::abs(mean_l - 1.0) <= 0.05;
   Result res;
   res.name = name;
@@ -152,7 +138,7 @@ Result viscous_kgd_case(const std::string& name, double coarsening, bool mean_le
                 "sigma0 %.3g MPa, t_om %.3f s; %zu particles, spacing %.2g mm; load steps without equilibrium: %d (%ld relaxation "
                 "iterations in all); l / l_KGD over the %d load steps of the second half: mean %.3f, from %.3f to %.3f",
                 series.c_str(), K_m, c.length, c.opening, c.pressure, sigma0 / 1e6, t_om, m.size(), spacing * 1e3, unconverged, iterations,
-                l_count, mean_l, l_low, l_high);
+                lengths.count, mean_l, lengths.low, lengths.high);
   res.details = buf;
   res.source = "Zero-lag KGD fracture at the scene's K_m (Detournay 2004; Adachi and Detournay 2002 at K_m = 0)";
   res.pass = pass;

@@ -11,8 +11,43 @@
 #include "crack_face_opening.hpp"
 #include "rift/pd/forces.hpp"
 #include "rift/pd/model.hpp"
+#include "rift/scene/scene.hpp"
 
 namespace rift::validation {
+
+// A KGD example's rock and injection: E' = E / (1 - nu^2), K_Ic = sqrt(E' G0), K' = sqrt(32 / pi) K_Ic
+// and Q per unit height.
+struct KgdRock {
+  double spacing = 0.0, E_prime = 0.0, K_Ic = 0.0, K_prime = 0.0, Q = 0.0;
+};
+
+// Coarsens a KGD example's lattice in place (spacing and horizon times `coarsening`), keeping its
+// crack on the line y = spacing / 2 between lattice rows 0 and 1, and returns its rock.
+inline KgdRock coarsen_kgd_scene(scene::Scene& s, double coarsening) {
+  auto& body = s.bodies[0];
+  body.horizon *= coarsening;
+  body.spacing *= coarsening;
+  KgdRock r;
+  r.spacing = body.spacing;
+  body.lattice_origin = {-0.5 * r.spacing, -0.5 * r.spacing, 0.0};
+  for (auto& point : s.cracks[0].points) point[1] = 0.5 * r.spacing;
+  const auto& mat = s.materials[0];
+  const double E = mat.youngs_modulus(), nu = mat.poisson_ratio();
+  r.E_prime = E / (1.0 - nu * nu);
+  r.K_Ic = std::sqrt(r.E_prime * *mat.fracture_energy);
+  r.K_prime = std::sqrt(32.0 / M_PI) * r.K_Ic;
+  r.Q = *s.boreholes[0].injection_rate / s.thickness;
+  return r;
+}
+
+// l / l_KGD at the load steps of a run's second half (a coarse crack grows a column at a time,
+// stick and slip): lowest, highest and mean.
+struct LengthRatios {
+  double low = 1e300, high = 0.0, sum = 0.0;
+  int count = 0;
+  void add(double ratio) { low = std::min(low, ratio), high = std::max(high, ratio), sum += ratio, ++count; }
+  double mean() const { return count ? sum / count : 0.0; }
+};
 
 struct KgdState {
   double time = 0.0, half_length = 0.0, inlet_opening = 0.0, pressure = 0.0;
