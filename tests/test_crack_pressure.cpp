@@ -4,7 +4,6 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
-#include <cstdint>
 #include <cstdio>
 #include <fstream>
 #include <string>
@@ -328,58 +327,6 @@ type = "dynamic_relaxation"
   }
   EXPECT_GT(faces, 20);
   EXPECT_GT(wall, 5);
-}
-
-// The same relaxed scene: the crack wets rock a horizon from the borehole's fluid too, where the
-// total stress is Kirsch's, not -p I plus the crack's field (pd/effective_stretch.hpp). A bond with
-// both ends wet lowers its limit by the pore stretch p / (2 kappa) (alpha = 0 here), to round-off,
-// unless both ends are within a horizon of the borehole's sites (a pressure bond to one): then by
-// nothing, so the wall's hoop stress, -2 sigma0 + p, is not read as 2 (p - sigma0).
-TEST(EffectiveStretch, TheBoreholesNearFieldKeepsTheTotalStress) {
-  const std::string text = block_24_by_16 + R"([regions.cavity]
-shape = "box"
-min = [0.0, 0.006]
-max = [0.003, 0.010]
-[[cracks]]
-points = [[0.001, 0.008], [0.012, 0.008]]
-[[boreholes]]
-region = "cavity"
-pressure = 3e6
-[solver]
-type = "dynamic_relaxation"
-)";
-  auto scene = rift::scene::parse_string(text, "near_field.toml");
-  rift::run::Simulation<2> sim(scene);
-  auto& m = sim.model;
-  rift::pd::DynamicRelaxation<2> dr(m);
-  dr.relax(m, sim.loads, nullptr, 0.0, 20000, 1e-8);
-  const auto& pore = m.fluid_network.pore_stretch;
-  ASSERT_EQ(pore.size(), m.size());
-  const auto& c = m.bodies[0].constants;
-  const double wet = 3e6 / (2.0 * c.kappa);
-  auto near_borehole = [&](std::size_t i) {
-    for (auto k = m.crack_bonds.offset[i]; k < m.crack_bonds.offset[i + 1]; ++k)
-      if (m.crack_bonds.neighbor[static_cast<std::size_t>(k)] < 0) return true;
-    return false;
-  };
-  const std::uint8_t* near = rift::pd::borehole_near_field_or_null(m);
-  ASSERT_NE(near, nullptr);
-  int near_pairs = 0, crack_pairs = 0;
-  for (std::size_t i = 0; i < m.size(); ++i)
-    for (auto k = m.bonds.offset[i]; k < m.bonds.offset[i + 1]; ++k) {
-      const auto j = static_cast<std::size_t>(m.bonds.neighbor[k]);
-      if (pore[i] == 0.0 || pore[j] == 0.0) continue;
-      const double shift = rift::pd::effective_stretch_shift(pore.data(), near, c.alpha, i, j);
-      if (near_borehole(i) && near_borehole(j)) {
-        EXPECT_EQ(shift, 0.0) << "bond " << i << "-" << j;
-        ++near_pairs;
-      } else {
-        EXPECT_NEAR(shift / ((1.0 + c.alpha) * wet), 1.0, 1e-12) << "bond " << i << "-" << j;
-        ++crack_pairs;
-      }
-    }
-  EXPECT_GT(near_pairs, 10);
-  EXPECT_GT(crack_pairs, 100);
 }
 
 }  // namespace

@@ -151,7 +151,6 @@ struct FluidNetwork {
   std::vector<std::uint8_t> in_crack;         // per particle: the fluid reaches it across a crack (a broken or cut bond), not only at a borehole's wall
   std::vector<std::uint8_t> immersed;         // per particle: wet, in a fragment its intact bonds no longer join to the body (fluid_network.hpp): no fluid load
   std::vector<double> pore_stretch;           // per particle: p / (d kappa) where the fluid is in the cracked rock, 0 elsewhere; empty: nowhere (effective_stretch.hpp)
-  std::vector<std::uint8_t> borehole_near_field;  // per particle: within a horizon of a borehole's fluid (a pressure bond to one of its sites; effective_stretch.hpp)
   std::vector<std::vector<std::int64_t>> network_bonds;  // per source: the broken bonds its fluid fills (both entries of each), ascending
   std::vector<std::vector<std::int64_t>> loaded_bonds;   // network_bonds when network_load was made
   std::vector<std::vector<double>> network_load;         // per source: the force density on each particle per unit pressure (n x d, 1/m); empty: none (network_load.hpp)

@@ -13,11 +13,7 @@
 // falls only as sqrt(horizon / crack length). Both ends must be wet: rock with one end on a crack face
 // and the other in the dry rock around it is not filled. A borehole's intact wall is not cracked
 // rock either: its fluid stays out of the rock (Hubbert and Willis 1957), and breakdown keeps the
-// total stress. So does a bond with both ends in the borehole's near field (a horizon from its
-// fluid), even where a crack from the borehole wets them: the rule rests on the total stress near
-// a crack being -p I plus the crack's own field, and at the wall it is Kirsch's instead, hoop stress
-// -2 sigma0 + p under an isotropic sigma0. Its effective hoop stress, 2 (p - sigma0), broke a ring
-// of rock round the borehole once the net pressure passed T / 2 (hf_kgd_viscosity).
+// total stress.
 // The pore stretch follows the fluid where it is, at once: as the crack grows, the rock the fluid
 // reaches across it is wet. Its pressure is the fluid's pressure where the fluid is in equilibrium
 // with the rock (the pore pressure): after each explicit time step, and at the end of each
@@ -26,7 +22,6 @@
 // criterion that followed those spikes would break rock the fluid has not loaded.
 #pragma once
 #include <cstddef>
-#include <cstdint>
 #include <vector>
 
 #include "rift/pd/model.hpp"
@@ -77,18 +72,8 @@ const double* pore_stretch_or_null(const Model<D>& m) {
   return m.fluid_network.pore_stretch.size() == m.size() ? m.fluid_network.pore_stretch.data() : nullptr;
 }
 
-/// The borehole near-field flags the bond passes read with the pore stretch, nullptr where none.
-template <int D>
-const std::uint8_t* borehole_near_field_or_null(const Model<D>& m) {
-  const auto& near = m.fluid_network.borehole_near_field;
-  return near.size() == m.size() ? near.data() : nullptr;
-}
-
-/// How far the wet rock lowers bond i-j's stretch limit: (1 + alpha) min(s_p,i, s_p,j), and 0 for a
-/// bond with both ends in a borehole's near field.
-inline double effective_stretch_shift(const double* pore_stretch, const std::uint8_t* borehole_near_field, double alpha, std::size_t i,
-                                      std::size_t j) {
-  if (borehole_near_field && borehole_near_field[i] && borehole_near_field[j]) return 0.0;
+/// How far the wet rock lowers bond i-j's stretch limit: (1 + alpha) min(s_p,i, s_p,j).
+inline double effective_stretch_shift(const double* pore_stretch, double alpha, std::size_t i, std::size_t j) {
   const double wet = pore_stretch[i] < pore_stretch[j] ? pore_stretch[i] : pore_stretch[j];
   return (1.0 + alpha) * wet;
 }

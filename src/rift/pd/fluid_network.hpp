@@ -178,7 +178,6 @@ void update_fluid_network(Model<D>& m) {
   const std::size_t n = m.size();
   f.source.assign(n, -1);
   f.in_crack.assign(n, 0);
-  f.borehole_near_field.assign(n, 0);
   std::vector<std::size_t> queue;
   for (std::size_t i = 0; i < n; ++i)
     for (auto k = w.offset[i]; k < w.offset[i + 1]; ++k)
@@ -191,10 +190,6 @@ void update_fluid_network(Model<D>& m) {
   for (std::size_t i : queue)
     for (auto k = w.offset[i]; k < w.offset[i + 1]; ++k)
       if (!f.dry[w.source[static_cast<std::size_t>(k)]] && w.neighbor[k] >= 0) f.in_crack[i] = 1;
-  // a horizon from a borehole's fluid: a pressure bond to one of its sites (effective_stretch.hpp)
-  for (std::size_t i = 0; i < n; ++i)
-    for (auto k = w.offset[i]; k < w.offset[i + 1]; ++k)
-      if (w.neighbor[k] < 0) f.borehole_near_field[i] = 1;
   const std::size_t next_to_source = queue.size();
   auto reach = [&](std::size_t i, std::size_t j) {
     f.in_crack[i] = f.in_crack[j] = 1;

@@ -57,7 +57,6 @@ void dilatation_pass(Model<D>& m, const BodyInfo& body, double* coupling, double
   }
   std::vector<std::pair<std::size_t, std::int64_t>> broken;  // (i, k) of the bonds broken here
   const double* const pore = pore_stretch_or_null(m);
-  const std::uint8_t* const near_borehole = borehole_near_field_or_null(m);
   const double* const strain = m.failure_strain.data();
   const double stress_to_stretch = 1.0 / (D * c.kappa), lambda = c.lame_lambda(), p_wave = c.p_wave_modulus();
   constexpr int C = stress_components<D>;
@@ -75,7 +74,7 @@ void dilatation_pass(Model<D>& m, const BodyInfo& body, double* coupling, double
       const double xi = family.length;
       const double e = r - xi;
       double limit = std::min(s0_i, m.stretch_limit[j]);
-      if constexpr (Wet) limit -= effective_stretch_shift(pore, near_borehole, c.alpha, i, j);
+      if constexpr (Wet) limit -= effective_stretch_shift(pore, c.alpha, i, j);
       bool past;
       if constexpr (Normal) {
         Vec<D> n = m.position[j] - xi_pos;

@@ -39,7 +39,6 @@ void pmb_forces(Model<D>& m, const BodyInfo& body) {
   const double micromodulus = c.micromodulus, horizon = c.horizon;
   const bool breakable = c.breakable;
   const double* const pore = pore_stretch_or_null(m);
-  const std::uint8_t* const near_borehole = borehole_near_field_or_null(m);
   // bonds join particles of one body; the buffer is the calling thread's, which the team writes and
   // reads through `in`; `smallest`: the smallest stretch of each particle's intact bonds
   static thread_local std::vector<BondEndInputs<D>> inputs;
@@ -77,7 +76,7 @@ void pmb_forces(Model<D>& m, const BodyInfo& body) {
       const double xi = family.length;
       const double s = (r - xi) * family.inverse_length;
       double limit = std::min(own.stretch_limit, other.stretch_limit);
-      if constexpr (Wet) limit -= effective_stretch_shift(pore, near_borehole, c.alpha, i, j);
+      if constexpr (Wet) limit -= effective_stretch_shift(pore, c.alpha, i, j);
       if (breakable && s > limit) {
         v.intact[k] = bond_broken;
 #pragma omp critical(rift_pmb_broken)
