@@ -49,6 +49,26 @@ struct LengthRatios {
   double mean() const { return count ? sum / count : 0.0; }
 };
 
+// The verdict of a KGD case against its solution: at each of its two readings w0 within 10% and p
+// within 15% of it, and l within 5% there or, with `mean_length`, its mean over the second half's
+// load steps (LengthRatios) within 5%. Measured: that mean, or the reading of l farther from 1.
+struct KgdVerdict {
+  bool mean_length = false;
+  double worst_length = 1.0;
+  bool within = true;
+  int readings = 0;
+  void judge(double length_ratio, double opening_ratio, double pressure_ratio) {
+    if (std::abs(length_ratio - 1.0) >= std::abs(worst_length - 1.0)) worst_length = length_ratio;
+    within = within && (mean_length || std::abs(length_ratio - 1.0) <= 0.05) && std::abs(opening_ratio - 1.0) <= 0.10 &&
+             std::abs(pressure_ratio - 1.0) <= 0.15;
+    ++readings;
+  }
+  double measured(const LengthRatios& lengths) const { return mean_length ? lengths.mean() : worst_length; }
+  bool pass(const LengthRatios& lengths) const {
+    return readings == 2 && within && (!mean_length || std::abs(lengths.mean() - 1.0) <= 0.05);
+  }
+};
+
 struct KgdState {
   double time = 0.0, half_length = 0.0, inlet_opening = 0.0, pressure = 0.0;
   double damaged_half_length = 0.0;  // the farthest particle near the line with damage above 0.3 (the reading before the reach)
