@@ -3,6 +3,7 @@
 // traction p times the face area, and they cancel over the whole body (pairwise, Newton's third law).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <fstream>
@@ -282,14 +283,8 @@ end_time = 1e-6
   EXPECT_NEAR(middle / (p * 0.009 * 0.001), 1.0, 1e-6);
 }
 
-// The rock the fluid wets (pd/effective_stretch.hpp): the same borehole and dry pre-crack, which
-// stops at 12 mm, the rock unbreakable. At the end of a relaxation the faces of the crack the fluid
-// fills have the pore stretch p / (2 kappa) of their fluid (plane strain), to round-off; the
-// borehole's wall away from the crack (Hubbert and Willis: the fluid stays out of intact rock) and
-// the rock beyond the crack's tip have none.
-TEST(EffectiveStretch, TheFluidWetsTheCrackFacesNotTheBoreholeWall) {
-  const double p = 3e6;
-  const std::string text = block_24_by_16 + R"([regions.cavity]
+// A borehole at the block's left side with a dry pre-crack along y = 8 mm to x = 12 mm.
+const std::string borehole_and_dry_crack = block_24_by_16 + R"([regions.cavity]
 shape = "box"
 min = [0.0, 0.006]
 max = [0.003, 0.010]
@@ -301,6 +296,15 @@ pressure = 3e6
 [solver]
 type = "dynamic_relaxation"
 )";
+
+// The rock the fluid wets (pd/effective_stretch.hpp): the same borehole and dry pre-crack, which
+// stops at 12 mm, the rock unbreakable. At the end of a relaxation the faces of the crack the fluid
+// fills have the pore stretch p / (2 kappa) of their fluid (plane strain), to round-off; the
+// borehole's wall away from the crack (Hubbert and Willis: the fluid stays out of intact rock) and
+// the rock beyond the crack's tip have none.
+TEST(EffectiveStretch, TheFluidWetsTheCrackFacesNotTheBoreholeWall) {
+  const double p = 3e6;
+  const std::string text = borehole_and_dry_crack;
   auto scene = rift::scene::parse_string(text, "wet.toml");
   rift::run::Simulation<2> sim(scene);
   auto& m = sim.model;
@@ -327,6 +331,96 @@ type = "dynamic_relaxation"
   }
   EXPECT_GT(faces, 20);
   EXPECT_GT(wall, 5);
+}
+
+// The bonds whose effective stretch the pore pressure shifts (pd/crack_crossing.hpp), in the same
+// block: the pre-crack along y = 8 mm from the borehole to x = 12 mm, its faces wet. Geometry alone
+// decides, so the answer is exact: every bond that crosses the line y = 8 mm short of the
+// pre-crack's last cut + one spacing (the faces, and the crack's extension at its tip) crosses the
+// crack, and no other bond: none with both ends on one side (within a face or beside the crack),
+// none that crosses the line farther on.
+TEST(EffectiveStretch, OnlyBondsAcrossTheCrackOrItsExtensionAreShifted) {
+  const std::string text = borehole_and_dry_crack;
+  auto scene = rift::scene::parse_string(text, "crossing.toml");
+  auto m = rift::pd::discretize<2>(scene);
+  rift::pd::update_fluid_network<2>(m);
+  const auto& f = m.fluid_network;
+  auto marked_bond = [&](std::size_t i, std::size_t j) {
+    return rift::pd::pierces_crack<2>(f.crack_surface, m.reference_position[i], m.reference_position[j]);
+  };
+  const double line = 0.008, spacing = 0.001;
+  // the crack's last patch: the farthest crossing of a short bond the pre-crack cut
+  double tip = 0.0;
+  for (std::size_t i = 0; i < m.size(); ++i)
+    for (auto k = m.crack_bonds.offset[i]; k < m.crack_bonds.offset[i + 1]; ++k)
+      if (m.crack_bonds.neighbor[static_cast<std::size_t>(k)] >= 0 && m.crack_bonds.length(static_cast<std::size_t>(k)) < 1.5 * spacing) {
+        const auto& xi = m.crack_bonds.xi[static_cast<std::size_t>(k)];
+        const auto& a = m.reference_position[i];
+        tip = std::max(tip, a[0] + (line - a[1]) * xi[0] / xi[1]);
+      }
+  EXPECT_GE(tip, 0.012 - spacing);  // the pre-crack ends at 12 mm
+  EXPECT_LE(tip, 0.012);
+  long across = 0, beside = 0;
+  for (std::size_t i = 0; i < m.size(); ++i)
+    for (auto k = m.bonds.offset[i]; k < m.bonds.offset[i + 1]; ++k) {
+      const auto j = static_cast<std::size_t>(m.bonds.neighbor[k]);
+      const auto& a = m.reference_position[i];
+      const auto& b = m.reference_position[j];
+      const bool wet = f.source[i] >= 0 || f.source[j] >= 0;
+      const bool crosses_line = (a[1] - line) * (b[1] - line) < 0.0;
+      const double at = crosses_line ? a[0] + (line - a[1]) * (b[0] - a[0]) / (b[1] - a[1]) : 1e9;
+      const bool expected = crosses_line && at <= tip + spacing + 1e-12;
+      EXPECT_EQ(marked_bond(i, j), expected)
+          << "bond (" << a[0] << ", " << a[1] << ") - (" << b[0] << ", " << b[1] << ") crossing at x = " << at;
+      (expected ? across : beside) += wet;
+    }
+  EXPECT_GT(across, 20);  // the pre-crack cut the bonds across its faces: these cross its extension
+  EXPECT_GT(beside, 100);
+
+  // The crack grows by the bonds that break across its extension, not by those beside it: break
+  // the vertical bond across the line just past the tip (x = 12.5 mm, marked) and one two rows above
+  // the crack (x = 8.5 mm, between y = 9.5 and 10.5 mm). The first extends the crack by a spacing;
+  // the second adds no surface along y = 10 mm.
+  auto particle_at = [&](double x, double y) {
+    for (std::size_t i = 0; i < m.size(); ++i)
+      if (std::hypot(m.reference_position[i][0] - x, m.reference_position[i][1] - y) < 1e-6) return i;
+    ADD_FAILURE() << "no particle at " << x << ", " << y;
+    return std::size_t{0};
+  };
+  auto entry = [&](std::size_t i, std::size_t j) {
+    const auto first = m.bonds.neighbor.begin() + m.bonds.offset[i], last = m.bonds.neighbor.begin() + m.bonds.offset[i + 1];
+    return static_cast<std::size_t>(std::lower_bound(first, last, static_cast<std::int32_t>(j)) - m.bonds.neighbor.begin());
+  };
+  auto break_bond = [&](double xa, double ya, double xb, double yb) {
+    const auto i = particle_at(xa, ya), j = particle_at(xb, yb);
+    m.bonds.intact[entry(i, j)] = m.bonds.intact[entry(j, i)] = rift::pd::bond_broken;
+    return entry(i, j);
+  };
+  EXPECT_TRUE(marked_bond(particle_at(0.0125, 0.0075), particle_at(0.0125, 0.0085)));
+  const auto across_k = break_bond(0.0125, 0.0075, 0.0125, 0.0085);
+  rift::pd::record_crossing_breaks<2>(m, {{particle_at(0.0125, 0.0075), static_cast<std::int64_t>(across_k)}});  // as the bond pass would
+  break_bond(0.0085, 0.0095, 0.0085, 0.0105);
+  rift::pd::update_fluid_network<2>(m);
+  const double above = 0.010;
+  long extension = 0;
+  for (std::size_t i = 0; i < m.size(); ++i)
+    for (auto k = m.bonds.offset[i]; k < m.bonds.offset[i + 1]; ++k) {
+      if (m.bonds.intact[k] != rift::pd::bond_intact) continue;
+      const auto j = static_cast<std::size_t>(m.bonds.neighbor[k]);
+      const auto& a = m.reference_position[i];
+      const auto& b = m.reference_position[j];
+      const bool marked = marked_bond(i, j);
+      if ((a[1] - line) * (b[1] - line) < 0.0) {
+        const double at = a[0] + (line - a[1]) * (b[0] - a[0]) / (b[1] - a[1]);
+        if (at > tip + spacing + 1e-12 && (f.source[i] >= 0 || f.source[j] >= 0)) {
+          EXPECT_EQ(marked, at <= 0.0125 + spacing + 1e-12) << "bond across the line at x = " << at;
+          extension += at <= 0.0125 + spacing + 1e-12;
+        }
+      } else if ((a[1] - above) * (b[1] - above) < 0.0) {
+        EXPECT_FALSE(marked) << "bond beside the crack (" << a[0] << ", " << a[1] << ") - (" << b[0] << ", " << b[1] << ")";
+      }
+    }
+  EXPECT_GT(extension, 3);
 }
 
 }  // namespace

@@ -110,8 +110,9 @@ Initiation initiation(const std::string& material_keys, double pressure_per_K = 
       if (m.bonds.intact[k] != rift::pd::bond_intact) continue;
       const auto j = static_cast<std::size_t>(m.bonds.neighbor[k]);
       const double dx = m.position[j][0] - m.position[i][0], dy = m.position[j][1] - m.position[i][1];
-      // in wet rock the bond breaks at s0 - min(s_p,i, s_p,j) (pd/effective_stretch.hpp, alpha = 0)
-      const double shift = pore.empty() ? 0.0 : std::min(pore[i], pore[j]);
+      // a bond across the wet crack breaks at s0 - min(s_p,i, s_p,j) (pd/effective_stretch.hpp, alpha = 0)
+      const bool crosses = rift::pd::pierces_crack<2>(m.fluid_network.crack_surface, m.reference_position[i], m.reference_position[j]);
+      const double shift = pore.empty() || !crosses ? 0.0 : std::min(pore[i], pore[j]);
       s_max = std::max(s_max, std::hypot(dx, dy) / m.bonds.length(k) - 1.0 + shift);
     }
   }

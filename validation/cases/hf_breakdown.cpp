@@ -11,10 +11,18 @@
 // The first bonds break earlier, at the corners of the staircase the lattice makes of the wall
 // (their stretch is 12-18% above that of a smooth wall and does not fall with the spacing); that
 // damage stays put until the breakdown and is reported beside it.
-// T is the tensile strength of the PD material in the wall's condition, plane strain uniaxial
-// tension: the bond along the load breaks at e = s0 = s00 - alpha s_min (LAMMPS peri), its strain
-// (1 - nu^2) sigma / E, the smallest stretch in its family the transverse strain -nu (1 + nu) sigma / E:
-//   T = E s00 / ((1 - nu^2) - alpha nu (1 + nu)).
+// T is the tensile strength of the PD material in the wall's condition: plane strain, the hoop
+// stress sigma and the radial stress -p of the fluid on the wall. The hoop bond breaks at
+// e = s0 = s00 - alpha s_min (LAMMPS peri), its strain ((1 - nu^2) sigma + nu (1 + nu) p) / E, the
+// smallest stretch in its family the radial strain -((1 - nu^2) p + nu (1 + nu) sigma) / E:
+//   sigma = T0 + c p,  T0 = E s00 / ((1 - nu^2) - alpha nu (1 + nu)),
+//   c = (alpha (1 - nu^2) - nu (1 + nu)) / ((1 - nu^2) - alpha nu (1 + nu)),
+// T0 the strength in uniaxial tension; a strain criterion's strength falls with the lateral
+// compression (Poisson's effect; c = -0.091 here). Hubbert and Willis's wall, whose hoop stress is
+// p - (3 S_h - S_H), then breaks at p - (3 S_h - S_H) = T0 + c p:
+//   p_b = (3 S_h - S_H + T0) / (1 - c),
+// 8% below 3 S_h - S_H + T0 here. (The reference before 2026-11-24 took T0 for T, the uniaxial
+// strength: the wall's first bonds broke at 0.76 of it, as this formula has them.)
 #include <cmath>
 #include <cstdio>
 
@@ -58,7 +66,8 @@ Result hf_breakdown(const Settings&) {
   const double E = mat.youngs_modulus(), nu = mat.poisson_ratio(), s00 = *mat.critical_stretch, alpha = mat.alpha;
   const double S_H = -s.in_situ.sigma_H, S_h = -s.in_situ.sigma_h;  // compression positive
   const double T = E * s00 / ((1.0 - nu * nu) - alpha * nu * (1.0 + nu));
-  const double expected = 3.0 * S_h - S_H + T;
+  const double lateral = (alpha * (1.0 - nu * nu) - nu * (1.0 + nu)) / ((1.0 - nu * nu) - alpha * nu * (1.0 + nu));
+  const double expected = (3.0 * S_h - S_H + T) / (1.0 - lateral);
   const double a = 0.01;  // the borehole's radius (examples/hf_breakdown.toml)
   run::Simulation<2> sim(s);
   auto& m = sim.model;
@@ -88,13 +97,13 @@ Result hf_breakdown(const Settings&) {
   res.measured = breakdown / expected;
   res.reference = 1.0;
   res.tolerance = 0.15;
-  res.unit = "breakdown pressure / (3 S_h - S_H + T)";
+  res.unit = "breakdown pressure / Hubbert-Willis (3 S_h - S_H + T), T the strength at the wall";
   char buf[600];
   std::snprintf(buf, sizeof buf,
-                "p_b = %.3f MPa (+- %.2f, load steps), Hubbert-Willis %.3f MPa with T = %.3f MPa; the fracture runs at %.1f degrees "
+                "p_b = %.3f MPa (+- %.2f, load steps), Hubbert-Willis %.3f MPa with T = %.3f %+.3f p MPa; the fracture runs at %.1f degrees "
                 "from sigma_H (within 10: %s); first bonds broke at %.3f MPa (%.2f of Hubbert-Willis), damage within r = %.2f a "
                 "until the breakdown; bonds broken by the in-situ stage: %lld; in-situ stage converged: %s",
-                breakdown / 1e6, 0.5 * step_width / 1e6, expected / 1e6, T / 1e6, at_breakdown.angle_deg,
+                breakdown / 1e6, 0.5 * step_width / 1e6, expected / 1e6, T / 1e6, lateral, at_breakdown.angle_deg,
                 at_breakdown.angle_deg <= 10.0 ? "yes" : "NO", first_break / 1e6, first_break / expected, stable_extent / a,
                 static_cast<long long>(broken_by_in_situ), in_situ.converged ? "yes" : "NO");
   res.details = buf;

@@ -25,7 +25,10 @@
 // let transients run S-1's tips to the block's faces at t = 1.05 s. The interface reads dilated
 // only with the fluid above the compression sigma_n the in-situ stresses put across it
 // (pd/interface_outcome.hpp, the thesis' EQ 4.7).
-// Measured at 3 mm (rift run on each row's scene, one thread, 5-10 min a row; the outcome before
+// Measured at 3 mm before 2026-11-24 (the wet rock's shift then on every bond between wet
+// particles, now on the bonds across the crack only, pd/crack_crossing.hpp; the coarse rows at 4
+// mm: 2-1 crossed 39 mm past the plane, 2-7 arrested at it; to remeasure) (rift run on each row's
+// scene, one thread, 5-10 min a row; the outcome before
 // the fluid vents, p its pressure then): as the experiment, 2-1 crossed (31.5 mm past the plane at
 // t = 4 s, p = 5.6 MPa), 2-2 crossed (46.5 mm, t = 3.6 s), 2-4 crossed (43.5 mm, t = 2.8 s), S-1
 // crossed (21 mm, t = 1.5 s, p = 0.01 MPa), 2-7 arrested (stopped 8.5 mm past the plane, the

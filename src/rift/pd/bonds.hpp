@@ -142,6 +142,18 @@ struct ViscousFluid {
   std::vector<double> stored, trial;  // per particle: the fluid in its node (0 on the borehole's wall), m^3
 };
 
+/// The surface of the cracks a fluid fills, as patches (crack_crossing.hpp): each a point and a
+/// normal, found through a grid of their points.
+struct CrackSurface {
+  bool made = false;                          // made once at least (before: a scene's initial state)
+  std::vector<std::int64_t> patches;          // a broken bond's index, or -1 - a cut bond's; ascending
+  std::vector<std::array<double, 6>> planes;  // per patch: its point and unit normal (z = 0 in 2D)
+  double cell = 0.0, reach = 0.0;             // the grid's cell size; how far a patch reaches along its plane, m
+  std::vector<std::int64_t> cell_keys;        // the grid: cell keys, ascending
+  std::vector<std::uint32_t> in_cell;         // the patch of each entry of cell_keys
+  bool empty() const { return planes.empty(); }
+};
+
 /// The fluid each pressure source has in the cracks grown from it (fluid_network.hpp); empty
 /// without pressure sources.
 struct FluidNetwork {
@@ -152,6 +164,9 @@ struct FluidNetwork {
   std::vector<std::uint8_t> immersed;         // per particle: wet, in a fragment its intact bonds no longer join to the body (fluid_network.hpp): no fluid load
   std::vector<double> pore_stretch;           // per particle: p / (d kappa) where the fluid is in the cracked rock, 0 elsewhere; empty: nowhere (effective_stretch.hpp)
   std::vector<std::vector<std::int64_t>> network_bonds;  // per source: the broken bonds its fluid fills (both entries of each), ascending
+  CrackSurface crack_surface;                 // the cracks' surface the fluid fills (crack_crossing.hpp)
+  std::vector<std::vector<std::int64_t>> surface_bonds;  // network_bonds when crack_surface was made
+  std::vector<std::int64_t> crossing_broken;  // broken bonds (both entries) that crossed the crack or its extension when they broke, ascending
   std::vector<std::vector<std::int64_t>> loaded_bonds;   // network_bonds when network_load was made
   std::vector<std::vector<double>> network_load;         // per source: the force density on each particle per unit pressure (n x d, 1/m); empty: none (network_load.hpp)
   // per pressure source (the scene's cracks, then its boreholes)

@@ -13,7 +13,13 @@
 // falls only as sqrt(horizon / crack length). Both ends must be wet: rock with one end on a crack face
 // and the other in the dry rock around it is not filled. A borehole's intact wall is not cracked
 // rock either: its fluid stays out of the rock (Hubbert and Willis 1957), and breakdown keeps the
-// total stress.
+// total stress. And the bond must cross the crack or its extension at the tip (crack_crossing.hpp):
+// the -p I the shift takes off is the face pressure's, which the bonds across the faces carry. A
+// bond beside the faces carries the total stress of the rock there, which under confinement is no
+// -p I: a horizon from the faces of a crack a few horizons long, the crack's net-pressure field has
+// taken back part of p - sigma0, and every particle the fluid reached (first rule, without the
+// crossing) read it as a tension and broke the faces' rock parallel to the crack, a band of damage
+// five rows thick (hf_kgd_viscosity, 3 mm, sigma0 = 15 MPa).
 // The pore stretch follows the fluid where it is, at once: as the crack grows, the rock the fluid
 // reaches across it is wet. Its pressure is the fluid's pressure where the fluid is in equilibrium
 // with the rock (the pore pressure): after each explicit time step, and at the end of each
@@ -22,8 +28,10 @@
 // criterion that followed those spikes would break rock the fluid has not loaded.
 #pragma once
 #include <cstddef>
+#include <cstdint>
 #include <vector>
 
+#include "rift/pd/crack_crossing.hpp"
 #include "rift/pd/model.hpp"
 
 namespace rift::pd {
@@ -66,16 +74,44 @@ void equilibrate_pore_pressure(Model<D>& m) {
   update_pore_stretch<D>(m);
 }
 
-/// The pore stretch array the bond passes read, nullptr where no rock is wet.
+/// What the bond passes read of the wet rock: the pore stretch per particle (nullptr: no pressure
+/// yet) and the crack surface whose crossing bonds it shifts (crack_crossing.hpp).
 template <int D>
-const double* pore_stretch_or_null(const Model<D>& m) {
-  return m.fluid_network.pore_stretch.size() == m.size() ? m.fluid_network.pore_stretch.data() : nullptr;
+struct WetRock {
+  const double* pore_stretch = nullptr;
+  const CrackSurface* surface = nullptr;
+  const Vec<D>* reference = nullptr;
+  explicit operator bool() const { return surface != nullptr; }
+  /// How far the wet rock would lower the stretch limit of bond i-j if it crosses the crack:
+  /// (1 + alpha) min(s_p,i, s_p,j).
+  double shift(double alpha, std::size_t i, std::size_t j) const {
+    if (!pore_stretch) return 0.0;
+    const double* s = pore_stretch;
+    return (1.0 + alpha) * (s[i] < s[j] ? s[i] : s[j]);
+  }
+  bool crosses(std::size_t i, std::size_t j) const { return pierces_crack<D>(*surface, reference[i], reference[j]); }
+};
+
+/// The wet rock the bond passes read; empty where no crack holds a fluid.
+template <int D>
+WetRock<D> wet_rock(const Model<D>& m) {
+  const FluidNetwork& f = m.fluid_network;
+  if (f.crack_surface.empty()) return {};
+  return {f.pore_stretch.size() == m.size() ? f.pore_stretch.data() : nullptr, &f.crack_surface, m.reference_position.data()};
 }
 
-/// How far the wet rock lowers bond i-j's stretch limit: (1 + alpha) min(s_p,i, s_p,j).
-inline double effective_stretch_shift(const double* pore_stretch, double alpha, std::size_t i, std::size_t j) {
-  const double wet = pore_stretch[i] < pore_stretch[j] ? pore_stretch[i] : pore_stretch[j];
-  return (1.0 + alpha) * wet;
+/// Whether bond i-j of value `value` (its stretch, or its normal stress in stretch units) against
+/// `limit` breaks, in wet rock on the effective stretch where it crosses the crack; `crossed` says
+/// whether a bond that breaks crosses the crack (it then extends it, crack_crossing.hpp).
+template <int D>
+bool breaks_in_wet_rock(const WetRock<D>& wet, double alpha, std::size_t i, std::size_t j, double value, double limit, bool& crossed) {
+  if (value > limit) {
+    crossed = wet.crosses(i, j);
+    return true;
+  }
+  const double shift = wet.shift(alpha, i, j);
+  crossed = shift > 0.0 && value > limit - shift && wet.crosses(i, j);
+  return crossed;
 }
 
 }  // namespace rift::pd

@@ -226,6 +226,7 @@ void update_fluid_network(Model<D>& m) {
       if (f.source[j] == s && carries_fluid<D>(m, k, i, j)) f.network_bonds[static_cast<std::size_t>(s)].push_back(k);
     }
   }
+  update_crack_surface<D>(m);
   update_pore_stretch<D>(m);  // the rock the fluid reached is wet at once
 }
 

@@ -55,8 +55,8 @@ void dilatation_pass(Model<D>& m, const BodyInfo& body, double* coupling, double
     if constexpr (Coupling) coupling[i] = 0.0;
     smallest[i] = none;
   }
-  std::vector<std::pair<std::size_t, std::int64_t>> broken;  // (i, k) of the bonds broken here
-  const double* const pore = pore_stretch_or_null(m);
+  std::vector<std::pair<std::size_t, std::int64_t>> broken, crossing;  // (i, k) of the bonds broken here, and of those across the crack
+  const WetRock<D> wet = wet_rock(m);
   const double* const strain = m.failure_strain.data();
   const double stress_to_stretch = 1.0 / (D * c.kappa), lambda = c.lame_lambda(), p_wave = c.p_wave_modulus();
   constexpr int C = stress_components<D>;
@@ -73,20 +73,24 @@ void dilatation_pass(Model<D>& m, const BodyInfo& body, double* coupling, double
       const FamilyOffset& family = b.families[b.family[k]];
       const double xi = family.length;
       const double e = r - xi;
-      double limit = std::min(s0_i, m.stretch_limit[j]);
-      if constexpr (Wet) limit -= effective_stretch_shift(pore, c.alpha, i, j);
-      bool past;
+      const double limit = std::min(s0_i, m.stretch_limit[j]);
+      double value;  // the bond's stretch, or its normal stress over d kappa
       if constexpr (Normal) {
         Vec<D> n = m.position[j] - xi_pos;
         for (int q = 0; q < D; ++q) n[q] /= r;
-        past = bond_normal_stress<D>(strain + C * i, strain + C * j, n, e / xi, lambda, p_wave) * stress_to_stretch > limit;
+        value = bond_normal_stress<D>(strain + C * i, strain + C * j, n, e / xi, lambda, p_wave) * stress_to_stretch;
       } else {
-        past = e > xi * limit;
+        value = e * family.inverse_length;
       }
+      bool past = Normal ? value > limit : e > xi * limit, crossed = false;
+      if constexpr (Wet) past = c.breakable && breaks_in_wet_rock<D>(wet, c.alpha, i, j, value, limit, crossed);
       if (c.breakable && past) {
         b.intact[k] = bond_broken;
 #pragma omp critical(rift_lps_broken)
-        broken.emplace_back(i, k);
+        {
+          broken.emplace_back(i, k);
+          if (crossed) crossing.emplace_back(i, k);
+        }
         continue;
       }
       const double s = e * family.inverse_length;
@@ -108,7 +112,7 @@ void dilatation_pass(Model<D>& m, const BodyInfo& body, double* coupling, double
     smallest[i] = s_min;
   };
   auto rows = [&]<bool Normal>() {
-    if (pore)
+    if (wet)
       for_each_row_by_slabs(b, body.first, body.last, [&](std::size_t i) { row.template operator()<true, Normal>(i); });
     else
       for_each_row_by_slabs(b, body.first, body.last, [&](std::size_t i) { row.template operator()<false, Normal>(i); });
@@ -117,6 +121,7 @@ void dilatation_pass(Model<D>& m, const BodyInfo& body, double* coupling, double
   if (c.normal_stress_failure && c.breakable) rows.template operator()<true>();
   else rows.template operator()<false>();
   for (const auto& [i, k] : broken) break_mirror_bond(b, body, i, k);
+  record_crossing_breaks<D>(m, crossing);
 }
 
 template <int D, scene::Influence Omega>

@@ -38,7 +38,7 @@ void pmb_forces(Model<D>& m, const BodyInfo& body) {
   Bonds& b = m.bonds;
   const double micromodulus = c.micromodulus, horizon = c.horizon;
   const bool breakable = c.breakable;
-  const double* const pore = pore_stretch_or_null(m);
+  const WetRock<D> wet = wet_rock(m);
   // bonds join particles of one body; the buffer is the calling thread's, which the team writes and
   // reads through `in`; `smallest`: the smallest stretch of each particle's intact bonds
   static thread_local std::vector<BondEndInputs<D>> inputs;
@@ -54,7 +54,7 @@ void pmb_forces(Model<D>& m, const BodyInfo& body) {
   }
   // each bond once, from its lower end (bond_slabs.hpp): s is the same seen from either end, and so
   // is the pair force c omega s (g_i + g_j)/2 V along the bond (one lattice cell volume per body)
-  std::vector<std::pair<std::size_t, std::int64_t>> broken;  // (i, k) of the bonds broken here
+  std::vector<std::pair<std::size_t, std::int64_t>> broken, crossing;  // (i, k) of the bonds broken here, and of those across the crack
   const BondView bonds = b.view();
   Vec<D>* const forces = m.force.data();
   // the wet rock's shift is compiled in only where there is wet rock (effective_stretch.hpp)
@@ -75,12 +75,16 @@ void pmb_forces(Model<D>& m, const BodyInfo& body) {
       const FamilyOffset& family = v.families[v.family[k]];
       const double xi = family.length;
       const double s = (r - xi) * family.inverse_length;
-      double limit = std::min(own.stretch_limit, other.stretch_limit);
-      if constexpr (Wet) limit -= effective_stretch_shift(pore, c.alpha, i, j);
-      if (breakable && s > limit) {
+      const double limit = std::min(own.stretch_limit, other.stretch_limit);
+      bool past = s > limit, crossed = false;
+      if constexpr (Wet) past = breakable && breaks_in_wet_rock<D>(wet, c.alpha, i, j, s, limit, crossed);
+      if (breakable && past) {
         v.intact[k] = bond_broken;
 #pragma omp critical(rift_pmb_broken)
-        broken.emplace_back(i, k);
+        {
+          broken.emplace_back(i, k);
+          if (crossed) crossing.emplace_back(i, k);
+        }
         continue;
       }
       s_min = std::min(s_min, s);
@@ -96,11 +100,12 @@ void pmb_forces(Model<D>& m, const BodyInfo& body) {
     for (int q = 0; q < D; ++q) force[i][q] += f[q];
     s_smallest[i] = s_min;
   };
-  if (pore)
+  if (wet)
     for_each_row_by_slabs(b, body.first, body.last, [&](std::size_t i) { row.template operator()<true>(i); });
   else
     for_each_row_by_slabs(b, body.first, body.last, [&](std::size_t i) { row.template operator()<false>(i); });
   for (const auto& [i, k] : broken) break_mirror_bond(b, body, i, k);
+  record_crossing_breaks<D>(m, crossing);
   next_stretch_limits<D>(m, body, smallest);
 }
 
