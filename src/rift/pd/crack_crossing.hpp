@@ -113,18 +113,12 @@ void update_crack_surface(Model<D>& m) {
   surface = CrackSurface{};
   surface.made = true;
   if (f.source.size() != n) return;
-  // the lattice spacing and horizon: the shortest family offset and the longest
+  // the bodies' largest lattice spacing and horizon
   double spacing = 0.0, horizon = 0.0;
-  for (const auto& body : m.bodies) {
-    double shortest = 1e300;
-    for (std::size_t o = body.first_family; o < body.first_family + body.family_count; ++o)
-      shortest = std::min(shortest, b.families[o].length);
-    spacing = std::max(spacing, shortest);
-    horizon = std::max(horizon, body.constants.horizon);
-  }
-  const double short_bond = 1.5 * spacing;     // nearest and diagonal neighbours
-  surface.reach = (1.0 + 1e-9) * spacing;      // a lattice neighbour's crossing included
-  surface.cell = 0.5 * horizon + surface.reach;  // a pierced patch lies within this of the bond's midpoint
+  for (const auto& body : m.bodies) spacing = std::max(spacing, body.constants.spacing), horizon = std::max(horizon, body.constants.horizon);
+  const double short_bond = 1.5 * spacing;  // nearest and diagonal neighbours
+  surface.reach = (1.0 + 1e-9) * spacing;   // a lattice neighbour's crossing included
+  const double pierce_cell = 0.5 * horizon + surface.reach;  // a pierced patch lies within this of the bond's midpoint
   struct Seed {
     std::int64_t key;
     std::array<double, 3> point, direction;
@@ -179,7 +173,6 @@ void update_crack_surface(Model<D>& m) {
     surface.cell_keys.resize(entries.size()), surface.in_cell.resize(entries.size());
     for (std::size_t e = 0; e < entries.size(); ++e) surface.cell_keys[e] = entries[e].first, surface.in_cell[e] = entries[e].second;
   };
-  const double grid_cell = surface.cell;
   make_grid(short_bond);
   surface.patches.resize(seeds.size());
   surface.planes.resize(seeds.size());
@@ -227,7 +220,7 @@ void update_crack_surface(Model<D>& m) {
     for (int q = 0; q < D; ++q) surface.planes[p][static_cast<std::size_t>(q)] = seeds[p].point[static_cast<std::size_t>(q)],
                                 surface.planes[p][static_cast<std::size_t>(3 + q)] = v[q];
   }
-  make_grid(grid_cell);
+  make_grid(pierce_cell);
 }
 
 /// Keeps the bonds just broken that crossed the crack (pairs (i, k): row i's entry k), both entries.
