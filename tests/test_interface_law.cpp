@@ -386,3 +386,33 @@ TEST(InterfaceOutcome, BreakthroughThroughAnInterfaceIsKeptWhenItShuts) {
 }
 
 }  // namespace
+
+namespace {
+
+// The record a run keeps (pd/interface_outcome.hpp record_outcomes), as Zhou et al.'s cut blocks
+// kept the fluid's path: an interface dilated at one load step and shut at the next reads dilated,
+// crossing stays, and the lengths are the largest seen.
+TEST(InterfaceOutcome, DilationIsKeptWhenTheInterfaceShuts) {
+  rift::pd::InterfaceOutcome open_and_wet, shut;
+  open_and_wet.reached = open_and_wet.dilated = true;
+  open_and_wet.opened_length = 0.025;
+  shut.reached = true;
+  shut.crossing_distance = 0.004;
+  std::vector<rift::pd::InterfaceOutcome> record;
+  rift::pd::record_outcomes(record, {shut});
+  EXPECT_EQ(record.at(0).name(), "arrested");
+  rift::pd::record_outcomes(record, {open_and_wet});
+  rift::pd::record_outcomes(record, {shut});
+  EXPECT_EQ(record.at(0).name(), "dilated");
+  EXPECT_DOUBLE_EQ(record.at(0).opened_length, 0.025);
+  EXPECT_DOUBLE_EQ(record.at(0).crossing_distance, 0.004);
+  rift::pd::InterfaceOutcome crossed = shut;
+  crossed.crossed = true;
+  crossed.crossing_distance = 0.02;
+  rift::pd::record_outcomes(record, {crossed});
+  rift::pd::record_outcomes(record, {shut});
+  EXPECT_EQ(record.at(0).name(), "crossed+dilated");
+  EXPECT_DOUBLE_EQ(record.at(0).crossing_distance, 0.02);
+}
+
+}  // namespace

@@ -199,7 +199,9 @@ ZhouRun run_zhou(const ZhouTest& t, double spacing, const std::string& damage_cs
     if (m.fluid_network.broke_through.at(source)) break;
     out.unconverged += r.converged ? 0 : 1;
     pd::update_damage<2>(m);
-    out.outcome = pd::classify_interfaces<2>(m).at(0);
+    std::vector<pd::InterfaceOutcome> record{out.outcome};  // what a cut block shows: the fluid's path so far
+    pd::record_outcomes(record, pd::classify_interfaces<2>(m));
+    out.outcome = record.at(0);
     damage = m.damage;
   }
   if (!damage_csv.empty()) {

@@ -16,6 +16,10 @@
 //   arrested: the interface failed (or rock broke within crossing_depth of it) but neither holds;
 //   not reached: nothing broke at the interface.
 // An interface with no fluid source in the scene has no far side: only "dilated" can be read.
+// Zhou et al. cut their blocks after each test and read the fluid's path from the faces it had
+// wetted (the thesis, section 4.3.2: dilation "induced by fluid flow along the fracture surface"):
+// an interface the fluid once opened and flowed along reads dilated though it shut again as the
+// pressure fell. A run keeps that record, load step by load step (record_outcomes).
 #pragma once
 #include <algorithm>
 #include <cmath>
@@ -115,6 +119,20 @@ std::vector<InterfaceOutcome> classify_interfaces(const Model<D>& m) {
     out[f].reached = out[f].reached || out[f].crossed;
   }
   return out;
+}
+
+// What the run has seen so far at each interface, as a cut block shows it: the fluid's path once
+// made stays (dilated), broken rock stays broken (crossed, reached); lengths are the largest seen.
+inline void record_outcomes(std::vector<InterfaceOutcome>& record, const std::vector<InterfaceOutcome>& now) {
+  if (record.size() < now.size()) record.resize(now.size());
+  for (std::size_t f = 0; f < now.size(); ++f) {
+    auto& r = record[f];
+    r.reached = r.reached || now[f].reached;
+    r.crossed = r.crossed || now[f].crossed;
+    r.dilated = r.dilated || now[f].dilated;
+    r.crossing_distance = std::max(r.crossing_distance, now[f].crossing_distance);
+    r.opened_length = std::max(r.opened_length, now[f].opened_length);
+  }
 }
 
 }  // namespace rift::pd

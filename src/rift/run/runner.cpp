@@ -222,9 +222,10 @@ Result run_dim(const scene::Scene& s, const Options& o) {
   io::History history(res.output_dir + "/history.csv", columns);
   res.history_csv = history.path();
 
-  // The outcome at the interfaces as of the last history row before the fluid first escaped through
-  // the outer surface (a laboratory test ends there, its pressure lost), and when it escaped.
-  std::vector<pd::InterfaceOutcome> outcomes_before_vent;
+  // The outcome at the interfaces, as recorded up to the last history row before the fluid first
+  // escaped through the outer surface (a laboratory test ends there, its pressure lost), and when it
+  // escaped.
+  std::vector<pd::InterfaceOutcome> outcomes, outcomes_before_vent;
   double read_time = 0.0, vent_time = -1.0;
   auto history_row = [&](long step, std::vector<double> extra) {
     auto e = pd::summarize<D>(m);
@@ -247,7 +248,7 @@ Result run_dim(const scene::Scene& s, const Options& o) {
       row.insert(row.end(), {m.fluid_network.pressure[c], m.fluid_network.cavity_volume[c], double(v)});
       vented = vented || v;
     }
-    const auto outcomes = pd::classify_interfaces<D>(m);
+    pd::record_outcomes(outcomes, pd::classify_interfaces<D>(m));
     for (const auto& o : outcomes) row.insert(row.end(), {double(o.crossed), double(o.dilated), o.crossing_distance, o.opened_length});
     if (!vented && vent_time < 0.0) outcomes_before_vent = outcomes, read_time = m.time;
     if (vented && vent_time < 0.0) vent_time = m.time;
@@ -266,7 +267,8 @@ Result run_dim(const scene::Scene& s, const Options& o) {
       std::fprintf(stderr, "rift: warning: the in-situ stage did not converge in %d iterations (residual %.3g > %.3g)\n", r.iterations,
                    r.residual, s.in_situ.tolerance);
   }
-  outcomes_before_vent = pd::classify_interfaces<D>(m);
+  pd::record_outcomes(outcomes, pd::classify_interfaces<D>(m));
+  outcomes_before_vent = outcomes;
   p.start();
   const auto loop_start = std::chrono::steady_clock::now();
   Progress progress(p.steps, s.solver.end_time, o.quiet);
@@ -317,9 +319,10 @@ Result run_dim(const scene::Scene& s, const Options& o) {
   for (double d : m.damage) res.max_damage = std::max(res.max_damage, d);
   res.steps = p.steps;
   res.time = m.time;
-  const auto outcomes = vent_time < 0.0 ? pd::classify_interfaces<D>(m) : outcomes_before_vent;
-  for (std::size_t k = 0; k < outcomes.size(); ++k) {
-    const auto& o = outcomes[k];
+  if (vent_time < 0.0) pd::record_outcomes(outcomes, pd::classify_interfaces<D>(m));
+  const auto& read_outcomes = vent_time < 0.0 ? outcomes : outcomes_before_vent;
+  for (std::size_t k = 0; k < read_outcomes.size(); ++k) {
+    const auto& o = read_outcomes[k];
     res.interface_outcomes.push_back(o.name());
     const std::string when =
         vent_time < 0.0 ? "" : fmt::format(", at t = {:g} s, the last output before the fluid escaped through the outer surface at t = {:g} s", read_time, vent_time);
