@@ -542,9 +542,9 @@ namespace {
 
 // `rift run` on the breakthrough block above (plus an interface the crack never reaches): the
 // history's vented_borehole_0 column is 1 from the load step the fluid escapes, and the outcome
-// printed is the one before it, with both times named (a laboratory test ends at breakthrough). The
-// crack stopping short of the face never vents, and the outcome is the end's.
-TEST(InjectedFluid, RunReportsTheOutcomeBeforeTheFluidEscapes) {
+// printed is the record up to that load step, its time named (a laboratory test ends at
+// breakthrough). The crack stopping short of the face never vents, and the outcome is the end's.
+TEST(InjectedFluid, RunReportsTheOutcomeAtBreakthrough) {
   for (const double crack_end : {0.03, 0.015}) {
     char crack[512];
     std::snprintf(crack, sizeof crack,
@@ -580,8 +580,51 @@ TEST(InjectedFluid, RunReportsTheOutcomeBeforeTheFluidEscapes) {
     std::string note;
     for (const auto& n : result.notes)
       if (n.rfind("interface 0:", 0) == 0) note = n;
-    const bool named = note.find("at t = 0 s, the last output before the fluid escaped through the outer surface at t = 0.5 s") != std::string::npos;
+    const bool named = note.find("as at t = 0.5 s, when the fluid broke through to the outer surface") != std::string::npos;
     EXPECT_EQ(named, vents) << note;
+  }
+}
+
+}  // namespace
+
+namespace {
+
+// A test ends at breakthrough (pd/dynamic_relaxation.hpp, relax_breaking_at_equilibrium): a 50 mm
+// block with two boreholes. The left one's fluid is injected and its pre-crack runs to the left
+// face; the right one is held at 300 MPa, far past what its wall's bonds (critical stretch 1e-3)
+// bear. With the pre-crack reaching the face, the first equilibrium vents the injected fluid and the
+// load step ends there: one pass, nothing broken. Stopping 10 mm short of the face, nothing vents
+// and the right borehole's wall breaks at that equilibrium.
+TEST(InjectedFluid, BreakingStopsWhenTheFluidBreaksThrough) {
+  for (const double crack_end : {-0.03, -0.015}) {
+    char text[1024];
+    std::snprintf(text, sizeof text,
+                  "[regions.block]\nshape = \"box\"\nmin = [-0.025, -0.025]\nmax = [0.025, 0.025]\n"
+                  "[regions.left]\nshape = \"cylinder\"\ncenter = [-0.008, 0.0]\nradius = 0.003\n"
+                  "[regions.right]\nshape = \"cylinder\"\ncenter = [0.012, 0.0]\nradius = 0.003\n"
+                  "[bodies.block]\nmaterial = \"rock\"\nregion = \"block\"\nspacing = 0.001\nhorizon = 3.015\n"
+                  "[[boreholes]]\nregion = \"left\"\ninjection_rate = 1e-10\nfluid_bulk_modulus = 2e8\n"
+                  "[[boreholes]]\nregion = \"right\"\npressure = 3e8\n"
+                  "[[cracks]]\npoints = [[-0.0115, 0.0], [%g, 0.0]]\n"
+                  "[solver]\ntype = \"dynamic_relaxation\"\n",
+                  crack_end);
+    const auto scene = rift::scene::parse_string(rift::test::plane_strain_rock("critical_stretch = 1e-3\n") + text, "stop.toml");
+    rift::run::Simulation<2> sim(scene);
+    auto& m = sim.model;
+    rift::pd::DynamicRelaxation<2> dr(m);
+    const auto r = dr.relax_breaking_at_equilibrium(m, sim.loads, sim.contact_ptr(), 1.0, 3000, 1e-6, 5);
+    long broken = 0;
+    for (auto state : m.bonds.intact) broken += state == rift::pd::bond_broken;
+    const bool vents = crack_end < -0.025;
+    const std::size_t injected = scene.cracks.size();  // the left borehole
+    EXPECT_EQ(m.fluid_network.broke_through.at(injected) != 0, vents);
+    if (vents) {
+      EXPECT_EQ(r.breaking_passes, 1);
+      EXPECT_EQ(broken, 0);
+    } else {
+      EXPECT_GE(r.breaking_passes, 2);
+      EXPECT_GT(broken, 0);
+    }
   }
 }
 

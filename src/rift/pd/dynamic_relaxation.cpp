@@ -169,6 +169,13 @@ std::size_t failed_bonds(const Model<D>& m) {
   for (std::size_t k = 0; k < intact.size(); ++k) failed += intact[k] != bond_intact;
   return failed;
 }
+
+// fluid sources that have reached the outer surface so far
+template <int D>
+std::size_t broken_through_sources(const Model<D>& m) {
+  const auto& b = m.fluid_network.broke_through;
+  return static_cast<std::size_t>(std::count(b.begin(), b.end(), std::uint8_t{1}));
+}
 }  // namespace
 
 template <int D>
@@ -177,6 +184,7 @@ RelaxationResult DynamicRelaxation<D>::relax_breaking_at_equilibrium(Model<D>& m
                                                                       double tolerance, int max_passes) {
   RelaxationResult total;
   total.breaking_passes = 0;
+  const std::size_t broken_through = broken_through_sources<D>(m);
   for (int pass = 0; pass < max_passes; ++pass) {
     RelaxationResult r;
     {
@@ -187,6 +195,7 @@ RelaxationResult DynamicRelaxation<D>::relax_breaking_at_equilibrium(Model<D>& m
     total.residual = r.residual;
     total.converged = r.converged;
     ++total.breaking_passes;
+    if (broken_through_sources<D>(m) > broken_through) break;  // the test is over: no more growth
     const std::size_t before = failed_bonds<D>(m);
     compute_forces<D>(m, contact);  // breaks what is past its limit at this equilibrium
     if (failed_bonds<D>(m) == before) break;

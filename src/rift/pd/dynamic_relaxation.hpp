@@ -27,7 +27,9 @@ class DynamicRelaxation {
   /// equilibrium, and relax again, until an equilibrium breaks nothing (or max_passes equilibria;
   /// then converged is false).
   /// No bond breaks in the transients of a load step, where the loads (an injected fluid's
-  /// pressure, say) have not yet found the deformation they belong to.
+  /// pressure, say) have not yet found the deformation they belong to. The passes stop once an
+  /// injected fluid breaks through to the outer surface: a laboratory test ends there, its pressure
+  /// lost, and the bonds keep the crack it had then (what a cut block shows).
   RelaxationResult relax_breaking_at_equilibrium(Model<D>& m, const load::Boundaries<D>& loads, Contact<D>* contact, double t,
                                                  int max_iterations, double tolerance, int max_passes);
 

@@ -222,11 +222,11 @@ Result run_dim(const scene::Scene& s, const Options& o) {
   io::History history(res.output_dir + "/history.csv", columns);
   res.history_csv = history.path();
 
-  // The outcome at the interfaces, as recorded up to the last history row before the fluid first
-  // escaped through the outer surface (a laboratory test ends there, its pressure lost), and when it
-  // escaped.
-  std::vector<pd::InterfaceOutcome> outcomes, outcomes_before_vent;
-  double read_time = 0.0, vent_time = -1.0;
+  // The outcome at the interfaces, as recorded up to the history row where the fluid first broke
+  // through to the outer surface (a laboratory test ends there, its pressure lost; the load step's
+  // bonds stop breaking then, pd/dynamic_relaxation.hpp), and when it broke through.
+  std::vector<pd::InterfaceOutcome> outcomes, outcomes_at_breakthrough;
+  double vent_time = -1.0;
   auto history_row = [&](long step, std::vector<double> extra) {
     auto e = pd::summarize<D>(m);
     check_finite<D>(m, step, e);
@@ -250,7 +250,7 @@ Result run_dim(const scene::Scene& s, const Options& o) {
     }
     pd::record_outcomes(outcomes, pd::classify_interfaces<D>(m));
     for (const auto& o : outcomes) row.insert(row.end(), {double(o.crossed), double(o.dilated), o.crossing_distance, o.opened_length});
-    if (!vented && vent_time < 0.0) outcomes_before_vent = outcomes, read_time = m.time;
+    if (vent_time < 0.0) outcomes_at_breakthrough = outcomes;
     if (vented && vent_time < 0.0) vent_time = m.time;
     for (const auto& r : p.loads.reactions(m))
       for (int k = 0; k < D; ++k) row.push_back(r[k]);
@@ -268,7 +268,7 @@ Result run_dim(const scene::Scene& s, const Options& o) {
                    r.residual, s.in_situ.tolerance);
   }
   pd::record_outcomes(outcomes, pd::classify_interfaces<D>(m));
-  outcomes_before_vent = outcomes;
+  outcomes_at_breakthrough = outcomes;
   p.start();
   const auto loop_start = std::chrono::steady_clock::now();
   Progress progress(p.steps, s.solver.end_time, o.quiet);
@@ -320,12 +320,12 @@ Result run_dim(const scene::Scene& s, const Options& o) {
   res.steps = p.steps;
   res.time = m.time;
   if (vent_time < 0.0) pd::record_outcomes(outcomes, pd::classify_interfaces<D>(m));
-  const auto& read_outcomes = vent_time < 0.0 ? outcomes : outcomes_before_vent;
+  const auto& read_outcomes = vent_time < 0.0 ? outcomes : outcomes_at_breakthrough;
   for (std::size_t k = 0; k < read_outcomes.size(); ++k) {
     const auto& o = read_outcomes[k];
     res.interface_outcomes.push_back(o.name());
     const std::string when =
-        vent_time < 0.0 ? "" : fmt::format(", at t = {:g} s, the last output before the fluid escaped through the outer surface at t = {:g} s", read_time, vent_time);
+        vent_time < 0.0 ? "" : fmt::format(", as at t = {:g} s, when the fluid broke through to the outer surface", vent_time);
     res.notes.push_back(fmt::format("interface {}: {} (broken rock up to {:.3g} mm past it, open and wet along {:.3g} mm of it{})", k, o.name(),
                                     1e3 * o.crossing_distance, 1e3 * o.opened_length, when));
   }
