@@ -51,6 +51,10 @@
 // unbounded KGD's (2-8: 2.12 MPa at t = 1 s against 2.75), falling with the fracture's length: the
 // fracture is half the block wide on arrival and the block with traction faces is more compliant
 // than an unbounded one.
+// At 2 mm (the second horizon; the rows run so far, 17-20 min each): 2-4 crossed (30.1 mm past the
+// plane at t = 4 s), S-1 crossed (25.7 mm at t = 0.6 s; broke through at 0.7 s), but 2-1 arrested (the
+// fracture stops 5 mm past the plane from t = 3.2 s; crossing needs 2 horizons, 12.06 mm) and 2-2
+// arrested (12.0 mm past from t = 3.6 s). Not yet run at 2 mm: 2-6, 2-8, S-2, 2-3, 2-5, 2-7.
 // Before the guar (the lumped fluid, 2026-11-23 and before): 5 of 9, 2-6 arrested as its free wing
 // vented first, 2-8 and 2-3 crossed and 2-5 arrested with the fluid at 5.6-5.9 MPa, below their
 // sigma_n (with T = 5 MPa also 5 of 9).
