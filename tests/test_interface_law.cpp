@@ -8,6 +8,7 @@
 #include <cstdio>
 #include <string>
 
+#include "rift/pd/crack_junction.hpp"
 #include "rift/pd/discretize.hpp"
 #include "rift/pd/fluid_network.hpp"
 #include "rift/pd/forces.hpp"
@@ -413,6 +414,86 @@ TEST(InterfaceOutcome, DilationIsKeptWhenTheInterfaceShuts) {
   rift::pd::record_outcomes(record, {shut});
   EXPECT_EQ(record.at(0).name(), "crossed+dilated");
   EXPECT_DOUBLE_EQ(record.at(0).crossing_distance, 0.02);
+}
+
+}  // namespace
+
+namespace {
+
+// An interface through a row of lattice sites (geometry/precrack.cpp): the row counts with the side
+// to the line's left, so the interface cuts the bonds from the row to the other side, exactly the
+// bonds a line a hair below the row cuts. (Counted on neither side, the row's bonds all stayed
+// rock and bridged the interface: Zhou's 90-degree interfaces at 3 mm spacing, hf_zhou_crossing.)
+TEST(InterfaceLaw, AnInterfaceThroughARowOfSitesCutsTheRowFromOneSide) {
+  // sites at (i + 1/2, j + 1/2) mm: the row y = 0.5 mm lies on the first line
+  auto on_row = rift::pd::discretize<2>(block_with_interface("[-0.02, 0.0005]", "[0.02, 0.0005]", "tensile_strength = 1e6\nfriction_coefficient = 0.89"));
+  auto below = rift::pd::discretize<2>(block_with_interface("[-0.02, 0.0004999]", "[0.02, 0.0004999]", "tensile_strength = 1e6\nfriction_coefficient = 0.89"));
+  ASSERT_FALSE(on_row.interface_bonds.empty());
+  EXPECT_EQ(on_row.interface_bonds.slot, below.interface_bonds.slot);
+  // every bond from the row (y = 0.5 mm) down across the line, and none from it up
+  std::size_t down = 0, up = 0;
+  const auto& ib = on_row.interface_bonds;
+  for (std::size_t i = 0; i + 1 < ib.offset.size(); ++i)
+    for (auto q = ib.offset[i]; q < ib.offset[i + 1]; ++q) {
+      const auto j = static_cast<std::size_t>(on_row.bonds.neighbor[static_cast<std::size_t>(ib.slot[static_cast<std::size_t>(q)])]);
+      if (std::abs(on_row.reference_position[i][1] - 0.0005) > 1e-9) continue;
+      down += on_row.reference_position[j][1] < 0.0005;
+      up += on_row.reference_position[j][1] > 0.0005;
+    }
+  EXPECT_GT(down, 0u);
+  EXPECT_EQ(up, 0u);
+}
+
+// The junction (pd/crack_junction.hpp): a fluid-filled crack along y = 0 from a borehole to a
+// 90-degree interface at x = 0 (between two columns), every interface bond failed, the block
+// pressed across the interface and the crack's upper face lifted by w. A failed interface bond
+// whose path crosses the crack itself (at x <= 0, the last patch's half spacing) joins the two
+// faces the fluid holds apart: marked, and no contact force. The other failed bonds are frictional
+// contacts, pressed and slid by w where they join the lifted face to the far side: they push.
+TEST(InterfaceLaw, FailedInterfaceBondsAcrossTheFluidsCrackCarryNoContact) {
+  const std::string hole = "[regions.hole]\nshape = \"cylinder\"\ncenter = [-0.012, 0.0]\nradius = 0.0015\n"
+                           "[[boreholes]]\nregion = \"hole\"\npressure = 1e6\n";
+  auto s = block_with_interface("[0.0, -0.02]", "[0.0, 0.02]", "tensile_strength = 1e6\nfriction_coefficient = 0.89", hole);
+  auto m = rift::pd::discretize<2>(s);
+  auto& b = m.bonds;
+  const auto& ib = m.interface_bonds;
+  ASSERT_FALSE(ib.empty());
+  for (std::size_t i = 0; i < m.size(); ++i)  // the crack: rock bonds across y = 0 up to the interface
+    for (auto k = b.offset[i]; k < b.offset[i + 1]; ++k) {
+      const auto &p = m.reference_position[i], &q = m.reference_position[static_cast<std::size_t>(b.neighbor[k])];
+      if (p[1] * q[1] < 0 && p[0] < 0 && q[0] < 0 && p[0] > -0.012 && q[0] > -0.012) b.intact[k] = rift::pd::bond_broken;
+    }
+  for (auto k : ib.slot) b.intact[static_cast<std::size_t>(k)] = rift::pd::bond_interface_failed;
+  m.fluid_network.pressure.assign(m.fluid_network.dry.size(), 1e6);
+  rift::pd::update_fluid_network<2>(m);  // the crack's surface, and the marks
+  const double w = 10e-6;
+  for (std::size_t i = 0; i < m.size(); ++i) {
+    const auto& X = m.reference_position[i];
+    m.position[i] = {X[0] * (1.0 - 1e-3), X[1]};  // pressed across the interface
+    if (X[0] < 0.0 && X[1] > 0.0) m.position[i][1] += w;  // the crack's upper face, lifted
+  }
+  int across = 0, pushing = 0;
+  for (std::size_t i = 0; i + 1 < ib.offset.size(); ++i)
+    for (auto q = ib.offset[i]; q < ib.offset[i + 1]; ++q) {
+      const auto k = ib.slot[static_cast<std::size_t>(q)];
+      const auto j = static_cast<std::size_t>(b.neighbor[static_cast<std::size_t>(k)]);
+      const auto &p = m.reference_position[i], &r = m.reference_position[j];
+      // where the bond's path crosses y = 0, if it does
+      const bool crosses_line = p[1] * r[1] < 0.0;
+      const double x_at_line = crosses_line ? p[0] + (r[0] - p[0]) * p[1] / (p[1] - r[1]) : 1.0;
+      const bool expected = crosses_line && x_at_line <= 1e-9 && x_at_line > -0.0115;
+      EXPECT_EQ(rift::pd::across_crack(ib, q), expected) << p[0] << "," << p[1] << " - " << r[0] << "," << r[1];
+      const auto f = rift::pd::interface_contact_force<2>(m, i, j, k, static_cast<std::size_t>(q), nullptr);
+      const double force = std::hypot(f[0], f[1]);
+      if (expected) {
+        ++across;
+        EXPECT_EQ(force, 0.0);
+      } else if ((p[0] < 0.0 && p[1] > 0.0) != (r[0] < 0.0 && r[1] > 0.0) && std::abs(p[1]) < 0.005 && std::abs(r[1]) < 0.005) {
+        pushing += force > 0.0;
+      }
+    }
+  EXPECT_GE(across, 6);  // horizon 3 spacings: 1 + 2 + 3 bonds each way down from each face row
+  EXPECT_GT(pushing, 0);
 }
 
 }  // namespace

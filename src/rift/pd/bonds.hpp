@@ -126,6 +126,7 @@ struct InterfaceBonds {
   std::vector<std::uint16_t> interface;    // the scene's interface
   std::vector<InterfaceLaw> laws;          // per scene interface
   std::vector<std::array<double, 3>> slip; // per entry: the slip of the failed bond's faces so far (interface_law.hpp)
+  std::vector<std::uint8_t> across_crack;  // per entry: the failed bond joins the two faces of a crack the fluid fills (crack_junction.hpp)
   std::vector<std::int32_t> particles;     // the particles with a bond across an interface, ascending
   std::vector<std::array<double, 9>> strain;  // per particle above: the rock's strain around it (bulk_strain.hpp), refreshed with the law
 

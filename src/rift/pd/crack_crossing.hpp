@@ -73,14 +73,17 @@ void for_patches_around(const CrackSurface& s, const double* x, F&& f) {
 }  // namespace detail
 
 /// Whether the bond between reference positions a and b crosses the crack surface or its extension:
-/// its ends on opposite sides of a patch's plane, which it pierces within `reach` of the patch's point.
-template <int D>
-bool pierces_crack(const CrackSurface& s, const Vec<D>& a, const Vec<D>& b) {
+/// its ends on opposite sides of a patch's plane, which it pierces within `reach` of the patch's
+/// point (at most the surface's own reach; by default that), among the patches `accept(p)` takes.
+template <int D, class Accept>
+bool pierces_crack_if(const CrackSurface& s, const Vec<D>& a, const Vec<D>& b, double reach, Accept accept) {
   if (s.empty()) return false;
+  if (reach < 0.0 || reach > s.reach) reach = s.reach;
   double mid[D];
   for (int q = 0; q < D; ++q) mid[q] = 0.5 * (a[q] + b[q]);
   bool crosses = false;
   detail::for_patches_around<D>(s, mid, [&](std::uint32_t p) {
+    if (!accept(p)) return false;
     const auto& plane = s.planes[p];
     double da = 0.0, db = 0.0;
     for (int q = 0; q < D; ++q) da += (a[q] - plane[static_cast<std::size_t>(q)]) * plane[static_cast<std::size_t>(3 + q)],
@@ -92,10 +95,16 @@ bool pierces_crack(const CrackSurface& s, const Vec<D>& a, const Vec<D>& b) {
       const double e = a[q] + t * (b[q] - a[q]) - plane[static_cast<std::size_t>(q)];
       r2 += e * e;
     }
-    crosses = r2 <= s.reach * s.reach;
+    crosses = r2 <= reach * reach;
     return crosses;
   });
   return crosses;
+}
+
+/// pierces_crack_if over every patch, within the surface's reach.
+template <int D>
+bool pierces_crack(const CrackSurface& s, const Vec<D>& a, const Vec<D>& b) {
+  return pierces_crack_if<D>(s, a, b, -1.0, [](std::uint32_t) { return true; });
 }
 
 /// Remakes the crack surface when a network changed (call after update_fluid_network).

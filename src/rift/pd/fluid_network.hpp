@@ -18,6 +18,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "rift/pd/crack_junction.hpp"
 #include "rift/pd/effective_stretch.hpp"
 #include "rift/pd/influence.hpp"
 #include "rift/pd/interface_law.hpp"
@@ -227,6 +228,7 @@ void update_fluid_network(Model<D>& m) {
     }
   }
   update_crack_surface<D>(m);
+  mark_bonds_across_crack<D>(m);  // the contact of the failed interface bonds at a junction
   update_pore_stretch<D>(m);  // the rock the fluid reached is wet at once
 }
 

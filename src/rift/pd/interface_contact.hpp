@@ -30,6 +30,12 @@ std::int64_t interface_entry(const Model<D>& m, std::size_t i, std::int64_t k) {
   return it != last && *it == k ? static_cast<std::int64_t>(it - ib.slot.begin()) : -1;
 }
 
+/// Whether the failed interface bond of entry q joins the two faces of a crack the fluid fills
+/// (crack_junction.hpp): its ends are apart, no contact.
+inline bool across_crack(const InterfaceBonds& ib, std::int64_t q) {
+  return q >= 0 && static_cast<std::size_t>(q) < ib.across_crack.size() && ib.across_crack[static_cast<std::size_t>(q)] != 0;
+}
+
 /// Bond i-j across an interface in the interface's frame: the jump of its ends' displacements
 /// delta = (x_j - x_i) - (X_j - X_i), the interface normal n oriented from i to j, the reference
 /// bond's component along the interface's own normal (across = xi . normal) and the bond's normal
@@ -108,7 +114,8 @@ Vec<D> interface_contact_force(const Model<D>& m, std::size_t i, std::size_t j, 
   const double k_n = stiffness * (jump.across / length) * (jump.across / length);  // the bond's stiffness along n
   std::array<double, 3> slip = ib.slip[q];
   Vec<D> f{};
-  if (delta_n >= 0.0) {  // ends not pressed together: no force, the slip follows
+  // ends not pressed together, or on the two faces of a crack the fluid fills: no force, the slip follows
+  if (delta_n >= 0.0 || across_crack(ib, static_cast<std::int64_t>(q))) {
     for (int a = 0; a < 3; ++a) slip[a] = delta[a] - delta_n * n[a];
     if (slip_update) *slip_update = slip;
     return f;

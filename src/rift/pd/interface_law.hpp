@@ -75,6 +75,7 @@ void prepare_interfaces(const scene::Scene& s, Model<D>& m) {
   }
   ib.particles.clear();
   ib.slip.assign(ib.slot.size(), {0.0, 0.0, 0.0});
+  ib.across_crack.assign(ib.slot.size(), 0);
   if (ib.offset.empty()) return;
   for (std::size_t i = 0; i < m.size(); ++i)
     if (ib.offset[i + 1] > ib.offset[i]) ib.particles.push_back(static_cast<std::int32_t>(i));

@@ -20,7 +20,12 @@
 // of 20-30 um). Its normal is the jump's direction (an opening, mode I, crack); across a failed
 // interface bond it is the interface's normal and the opening its faces' normal opening
 // (interface_contact.hpp interface_opening, as the interface law and the outcome reader take it:
-// slip along the interface opens nothing). S and N are the means of the bond's two ends'.
+// slip along the interface opens nothing). A bond across an
+// interface that broke as rock (the fracture crossing it) is a crack's bond like any other: taken
+// for an interface contact, its opening was the interface's shut faces' (none), and the fluid
+// could not follow a fracture through the interface (Zhou's 2-1, hf_zhou_crossing: the far side's
+// crack dry, its rock without the fluid's pressure, the fracture stopped a spacing past the
+// interface). S and N are the means of the bond's two ends'.
 // The pressure solve (solve_network_pressure) is backward Euler of each node's mass balance, an SPD
 // system (Eigen's sparse LDLT). An injected borehole's fluid with a viscosity flows so
 // (viscous_fluid.hpp); without one it is the lumped, inviscid fluid of fluid_network.hpp.
@@ -128,7 +133,8 @@ std::vector<FlowBond> flow_bonds(const Model<D>& m, double viscosity, const std:
       if (j <= i || b.intact[static_cast<std::size_t>(k)] == bond_intact || !carries(i, k, j)) continue;
       Vec<D> n{};
       double w = 0.0;
-      if (const auto q = interface_entry<D>(m, i, k); q >= 0) {  // a failed interface bond: its faces' normal opening
+      const auto q = b.intact[static_cast<std::size_t>(k)] == bond_interface_failed ? interface_entry<D>(m, i, k) : -1;
+      if (q >= 0) {  // a failed interface bond: its faces' normal opening
         const auto& law = m.interface_bonds.laws[m.interface_bonds.interface[static_cast<std::size_t>(q)]];
         for (int p = 0; p < D; ++p) n[p] = law.normal[p];
         w = std::max(0.0, interface_opening<D>(m, i, j, law));

@@ -1,0 +1,52 @@
+// Where a fluid-filled crack meets a pre-existing fracture (an interface): the junction. A failed
+// interface bond is a frictional contact between its ends (interface_contact.hpp), the faces of
+// the interface pressing and sliding on each other. But a failed bond whose ends lie on the two
+// faces of a crack the fluid fills, one that runs into the interface or through it, joins rock that
+// the fluid holds apart: its ends do not touch, and it carries no contact force, as a broken bond
+// carries none. Such a bond crosses the crack's surface (crack_crossing.hpp: within half a spacing
+// of a patch of broken rock or of a pre-crack, the crack itself and not its extension past the
+// tip). Without this the contact read the fracture's opening at the junction as a slip along the
+// interface and held it with friction, mu sigma_n, as if the rock on the two faces touched.
+// The fluid's way is not changed: it enters a failed interface bond only where the interface's
+// faces are apart (fluid_network.hpp carries_fluid). A bond across the near side's open crack that
+// ends on the far side of a shut interface joins two faces that do not touch, but the fluid would
+// reach its far end only through the interface.
+#pragma once
+#include <cstdint>
+#include <vector>
+
+#include "rift/pd/crack_crossing.hpp"
+#include "rift/pd/interface_contact.hpp"
+#include "rift/pd/model.hpp"
+#include "rift/parallel/team.hpp"
+
+namespace rift::pd {
+
+/// Marks the failed interface bonds that cross the surface of a crack the fluid fills
+/// (InterfaceBonds::across_crack). Call after the crack surface is made (update_crack_surface).
+template <int D>
+void mark_bonds_across_crack(Model<D>& m) {
+  InterfaceBonds& ib = m.interface_bonds;
+  if (ib.empty()) return;
+  ib.across_crack.resize(ib.slot.size(), 0);
+  const CrackSurface& surface = m.fluid_network.crack_surface;
+  const auto& rows = ib.particles;
+  // the crack's patches of broken rock and of pre-cracks, not those of an open interface's own bonds
+  auto of_rock = [&](std::uint32_t p) {
+    const std::int64_t key = surface.patches[p];
+    return key < 0 || m.bonds.intact[static_cast<std::size_t>(key)] != bond_interface_failed;
+  };
+#pragma omp parallel for if(rift::parallel::worth_a_team(rows.size())) schedule(static)
+  for (std::size_t r = 0; r < rows.size(); ++r) {
+    const auto i = static_cast<std::size_t>(rows[r]);
+    const double reach = (0.5 + 1e-9) * m.constants_of(i).spacing;
+    for (auto q = ib.offset[i]; q < ib.offset[i + 1]; ++q) {
+      const auto k = static_cast<std::size_t>(ib.slot[static_cast<std::size_t>(q)]);
+      const auto j = static_cast<std::size_t>(m.bonds.neighbor[k]);
+      ib.across_crack[static_cast<std::size_t>(q)] =
+          m.bonds.intact[k] == bond_interface_failed && pierces_crack_if<D>(surface, m.reference_position[i], m.reference_position[j], reach, of_rock);
+    }
+  }
+}
+
+}  // namespace rift::pd
