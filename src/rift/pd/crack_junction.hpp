@@ -13,10 +13,8 @@
 // reach its far end only through the interface.
 #pragma once
 #include <cstdint>
-#include <vector>
 
 #include "rift/pd/crack_crossing.hpp"
-#include "rift/pd/interface_contact.hpp"
 #include "rift/pd/model.hpp"
 #include "rift/parallel/team.hpp"
 

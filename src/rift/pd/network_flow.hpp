@@ -20,12 +20,12 @@
 // of 20-30 um). Its normal is the jump's direction (an opening, mode I, crack); across a failed
 // interface bond it is the interface's normal and the opening its faces' normal opening
 // (interface_contact.hpp interface_opening, as the interface law and the outcome reader take it:
-// slip along the interface opens nothing). A bond across an
-// interface that broke as rock (the fracture crossing it) is a crack's bond like any other: taken
-// for an interface contact, its opening was the interface's shut faces' (none), and the fluid
-// could not follow a fracture through the interface (Zhou's 2-1, hf_zhou_crossing: the far side's
-// crack dry, its rock without the fluid's pressure, the fracture stopped a spacing past the
-// interface). S and N are the means of the bond's two ends'.
+// slip along the interface opens nothing). A bond across an interface that broke as rock (the
+// fracture crossing it) is a crack's bond like any other: taken for an interface contact, its
+// opening was the interface's shut faces' (none), and the fluid could not follow a fracture
+// through the interface (Zhou's 2-1, hf_zhou_crossing: the far side's crack dry, its rock without
+// the fluid's pressure, the fracture stopped a spacing past the interface). S and N are the means
+// of the bond's two ends'.
 // The pressure solve (solve_network_pressure) is backward Euler of each node's mass balance, an SPD
 // system (Eigen's sparse LDLT). An injected borehole's fluid with a viscosity flows so
 // (viscous_fluid.hpp); without one it is the lumped, inviscid fluid of fluid_network.hpp.
