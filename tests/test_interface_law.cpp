@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <string>
 
@@ -304,7 +305,9 @@ region = "hole"
 pressure = 1e6
 )";
   // wet: whether the fluid reaches the particle at (6.5 mm, 0.5 mm), on the interface 6.5 mm from the crack
-  auto outcome = [&](double crack_top, double failed_half_length, double lift, bool* wet = nullptr, const std::string& in_situ = "") {
+  // failed_as: the state of the interface bonds within failed_half_length of the crack
+  auto outcome = [&](double crack_top, double failed_half_length, double lift, bool* wet = nullptr, const std::string& in_situ = "",
+                     std::uint8_t failed_as = rift::pd::bond_interface_failed) {
     auto s = block_with_interface("[-0.03, 0.0]", "[0.03, 0.0]", "tensile_strength = 1e6\nfriction_coefficient = 0.89", hole + in_situ, "1e-3");
     auto m = rift::pd::discretize<2>(s);
     auto& b = m.bonds;
@@ -319,7 +322,7 @@ pressure = 1e6
     for (std::size_t i = 0; i + 1 < ib.offset.size(); ++i)
       for (auto q = ib.offset[i]; q < ib.offset[i + 1]; ++q)
         if (std::abs(m.reference_position[i][0]) < failed_half_length)
-          b.intact[static_cast<std::size_t>(ib.slot[static_cast<std::size_t>(q)])] = rift::pd::bond_interface_failed;
+          b.intact[static_cast<std::size_t>(ib.slot[static_cast<std::size_t>(q)])] = failed_as;
     for (std::size_t i = 0; i < m.size(); ++i)
       if (m.reference_position[i][1] > 0.0) m.position[i][1] += lift;
     m.fluid_network.pressure.assign(m.fluid_network.dry.size(), 1e6);
@@ -343,6 +346,11 @@ pressure = 1e6
   EXPECT_TRUE(wet);
   EXPECT_EQ(dilated.name(), "dilated");
   EXPECT_NEAR(dilated.opened_length, 0.017, 0.0011);  // failed rows |x| <= 7.5 mm, bonds reaching 2 mm on: midpoints to 8.5 mm
+  // the same bonds broken as rock (a fracture through the interface breaks them so) are the
+  // crossing fracture's: lifted open and wet, they are not the interface's opening
+  const auto broken_as_rock = outcome(0.0, 0.008, 1e-5, nullptr, "", rift::pd::bond_broken);
+  EXPECT_EQ(broken_as_rock.name(), "arrested");
+  EXPECT_DOUBLE_EQ(broken_as_rock.opened_length, 0.0);
   auto in_situ = [](const char* sigma_h) { return std::string("[in_situ_stress]\nsigma_H = -3e6\nsigma_h = ") + sigma_h + "\n"; };
   EXPECT_EQ(outcome(0.0, 0.008, 1e-5, nullptr, in_situ("-0.9e6")).name(), "dilated");
   EXPECT_EQ(outcome(0.0, 0.008, 1e-5, nullptr, in_situ("-1.1e6")).name(), "arrested");

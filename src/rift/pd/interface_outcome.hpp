@@ -102,6 +102,7 @@ std::vector<InterfaceOutcome> classify_interfaces(const Model<D>& m) {
       if (b.intact[k] == bond_intact) continue;
       const std::size_t f = ib.interface[static_cast<std::size_t>(q)];
       out[f].reached = true;
+      if (b.intact[k] != bond_interface_failed) continue;  // broke as rock: the crossing fracture's, not the interface's opening
       const auto j = static_cast<std::size_t>(b.neighbor[k]);
       if (!wet(i) || !wet(j)) continue;
       const auto& law = ib.laws[f];
