@@ -57,24 +57,38 @@ Boundaries<D>::Boundaries(const scene::Scene& s, pd::Model<D>& m) {
 }
 
 template <int D>
-void Boundaries<D>::add_in_situ_tractions(const scene::InSituStress& in_situ, const pd::Model<D>& m) {
+void Boundaries<D>::add_in_situ_tractions(const scene::InSituStress& in_situ, pd::Model<D>& m) {
   Vec<D> lo, hi;
   for (int k = 0; k < D; ++k) lo[k] = 1e300, hi[k] = -1e300;
   for (const auto& x : m.reference_position)
     for (int k = 0; k < D; ++k) lo[k] = std::min(lo[k], x[k]), hi[k] = std::max(hi[k], x[k]);
-  // the outermost row of particles on each face carries sigma . n over its depth (one spacing)
+  // the outermost row of particles on each face carries sigma . n over its depth (one spacing);
+  // between platens (pd/platens.hpp) the low face's row is held along the axis and the high face's
+  // row moves as one plate under the same load
+  const bool platens = in_situ.faces == scene::InSituStress::Faces::platens;
   for (int k = 0; k < D; ++k)
     for (int side : {-1, 1}) {
       Applied a;
       a.def.where = in_situ.where;
       a.def.region = std::string("in-situ face ") + (side < 0 ? "-" : "+") + "xyz"[k];
-      a.def.kind = scene::BoundaryKind::traction;
-      a.def.value[k] = side * in_situ.principal(k);
+      a.def.kind = platens && side < 0 ? scene::BoundaryKind::displacement : scene::BoundaryKind::traction;
+      a.def.value[k] = platens && side < 0 ? 0.0 : side * in_situ.principal(k);
       for (std::size_t i = 0; i < m.size(); ++i) {
         const double half_row = 0.5 * m.constants_of(i).spacing;
         if (side > 0 ? m.reference_position[i][k] > hi[k] - half_row : m.reference_position[i][k] < lo[k] + half_row)
           a.particles.push_back(i);
       }
+      if (platens)
+        for (auto i : a.particles)
+          if (m.constrained[i] >> k & 1)
+            throw SceneError(in_situ.where, "in_situ_stress.faces",
+                             std::string("a boundary prescribes the ") + "xyz"[k] + " motion of the " + a.def.region +
+                                 ", which the platens move: drop that boundary or use faces = \"tractions\"");
+      if (platens && side < 0) {
+        any_kinematic_ = true;
+        for (auto i : a.particles) m.constrained[i] |= std::uint8_t(1u << k);
+      }
+      if (platens && side > 0) m.platens.push_back({k, a.particles});
       applied_.push_back(std::move(a));
     }
 }

@@ -38,8 +38,9 @@ class Boundaries {
     scene::Boundary def;
     std::vector<std::size_t> particles;
   };
-  /// Tractions sigma . n of the far-field stresses on the faces of the bodies' bounding box.
-  void add_in_situ_tractions(const scene::InSituStress& in_situ, const pd::Model<D>& m);
+  /// Tractions sigma . n of the far-field stresses on the faces of the bodies' bounding box, or
+  /// the platens that carry them (pd/platens.hpp).
+  void add_in_situ_tractions(const scene::InSituStress& in_situ, pd::Model<D>& m);
   std::vector<Applied> applied_;
   struct PressureSource {
     double pressure = 0.0;  // prescribed (times `time`), or the pressure at t = 0 of an injection

@@ -361,7 +361,7 @@ Model<D> discretize(const scene::Scene& s) {
     const auto& b = s.bodies[bi];
     BodyInfo info;
     info.name = b.name;
-    info.first = m.size();
+    info.first = m.reference_position.size();  // m.size() counts positions, set after the loop
     fill_body<D>(s, b, bi, m, lattice_index);
     info.last = m.reference_position.size();
     if (info.last == info.first)

@@ -105,6 +105,7 @@ RelaxationResult DynamicRelaxation<D>::relax(Model<D>& m, const load::Boundaries
   double load_norm = squared_load();
   // held by tractions alone, no component of any particle prescribed: no rigid motion (rigid_acceleration)
   const bool free_body = std::none_of(m.constrained.begin(), m.constrained.end(), [](std::uint8_t c) { return c != 0; });
+  const std::vector<std::uint8_t> on_platen = platen_components(m);
   for (int it = 0; it < max_iterations; ++it) {
     advance_stretch_limits<D>(m);
     compute_forces<D>(m, contact);
@@ -115,6 +116,7 @@ RelaxationResult DynamicRelaxation<D>::relax(Model<D>& m, const load::Boundaries
     const RigidAcceleration<D> rigid = free_body ? rigid_acceleration<D>(m, fictitious_density_) : RigidAcceleration<D>{};
     // U^T K U with the local diagonal stiffness K_ii = -(F^n - F^{n-1}) / (lambda V^{n-1/2}) (eq. 12), U^T U,
     // squared residual of the free components and squared reactions of the constrained ones
+    // (a platen's particle carries the plate's reaction; the plate's own residual is its net force)
     auto sums = parallel::ordered_sums<4>(n, [&](std::size_t i, std::array<double, 4>& acc) {
       const Vec<D> rigid_i = free_body ? rigid.at(m.position[i]) : Vec<D>{};
       for (int k = 0; k < D; ++k) {
@@ -123,7 +125,8 @@ RelaxationResult DynamicRelaxation<D>::relax(Model<D>& m, const load::Boundaries
           acc[3] += m.force[i][k] * m.force[i][k] * m.volume[i] * m.volume[i];
           continue;
         }
-        acc[2] += total * total * m.volume[i] * m.volume[i];
+        if (on_platen[i] >> k & 1) acc[3] += total * total * m.volume[i] * m.volume[i];
+        else acc[2] += total * total * m.volume[i] * m.volume[i];
         const double f = total / fictitious_density_[i];
         const double v = m.velocity[i][k];
         const double u = m.position[i][k] - m.reference_position[i][k];
@@ -131,7 +134,13 @@ RelaxationResult DynamicRelaxation<D>::relax(Model<D>& m, const load::Boundaries
         acc[1] += u * u;
       }
     });
-    const double num = sums[0], den = sums[1], residual = sums[2], reaction = sums[3];
+    double residual = sums[2];
+    for (const Platen& p : m.platens) {
+      double net = 0.0;
+      for (const auto i : p.particles) net += (m.force[i][p.axis] + m.body_force[i][p.axis]) * m.volume[i];
+      residual += net * net;
+    }
+    const double num = sums[0], den = sums[1], reaction = sums[3];
     const double reference = std::sqrt(load_norm) + std::sqrt(reaction);
     result.iterations = it + 1;
     result.residual = reference > 0.0 ? std::sqrt(residual) / reference : std::sqrt(residual);
@@ -152,6 +161,7 @@ RelaxationResult DynamicRelaxation<D>::relax(Model<D>& m, const load::Boundaries
         previous[i][k] = f;
       }
     }
+    move_with_platens(m, [&](std::size_t i) { return fictitious_density_[i] * m.volume[i]; });
   }
   compute_forces<D>(m, contact);
   for (auto& v : m.velocity) v = Vec<D>{};

@@ -9,6 +9,7 @@
 #include "rift/core/vec.hpp"
 #include "rift/pd/bonds.hpp"
 #include "rift/pd/material_constants.hpp"
+#include "rift/pd/platens.hpp"
 
 namespace rift::pd {
 
@@ -39,6 +40,7 @@ struct Model {
   std::vector<double> failure_strain;
   std::vector<std::uint32_t> body;
   std::vector<std::uint8_t> constrained;  // bit k: velocity component k is prescribed
+  std::vector<Platen> platens;            // rigid loading plates (platens.hpp)
 
   Bonds bonds;
   CrackBonds crack_bonds;

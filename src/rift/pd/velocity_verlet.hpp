@@ -31,7 +31,9 @@ void drift(Model<D>& m, double dt) {
 /// One velocity-Verlet step from m.time to m.time + dt. Forces of m.time must be current.
 template <int D>
 void velocity_verlet_step(Model<D>& m, const load::Boundaries<D>& loads, Contact<D>* contact, double dt) {
+  auto mass = [&](std::size_t i) { return m.constants_of(i).density * m.volume[i]; };
   kick<D>(m, 0.5 * dt);
+  move_with_platens(m, mass);  // a rigid plate's momentum is its particles' (pd/platens.hpp)
   loads.prescribe_velocity(m, m.time, dt);
   drift<D>(m, dt);
   loads.prescribe_position(m, m.time + dt);
@@ -40,6 +42,7 @@ void velocity_verlet_step(Model<D>& m, const load::Boundaries<D>& loads, Contact
   compute_forces<D>(m, contact, dt);
   loads.apply_body_forces(m, m.time);
   kick<D>(m, 0.5 * dt);
+  move_with_platens(m, mass);
   loads.prescribe_velocity(m, m.time, 0.0);
   equilibrate_pore_pressure<D>(m);  // the wet rock of the next step feels this pressure (effective_stretch.hpp)
 }

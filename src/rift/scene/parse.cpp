@@ -445,12 +445,13 @@ void parse_in_situ_stress(R& root, Scene& s) {
   if (s.dimension == 3) v.sigma_v = r.required_number("sigma_v", "vertical (z) " + unit);
   else v.sigma_v = r.number("sigma_v", 0.0);  // out of the horizontal section: recorded, not applied
   if (auto axis = r.choice("sigma_H_axis", {"x", "y"})) v.sigma_H_axis = *axis == "x" ? 0 : 1;
+  if (auto faces = r.choice("faces", {"tractions", "platens"})) v.faces = *faces == "platens" ? InSituStress::Faces::platens : InSituStress::Faces::tractions;
   if (auto n = r.integer("max_iterations")) {
     if (*n < 1) r.fail("max_iterations", "must be >= 1");
     v.max_iterations = static_cast<int>(*n);
   }
   if (auto tol = r.number("tolerance")) v.tolerance = r.positive("tolerance", *tol);
-  r.finish({"sigma_H", "sigma_h", "sigma_v", "sigma_H_axis", "max_iterations", "tolerance"});
+  r.finish({"sigma_H", "sigma_h", "sigma_v", "sigma_H_axis", "faces", "max_iterations", "tolerance"});
 }
 
 void parse_initial_velocity(R& root, Scene& s) {

@@ -141,6 +141,9 @@ struct InSituStress {
   SourceLocation where;
   double sigma_v = 0.0, sigma_H = 0.0, sigma_h = 0.0;
   int sigma_H_axis = 0;  // 0: x, 1: y
+  // how the faces are loaded: uniform tractions, or the rigid lubricated plates of a true tri-axial
+  // frame (pd/platens.hpp: the low face on each axis held, the high one pushed with sigma times its area)
+  enum class Faces { tractions, platens } faces = Faces::tractions;
   int max_iterations = 50000;
   double tolerance = 1e-6;
   /// Stress tensor component along axis k (principal axes = coordinate axes).

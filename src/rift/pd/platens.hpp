@@ -1,0 +1,57 @@
+// Rigid loading platens of a true tri-axial frame ([in_situ_stress] faces = "platens"). Zhou et al.
+// (2008) loaded their 300 mm blocks through steel plates, the faces covered with Teflon sheets and
+// Vaseline "to prevent building shear stress along the plates" (003_a918a6800360952d.txt, section
+// 4.3.2). A plate keeps its face flat: the face's particles move together along its normal and
+// freely along it (no shear). On each axis the plate at the low end is the frame's reaction (held,
+// no normal displacement) and the plate at the high end is the servo-controlled ram, pushed with
+// the in-situ stress times the face's area whatever the face does under it. A block between such
+// plates cannot turn, and a face cannot bulge where a fracture opens beneath it, as a face under a
+// uniform traction can.
+//
+// A plate is one degree of freedom: its acceleration is the net force on its particles over their
+// mass, sum_i F_i V_i / sum_i rho_i V_i (for dynamic relaxation, rho the fictitious density). Each
+// integrator updates the particles as free ones and then moves them with the plate
+// (move_with_platens): the mass-weighted mean of their normal velocity and displacement, which is
+// the plate's update when they moved together before (the update is linear in the force).
+#pragma once
+#include <cstdint>
+#include <vector>
+
+#include "rift/core/vec.hpp"
+
+namespace rift::pd {
+
+struct Platen {
+  int axis = 0;                        // the face's normal
+  std::vector<std::size_t> particles;  // the face's outermost row
+};
+
+/// Moves each platen's particles together along its axis: their velocity and displacement
+/// component become the mean weighted by mass(i) (density times volume).
+template <class Model, class Mass>
+void move_with_platens(Model& m, Mass mass) {
+  for (const Platen& p : m.platens) {
+    const int k = p.axis;
+    double total = 0.0, momentum = 0.0, displacement = 0.0;
+    for (const auto i : p.particles) {
+      const double w = mass(i);
+      total += w, momentum += w * m.velocity[i][k], displacement += w * (m.position[i][k] - m.reference_position[i][k]);
+    }
+    if (!(total > 0.0)) continue;
+    for (const auto i : p.particles) {
+      m.velocity[i][k] = momentum / total;
+      m.position[i][k] = m.reference_position[i][k] + displacement / total;
+    }
+  }
+}
+
+/// Marks the components that move with a platen (bit k of the particle's entry).
+template <class Model>
+std::vector<std::uint8_t> platen_components(const Model& m) {
+  std::vector<std::uint8_t> bits(m.size(), 0);
+  for (const Platen& p : m.platens)
+    for (const auto i : p.particles) bits[i] |= std::uint8_t(1u << p.axis);
+  return bits;
+}
+
+}  // namespace rift::pd
