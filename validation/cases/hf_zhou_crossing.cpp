@@ -36,21 +36,32 @@
 // arrested 2-7. A lumped, inviscid fluid holds only K / sqrt(pi a) of the free wing, 0.4 to 0.9
 // MPa here, and a K that gave more stops 2-1 and 2-2 crossing (Renshaw and Pollard 1995: T = 13.5
 // MPa would be needed, and sigma_H / (T + sigma_h) = 10 / 18.5 is under their 0.70).
-// Measured at 3 mm with the guar (rift run on each row's scene, one thread, 4-25 min a row; p the
-// borehole's pressure; 2026-11-24, with the fluid's way through the junction, below): 7 of 9 as the
-// experiment. 2-1 crossed (30 mm past the plane at t = 4 s, p = 6.06 MPa), 2-2 crossed (33 mm past
-// the plane at t = 4 s), 2-4 crossed (30.7 mm), S-1 crossed (46.7 mm when the fluid broke through
-// at t = 0.9 s), 2-7 arrested (2.2 mm past, p 3.97 MPa < sigma_n = 5.5 MPa), 2-5 dilated (from t =
-// 2.3 s, p = 6.49 MPa > 5.75 MPa), 2-3 dilated (open and wet along 33.7 mm; shut again as p fell,
-// the record keeps it); S-2 (no experiment) dilated as the thesis (29.7 mm; p > sigma_n = 6.5 MPa).
-// Not yet: 2-6 arrested (13.7 mm past the plane at t = 4 s, growing 1.3 mm per 0.2 s, where
-// crossing needs 18.1 mm; both wings turn toward +y some 80 mm out, as in 2-4, under the 13 / 3 MPa
-// stresses that should keep them straight: not understood), 2-8 crossed (22.3 mm past, from t = 3.8
-// s; the experiment dilated, the thesis crossed+dilated: p = 6.5 MPa when the fracture arrives at t
-// = 2.3 s, under sigma_n = 7.25 MPa, the net pressure 1.5 MPa where the interface needs 2.25). The
-// borehole's net pressure runs at 0.7-0.8 of the unbounded KGD's (2-8: 2.12 MPa at t = 1 s against
-// 2.75), falling with the fracture's length: the fracture is half the block wide on arrival and the
-// block with traction faces is more compliant than an unbounded one.
+// The in-situ stresses come through rigid platens ([in_situ_stress] faces = "platens",
+// pd/platens.hpp): Zhou et al. loaded the blocks through the steel plates of a true tri-axial
+// frame, Teflon and Vaseline against shear (the thesis, section 4.3.2), so each face stays flat and
+// the block cannot turn where a fracture opens under a face.
+// Measured at 3 mm with the guar and the platens (rift run on each row's scene, one thread, 4-21
+// min a row; p the borehole's pressure; 2026-11-24): 8 of 9 as the experiment. 2-1 crossed (36 mm
+// past the plane at t = 4 s), 2-2 crossed (39 mm), 2-4 crossed (20.8 mm at t = 4 s, where crossing
+// counts from 18.1 mm: the closest row), 2-6 crossed (33.5 mm past at t = 4 s; both wings
+// straight), S-1 crossed (89 mm when the fluid broke through at t = 1.4 s), 2-5 dilated (from t =
+// 2.3 s, p = 6.83 MPa; open and wet along 51 mm), 2-3 dilated (from t = 2.5 s, p = 6.76 MPa >
+// sigma_n = 6.25 MPa; 45.6 mm), 2-7 arrested (2.6 mm past; its interface slipped and opened along
+// 18.8 mm at t = 0.8 s with the borehole at 5.56 MPa, the interface's fluid under sigma_n = 5.5
+// MPa); S-2 (no experiment) dilated as the thesis (39.2 mm). Not yet: 2-8 crossed (25.6 mm past at
+// t = 4 s, from t = 3.5 s; the experiment dilated, the thesis crossed+dilated): the fracture
+// arrives at t = 2.1 s with p = 6.88 MPa, under sigma_n = 7.25 MPa, and its interface never fails:
+// the tip's stress, smoothed over a horizon in the interface law (the rock stress from the bulk
+// strain), does not slip it under 7.25 MPa of compression, so the far side's rock breaks first.
+// With T = 4 MPa it crossed as well (20.8 mm past at t = 4 s, p = 7.01 MPa on arrival). Renshaw and
+// Pollard's ratio sigma_H / (T + sigma_h) is 1.0 for 2-8, the lowest of the crossing candidates
+// (2-1: 1.25), so the row sits at the criterion's edge.
+// With traction faces instead (the same scenes, faces = "tractions"): 7 of 9. 2-6 arrested (13.7 mm
+// past the plane at t = 4 s; both wings turned toward +y some 80 mm out, as in 2-4, under the 13 /
+// 3 MPa that should keep them straight: the free faces let the block bend), 2-8 crossed (22.3 mm);
+// 2-1 30 mm, 2-2 33 mm, 2-4 30.7 mm, S-1 46.7 mm, 2-7 arrested (p 3.97 MPa), 2-5, 2-3 and S-2
+// dilated. The borehole's net pressure runs at 0.7-0.8 of the unbounded KGD's (2-8: 2.12 MPa at t =
+// 1 s against 2.75), falling with the fracture's length.
 // The fluid's way through the junction (2026-11-24). A bond across the interface that broke as rock
 // (the fracture crossing it) was read by the flow as a shut interface contact, with no opening: the
 // far side's crack stayed dry, without the fluid's pressure on its faces or in its rock, and the
@@ -59,13 +70,14 @@
 // neither side of the line, so their rock bonds bridged the interface and 2-1 and 2-2 crossed
 // through that column. Both fixed (pd/network_flow.hpp, geometry/precrack.cpp: a site on the line
 // counts with one side); failed interface bonds across the fluid's crack carry no contact
-// (pd/crack_junction.hpp). Before: 7 of 9 at 3 mm as well, 2-8 arrested 17.1 mm past the plane and
+// (pd/crack_junction.hpp). Before (traction faces): 7 of 9 at 3 mm as well, 2-8 arrested 17.1 mm past the plane and
 // 2-6 8.5 mm.
-// At 2 mm (the second horizon, 17-60 min a row; not all run): 2-1 crossed (35 mm past the plane at
-// t = 4 s; with a draft of the junction rule that also let the fluid into failed interface bonds
-// across the crack, but 2-1's interface bonds do not fail: sigma_n = 10 MPa) and 2-2 crossed (25
-// mm past at t = 3.4 s); before the fix 2-4 crossed (30.1 mm) and S-1 crossed (25.7 mm at t = 0.6
-// s). Not yet run at 2 mm since the fix: 2-4, S-1, 2-6, 2-8, S-2, 2-3, 2-5, 2-7.
+// At 2 mm (the second horizon, 17-60 min a row; not all run, all with traction faces): 2-1 crossed
+// (35 mm past the plane at t = 4 s; with a draft of the junction rule that also let the fluid into
+// failed interface bonds across the crack, but 2-1's interface bonds do not fail: sigma_n = 10 MPa)
+// and 2-2 crossed (25 mm past at t = 3.4 s); before the fix 2-4 crossed (30.1 mm) and S-1 crossed
+// (25.7 mm at t = 0.6 s). Not yet run at 2 mm since the fix: 2-4, S-1, 2-6, 2-8, S-2, 2-3, 2-5,
+// 2-7.
 // Before the guar (the lumped fluid, 2026-11-23 and before): 5 of 9, 2-6 arrested as its free wing
 // vented first, 2-8 and 2-3 crossed and 2-5 arrested with the fluid at 5.6-5.9 MPa, below their
 // sigma_n (with T = 5 MPa also 5 of 9).
@@ -173,6 +185,7 @@ friction_coefficient = 0.89
 [in_situ_stress]
 sigma_H = %.17g
 sigma_h = %.17g
+faces = "platens"
 [contact]
 distance = 1.0
 [solver]
@@ -305,10 +318,11 @@ Result hf_zhou_crossing(const Settings& settings) {
 }
 
 // The coarse version for CI: test 2-1 (90 degrees, 10 / 5 MPa: crossed) as the table runs it at 3
-// mm (4 min on one thread). Measured: crossed, 30 mm past the interface at t = 4 s (28.5 mm before
-// the fluid was let through the junction, when a column of sites on the interface bridged it). At
-// 4 mm spacing (horizon 12 mm, measured before that) the guar's 2-1 stops 1 mm past the plane (2-7
-// arrests there as at 3 mm) and the two rows take 13 min; 2-7 takes 16-20 min at 3 mm.
+// mm (4 min on one thread). Measured with the platens: crossed, 36 mm past the interface at t = 4 s
+// (30 mm with traction faces; 28.5 mm before the fluid was let through the junction, when a column
+// of sites on the interface bridged it). At 4 mm spacing (horizon 12 mm, measured before that) the
+// guar's 2-1 stops 1 mm past the plane (2-7 arrests there as at 3 mm) and the two rows take 13 min;
+// 2-7 takes 13-20 min at 3 mm.
 Result hf_zhou_crossing_coarse(const Settings&) {
   const double spacing = 0.003;
   int matched = 0;

@@ -103,9 +103,10 @@ Plan check_dim(const scene::Scene& s, std::ostream& out) {
   if (s.in_situ.enabled) {
     const auto& in_situ = s.in_situ;
     std::snprintf(line, sizeof line,
-                  "in-situ      sigma_H = %g MPa along %c, sigma_h = %g MPa, sigma_v = %g MPa%s: equilibrium first, no bond breaks\n",
+                  "in-situ      sigma_H = %g MPa along %c, sigma_h = %g MPa, sigma_v = %g MPa%s, %s: equilibrium first, no bond breaks\n",
                   in_situ.sigma_H / 1e6, "xy"[in_situ.sigma_H_axis], in_situ.sigma_h / 1e6, in_situ.sigma_v / 1e6,
-                  D == 2 ? " (out of plane)" : "");
+                  D == 2 ? " (out of plane)" : "",
+                  in_situ.faces == scene::InSituStress::Faces::platens ? "through rigid platens (low faces held)" : "as tractions on the faces");
     out << line;
   }
   std::string fields;
