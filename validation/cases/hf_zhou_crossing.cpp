@@ -72,12 +72,12 @@
 // counts with one side); failed interface bonds across the fluid's crack carry no contact
 // (pd/crack_junction.hpp). Before (traction faces): 7 of 9 at 3 mm as well, 2-8 arrested 17.1 mm past the plane and
 // 2-6 8.5 mm.
-// At 2 mm (the second horizon, 17-60 min a row; not all run, all with traction faces): 2-1 crossed
-// (35 mm past the plane at t = 4 s; with a draft of the junction rule that also let the fluid into
-// failed interface bonds across the crack, but 2-1's interface bonds do not fail: sigma_n = 10 MPa)
-// and 2-2 crossed (25 mm past at t = 3.4 s); before the fix 2-4 crossed (30.1 mm) and S-1 crossed
-// (25.7 mm at t = 0.6 s). Not yet run at 2 mm since the fix: 2-4, S-1, 2-6, 2-8, S-2, 2-3, 2-5,
-// 2-7.
+// At 2 mm (the second horizon, 12-20 min a row) with the platens (2026-11-24, rows run so far): 2-1
+// crossed (41 mm past the plane at t = 4 s), 2-6 crossed (20 mm past at t = 4 s, where crossing
+// counts from 12.1 mm), 2-8 crossed (22.7 mm past at t = 3.4 s: the same miss as at 3 mm). Not yet
+// run with the platens at 2 mm: 2-2, 2-4, S-1, S-2, 2-3, 2-5, 2-7. With traction faces: 2-1 crossed
+// (35 mm past the plane at t = 4 s) and 2-2 crossed (25 mm past at t = 3.4 s); before the fix of
+// the junction 2-4 crossed (30.1 mm) and S-1 crossed (25.7 mm at t = 0.6 s).
 // Before the guar (the lumped fluid, 2026-11-23 and before): 5 of 9, 2-6 arrested as its free wing
 // vented first, 2-8 and 2-3 crossed and 2-5 arrested with the fluid at 5.6-5.9 MPa, below their
 // sigma_n (with T = 5 MPa also 5 of 9).
