@@ -71,8 +71,9 @@ void Boundaries<D>::add_in_situ_tractions(const scene::InSituStress& in_situ, pd
       Applied a;
       a.def.where = in_situ.where;
       a.def.region = std::string("in-situ face ") + (side < 0 ? "-" : "+") + "xyz"[k];
-      a.def.kind = platens && side < 0 ? scene::BoundaryKind::displacement : scene::BoundaryKind::traction;
-      a.def.value[k] = platens && side < 0 ? 0.0 : side * in_situ.principal(k);
+      const bool held = platens && side < 0;  // the frame's reaction plate: no normal displacement
+      a.def.kind = held ? scene::BoundaryKind::displacement : scene::BoundaryKind::traction;
+      a.def.value[k] = held ? 0.0 : side * in_situ.principal(k);
       for (std::size_t i = 0; i < m.size(); ++i) {
         const double half_row = 0.5 * m.constants_of(i).spacing;
         if (side > 0 ? m.reference_position[i][k] > hi[k] - half_row : m.reference_position[i][k] < lo[k] + half_row)
@@ -84,11 +85,12 @@ void Boundaries<D>::add_in_situ_tractions(const scene::InSituStress& in_situ, pd
             throw SceneError(in_situ.where, "in_situ_stress.faces",
                              std::string("a boundary prescribes the ") + "xyz"[k] + " motion of the " + a.def.region +
                                  ", which the platens move: drop that boundary or use faces = \"tractions\"");
-      if (platens && side < 0) {
+      if (held) {
         any_kinematic_ = true;
         for (auto i : a.particles) m.constrained[i] |= std::uint8_t(1u << k);
+      } else if (platens) {
+        m.platens.push_back({k, a.particles});
       }
-      if (platens && side > 0) m.platens.push_back({k, a.particles});
       applied_.push_back(std::move(a));
     }
 }
