@@ -9,17 +9,18 @@
 
 #include "rift/run/simulation.hpp"
 #include "rift/scene/parse.hpp"
+#include "rock_scene.hpp"
 
 namespace {
 
-constexpr double nu = 0.25, soft = 10e9, stiff = 30e9, sigma = -10e6;
+constexpr double nu = 0.25, soft = 10e9, stiff = 30e9, sigma = -10e6;  // soft: rock_scene.hpp's rock
 
-// Two unbonded 20 x 40 mm columns side by side, plane strain LPS, E = 10 and 30 GPa (separate
-// bodies: no bond joins them), under sigma = -10 MPa along y and nothing along x.
+// Two unbonded 20 x 40 mm columns side by side, plane strain LPS: the tests' rock (E = 10 GPa)
+// and one three times as stiff (separate bodies: no bond joins them), under sigma = -10 MPa along y
+// and nothing along x.
 rift::scene::Scene two_columns(const std::string& faces, const std::string& solver = "type = \"dynamic_relaxation\"\n") {
-  std::string text = "[scene]\ndimension = 2\nplane = \"strain\"\nthickness = 0.001\n";
-  for (auto [name, E] : {std::pair{"soft", "10e9"}, std::pair{"stiff", "30e9"}})
-    text += std::string("[materials.") + name + "]\nmodel = \"lps\"\ndensity = 2500.0\nyoungs_modulus = " + E + "\npoisson_ratio = 0.25\n";
+  std::string text = rift::test::plane_strain_rock() +
+                     "[materials.stiff]\nmodel = \"lps\"\ndensity = 2500.0\nyoungs_modulus = 30e9\npoisson_ratio = 0.25\n";
   text += R"([regions.left]
 shape = "box"
 min = [-0.02, -0.02]
@@ -29,7 +30,7 @@ shape = "box"
 min = [0.0, -0.02]
 max = [0.02, 0.02]
 [bodies.left]
-material = "soft"
+material = "rock"
 region = "left"
 spacing = 0.001
 horizon = 3.015
