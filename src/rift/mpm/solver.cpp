@@ -119,7 +119,7 @@ void Solver<D>::scatter(Model<D>& m, bool momentum_only, bool internal_force) {
   const std::size_t fields = static_cast<std::size_t>(m.grid.fields);
   const bool normals = fields > 1 && !momentum_only;
   const bool apic = settings_.transfer == scene::Mpm::Transfer::apic;
-  for_each_stencil<D>(m, start_position_, threads, [&](std::size_t p, const Stencil<D>& st) {
+  for_each_cached_stencil<D>(stencils_, threads, [&](std::size_t p, const auto& st) {
     auto& tg = thread_grids_[static_cast<std::size_t>(omp_get_thread_num())];
     const double mp = ps.mass[p];
     for (int q = 0; q < st.count; ++q) {
@@ -309,7 +309,7 @@ void Solver<D>::grid_velocities(Model<D>& m, double t, bool record_start, bool c
 template <int D>
 void Solver<D>::update_stress(Model<D>& m, double dt) {
   auto& ps = m.particles;
-  for_each_stencil<D>(m, start_position_, omp_get_max_threads(), [&](std::size_t p, const Stencil<D>& st) {
+  for_each_cached_stencil<D>(stencils_, omp_get_max_threads(), [&](std::size_t p, const auto& st) {
     const std::size_t fields = static_cast<std::size_t>(m.grid.fields);
     Tensor<D> L = Tensor<D>::Zero();  // velocity gradient L_ab = sum v_a dS/dx_b
     for (int q = 0; q < st.count; ++q) {
@@ -333,6 +333,7 @@ void Solver<D>::step(Model<D>& m, double dt) {
   auto& g = m.grid;
   const double t = m.time;
   start_position_ = ps.position;
+  stencils_.fill(m, start_position_);  // S_ip(x_p^n) for every transfer of the step
   if constexpr (D == 2) {
     if (!cracks_.empty()) {
       // points farther than the stencil reach (2 cells) from every crack's box see no crack
@@ -341,17 +342,14 @@ void Solver<D>::step(Model<D>& m, double dt) {
       acceleration_.resize(ps.size());
       velocity_gradient_.resize(ps.size());
       const double reach = 2.0 * g.cell_size;
-#pragma omp parallel if(rift::parallel::worth_a_team(ps.size()))
-      {
-        Stencil<D> st;
-#pragma omp for schedule(static)
-        for (std::size_t p = 0; p < ps.size(); ++p) {
-          near_crack_[p] = cracks_.near(ps.position[p], reach);
-          if (!near_crack_[p] || !make_stencil<D>(m, ps.position[p], st)) continue;
-          for (int q = 0; q < st.count; ++q)
-            crack_field_[p * Stencil<D>::capacity + static_cast<std::size_t>(q)] =
-                static_cast<std::uint8_t>(cracks_.field(ps.position[p], g.node_position(st.node[static_cast<std::size_t>(q)])));
-        }
+#pragma omp parallel for if(rift::parallel::worth_a_team(ps.size())) schedule(static)
+      for (std::size_t p = 0; p < ps.size(); ++p) {
+        near_crack_[p] = cracks_.near(ps.position[p], reach);
+        if (!near_crack_[p]) continue;
+        const auto st = stencils_[p];
+        for (int q = 0; q < st.count; ++q)
+          crack_field_[p * Stencil<D>::capacity + static_cast<std::size_t>(q)] =
+              static_cast<std::uint8_t>(cracks_.field(ps.position[p], g.node_position(st.node[static_cast<std::size_t>(q)])));
       }
     }
   }
@@ -389,7 +387,7 @@ void Solver<D>::step(Model<D>& m, double dt) {
   // grid to particles
   const bool apic = settings_.transfer == scene::Mpm::Transfer::apic;
   const double flip = settings_.flip_fraction;
-  for_each_stencil<D>(m, start_position_, omp_get_max_threads(), [&](std::size_t p, const Stencil<D>& st) {
+  for_each_cached_stencil<D>(stencils_, omp_get_max_threads(), [&](std::size_t p, const auto& st) {
     const std::size_t fields = static_cast<std::size_t>(g.fields);
     Vec<D> pic{}, increment{}, start{};
     Tensor<D> B = Tensor<D>::Zero(), Dp = Tensor<D>::Zero();

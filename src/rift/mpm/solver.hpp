@@ -13,6 +13,7 @@
 
 #include "rift/mpm/crack.hpp"
 #include "rift/mpm/model.hpp"
+#include "rift/mpm/stencil_cache.hpp"
 #include "rift/scene/scene.hpp"
 
 namespace rift::mpm {
@@ -80,6 +81,7 @@ class Solver {
   std::vector<ParticleLoad> loads_;
   std::vector<Grid<D>> thread_grids_;
   std::vector<Vec<D>> start_position_;
+  StencilCache<D> stencils_;  // every point's S_ip and grad S_ip at start_position_
   std::vector<Vec<D>> start_velocity_;
   CrackSet cracks_;
   std::vector<std::uint8_t> near_crack_;  // material points whose stencil may reach across a crack

@@ -1,0 +1,87 @@
+// The shape functions of every material point for one step. Every transfer of an explicit MPM step
+// (particles to grid, grid to particles, MUSL's remap of the new momenta and the stress update)
+// uses S_ip and grad S_ip at the point's position at the start of the step, x_p^n (Sulsky et al.
+// 1994; Nairn's NairnMPM keeps them per point too), so they are taken once per step (stencil.hpp)
+// and read by each transfer, instead of being taken again by each. Memory: support(shape)^D nodes
+// per point, each its index, weight and gradient (2D quadratic B-splines: 9 x 32 bytes).
+#pragma once
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+#include "rift/mpm/shape_functions.hpp"
+#include "rift/mpm/stencil.hpp"
+#include "rift/parallel/team.hpp"
+
+namespace rift::mpm {
+
+template <int D>
+class StencilCache {
+ public:
+  /// One point's stencil, read in place: the members a Stencil<D> has, as pointers into the cache.
+  struct View {
+    int count = 0;
+    const std::size_t* node = nullptr;
+    const double* weight = nullptr;
+    const Vec<D>* gradient = nullptr;
+  };
+
+  /// Takes every point's stencil at positions[p]; a point whose stencil reaches past the grid
+  /// raises a PhysicsError (stencil.hpp) after the loop.
+  void fill(const Model<D>& m, const std::vector<Vec<D>>& positions) {
+    int nodes = 1;
+    for (int a = 0; a < D; ++a) nodes *= support(m.shape);
+    stride_ = static_cast<std::size_t>(nodes);
+    const std::size_t n = positions.size();
+    count_.resize(n);
+    node_.resize(n * stride_);
+    weight_.resize(n * stride_);
+    gradient_.resize(n * stride_);
+    LostParticle lost;
+#pragma omp parallel if(rift::parallel::worth_a_team(n))
+    {
+      Stencil<D> st;
+#pragma omp for schedule(static)
+      for (std::size_t p = 0; p < n; ++p) {
+        count_[p] = 0;
+        if (!make_stencil<D>(m, positions[p], st)) {
+          lost.record(p);
+          continue;
+        }
+        const std::size_t base = p * stride_;
+        count_[p] = static_cast<std::uint8_t>(st.count);
+        for (int q = 0; q < st.count; ++q) {
+          const auto k = static_cast<std::size_t>(q);
+          node_[base + k] = st.node[k];
+          weight_[base + k] = st.weight[k];
+          gradient_[base + k] = st.gradient[k];
+        }
+      }
+    }
+    lost.raise(m.time);
+  }
+
+  View operator[](std::size_t p) const {
+    const std::size_t base = p * stride_;
+    return {count_[p], node_.data() + base, weight_.data() + base, gradient_.data() + base};
+  }
+  std::size_t size() const { return count_.size(); }
+
+ private:
+  std::size_t stride_ = 0;
+  std::vector<std::uint8_t> count_;
+  std::vector<std::size_t> node_;
+  std::vector<double> weight_;
+  std::vector<Vec<D>> gradient_;
+};
+
+/// Runs body(p, stencil) for every point of the cache in parallel (static schedule, `threads`
+/// threads, or the calling thread alone for a few points: parallel/team.hpp).
+template <int D, class Body>
+void for_each_cached_stencil(const StencilCache<D>& cache, int threads, Body body) {
+  const std::size_t n = cache.size();
+#pragma omp parallel for num_threads(threads) if(rift::parallel::worth_a_team(n)) schedule(static)
+  for (std::size_t p = 0; p < n; ++p) body(p, cache[p]);
+}
+
+}  // namespace rift::mpm
