@@ -57,8 +57,9 @@ void pmb_forces(Model<D>& m, const BodyInfo& body) {
   std::vector<std::pair<std::size_t, std::int64_t>> broken, crossing;  // (i, k) of the bonds broken here, and of those across the crack
   const BondView bonds = b.view();
   Vec<D>* const forces = m.force.data();
-  // the wet rock's shift is compiled in only where there is wet rock (effective_stretch.hpp)
-  auto row = [&]<bool Wet>(std::size_t i) {
+  // the wet rock's shift is compiled in only where there is wet rock (effective_stretch.hpp), the
+  // influence-function factors only with the surface correction (without it they are all 1)
+  auto row = [&]<bool Wet, bool Corrected>(std::size_t i) {
     const BondView v = bonds;  // locals: registers (bonds.hpp)
     Vec<D>* const force = forces;
     double* const s_smallest = smallest;
@@ -89,8 +90,11 @@ void pmb_forces(Model<D>& m, const BodyInfo& body) {
       }
       s_min = std::min(s_min, s);
       s_smallest[j] = std::min(s_smallest[j], s);
-      const float g_i = v.factors[own.factor_row + v.family[k]].correction;
-      const float g_j = v.factors[other.factor_row + family.mirror].correction;
+      float g_i = 1.0f, g_j = 1.0f;
+      if constexpr (Corrected) {
+        g_i = v.factors[own.factor_row + v.family[k]].correction;
+        g_j = v.factors[other.factor_row + family.mirror].correction;
+      }
       const double scalar = pmb_bond_force(micromodulus, influence(Omega, xi, horizon), s, g_i, g_j) * family.volume / r;
       for (int q = 0; q < D; ++q) {
         f[q] += scalar * eta[q];
@@ -100,10 +104,16 @@ void pmb_forces(Model<D>& m, const BodyInfo& body) {
     for (int q = 0; q < D; ++q) force[i][q] += f[q];
     s_smallest[i] = s_min;
   };
+  auto rows = [&]<bool Wet>() {
+    if (c.surface_correction)
+      for_each_row_by_slabs(b, body.first, body.last, [&](std::size_t i) { row.template operator()<Wet, true>(i); });
+    else
+      for_each_row_by_slabs(b, body.first, body.last, [&](std::size_t i) { row.template operator()<Wet, false>(i); });
+  };
   if (wet)
-    for_each_row_by_slabs(b, body.first, body.last, [&](std::size_t i) { row.template operator()<true>(i); });
+    rows.template operator()<true>();
   else
-    for_each_row_by_slabs(b, body.first, body.last, [&](std::size_t i) { row.template operator()<false>(i); });
+    rows.template operator()<false>();
   for (const auto& [i, k] : broken) break_mirror_bond(b, body, i, k);
   record_crossing_breaks<D>(m, crossing);
   next_stretch_limits<D>(m, body, smallest);
