@@ -3,6 +3,7 @@
 // stress relaxation of the standard linear solid it stands for.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <sstream>
@@ -140,6 +141,27 @@ TEST(Viscoelastic, ReverseBondIsTheBondBack) {
     }
   }
   EXPECT_EQ(whole, std::size_t(6 * 6 * 6));  // the particles 3 or more spacings from every face (the family reaches 3 along an axis)
+}
+
+// The history in pair order (bonds.hpp): every directed bond has its own slot, and the two
+// directions of a pair sit side by side, 2 p and 2 p + 1.
+TEST(Viscoelastic, HistorySlotsPairTheTwoDirections) {
+  auto s = rift::scene::parse_string(ves_scene(12, 0.4, 2e-7, false), "ves.toml");
+  const auto m = rift::pd::discretize<3>(s);
+  const auto& b = m.bonds;
+  const auto& body = m.bodies[0];
+  ASSERT_EQ(b.back_extension.size(), b.neighbor.size());
+  std::vector<int> used(b.neighbor.size(), 0);
+  for (std::size_t i = 0; i < m.size(); ++i)
+    for (auto k = b.offset[i]; k < b.offset[i + 1]; ++k) {
+      const auto h = rift::pd::history_slot(b, body, i, k);
+      ASSERT_LT(h, used.size());
+      ++used[h];
+      const auto j = static_cast<std::size_t>(b.neighbor[static_cast<std::size_t>(k)]);
+      EXPECT_EQ(h ^ 1u, rift::pd::history_slot(b, body, j, rift::pd::reverse_bond(b, body, i, k)));
+      EXPECT_EQ(h % 2, j > i ? 0u : 1u);  // the lower end's direction first
+    }
+  EXPECT_EQ(std::count(used.begin(), used.end(), 1), static_cast<std::ptrdiff_t>(used.size()));
 }
 
 // Standard linear solid (Zener) under a shear strain ramped linearly to gamma over t_r and then held:

@@ -36,6 +36,14 @@ inline std::int64_t reverse_bond(const Bonds& b, const BodyInfo& body, std::size
   return std::lower_bound(first, last, static_cast<std::int32_t>(i)) - b.neighbor.begin();
 }
 
+/// Where the VES history of directed bond k = i-j sits (bonds.hpp: pair order): 2 p for the lower
+/// end's direction, 2 p + 1 for the upper end's, p the pair of the forward bond.
+inline std::size_t history_slot(const Bonds& b, const BodyInfo& body, std::size_t i, std::int64_t k) {
+  const auto j = static_cast<std::size_t>(b.neighbor[static_cast<std::size_t>(k)]);
+  if (j > i) return static_cast<std::size_t>(2 * (k + b.pair_shift[i]));
+  return static_cast<std::size_t>(2 * (reverse_bond(b, body, i, k) + b.pair_shift[j]) + 1);
+}
+
 /// Marks broken the reverse of bond k = i-j, which a pass broke from i's side.
 inline void break_mirror_bond(Bonds& b, const BodyInfo& body, std::size_t i, std::int64_t k) {
   b.intact[static_cast<std::size_t>(reverse_bond(b, body, i, k))] = bond_broken;

@@ -61,8 +61,14 @@ struct Bonds {
   std::vector<std::int64_t> factor_row;
   std::vector<BondFactors> factors;
   // VES only (empty otherwise), per directed bond i-j: i's deviatoric extension and back extension
-  // after the last step (Mitchell 2011; stored in single precision, 6e-8 relative rounding)
+  // after the last step (Mitchell 2011; stored in single precision, 6e-8 relative rounding), in
+  // pair order: the pairs numbered by their forward bonds (row i's bonds to neighbours above i),
+  // row after row, entry 2 p the lower end's direction and 2 p + 1 the upper end's
+  // (bond_slabs.hpp history_slot). The passes that visit each bond once from its lower end then
+  // read both directions' histories in sequence; stored per directed bond, the upper end's sat in
+  // another row, a cache miss per bond.
   std::vector<float> deviatoric_extension, back_extension;
+  std::vector<std::int64_t> pair_shift;  // VES only, per particle: pair of forward bond k of row i = k + pair_shift[i]
 
   std::int64_t size() const { return static_cast<std::int64_t>(neighbor.size()); }
   BondView view() {

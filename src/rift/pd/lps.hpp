@@ -177,8 +177,9 @@ void state_based_forces(Model<D>& m, const BodyInfo& body) {
       const double omega = influence(Omega, xi, horizon);
       double dev_i = e - own.theta * xi / D, dev_j = e - other.theta * xi / D;
       if constexpr (Viscous) {
-        dev_i -= lambda * b.back_extension[k];
-        dev_j -= lambda * b.back_extension[static_cast<std::size_t>(reverse_bond(b, body, i, k))];
+        const auto h = static_cast<std::size_t>(2 * (k + b.pair_shift[i]));  // i-j at h, j-i at h + 1 (history_slot)
+        dev_i -= lambda * b.back_extension[h];
+        dev_j -= lambda * b.back_extension[h + 1];
       }
       const BondFactors& g_i = b.factors[static_cast<std::size_t>(own.factor_row + b.family[k])];
       const BondFactors& g_j = b.factors[static_cast<std::size_t>(other.factor_row + family.mirror)];
@@ -208,7 +209,7 @@ double state_based_energy_density(const Model<D>& m, const BodyInfo& body, std::
     const double e = norm<D>(m.position[j] - m.position[i]) - xi;
     const double ed = e - theta * xi / D;
     if constexpr (Viscous) {
-      const double ev = ed - b.back_extension[k];
+      const double ev = ed - b.back_extension[history_slot(b, body, i, k)];
       dev += b.correction(i, k) * influence(c.influence, xi, c.horizon) * ((1.0 - lambda) * ed * ed + lambda * ev * ev) * b.volume(k);
     } else {
       dev += b.correction(i, k) * influence(c.influence, xi, c.horizon) * ed * ed * b.volume(k);

@@ -53,8 +53,9 @@ void bond_pair_stress(const Model<D>& m, std::size_t i, double s[3][3]) {
     } else {
       const double a_j = a_dev / m.weighted_volume[j];
       const double pressure_j = pressure_factor<D>(c.kappa, m.dilatation[j], a_j, m.dilatation_coupling[j]);
-      const double eb_i = ves ? lambda * b.back_extension[k] : 0.0;
-      const double eb_j = ves ? lambda * b.back_extension[static_cast<std::size_t>(reverse_bond(b, m.bodies[m.body[i]], i, k))] : 0.0;
+      const BodyInfo& body = m.bodies[m.body[i]];
+      const double eb_i = ves ? lambda * b.back_extension[history_slot(b, body, i, k)] : 0.0;
+      const double eb_j = ves ? lambda * b.back_extension[history_slot(b, body, j, reverse_bond(b, body, i, k))] : 0.0;
       const BondFactors &g_i = b.factors_of(i, k), &g_j = b.mirror_factors_of(j, k);
       pair = force_state(g_i.dilatation_weight, pressure_i, a_i, g_i.correction, omega, e - m.dilatation[i] * xi / D - eb_i) +
              force_state(g_j.dilatation_weight, pressure_j, a_j, g_j.correction, omega, e - m.dilatation[j] * xi / D - eb_j);

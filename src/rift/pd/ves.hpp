@@ -33,8 +33,16 @@ void prepare_viscous_history(Model<D>& m) {
   bool any = false;
   for (const auto& body : m.bodies) any = any || body.constants.model == scene::ModelKind::ves;
   if (!any) return;
-  m.bonds.deviatoric_extension.assign(m.bonds.neighbor.size(), 0.0f);
-  m.bonds.back_extension.assign(m.bonds.neighbor.size(), 0.0f);
+  Bonds& b = m.bonds;
+  b.pair_shift.assign(m.size(), 0);
+  std::int64_t pairs = 0;  // bonds join both ways, so the pairs are half the directed bonds
+  for (std::size_t i = 0; i < m.size(); ++i) {
+    const auto forward = first_forward_bond(b, i);
+    b.pair_shift[i] = pairs - forward;
+    pairs += b.offset[i + 1] - forward;
+  }
+  b.deviatoric_extension.assign(static_cast<std::size_t>(2 * pairs), 0.0f);
+  b.back_extension.assign(static_cast<std::size_t>(2 * pairs), 0.0f);
 }
 
 /// First pass: dilatation and bond breaking (as the LPS), then the back extension of every intact
@@ -59,25 +67,25 @@ void ves_dilatation(Model<D>& m, const BodyInfo& body, double dt) {
     const double theta_i = m.dilatation[i];
     const std::int64_t row_i = b.factor_row[i];
     double p = 0.0;
-    // advances the history of directed bond k with deviatoric extension ed (in double, stored in
-    // single precision, bonds.hpp) and returns its back extension
-    auto back_extension = [&](std::size_t k, double ed) -> double {
+    // advances the history in slot h (bonds.hpp) with deviatoric extension ed (in double, stored
+    // in single precision) and returns its back extension
+    auto back_extension = [&](std::size_t h, double ed) -> double {
       if (advance) {
-        const double ed_old = b.deviatoric_extension[k];
-        b.back_extension[k] = static_cast<float>(ed_old * one_minus_decay + b.back_extension[k] * decay + beta * (ed - ed_old));
-        b.deviatoric_extension[k] = static_cast<float>(ed);
+        const double ed_old = b.deviatoric_extension[h];
+        b.back_extension[h] = static_cast<float>(ed_old * one_minus_decay + b.back_extension[h] * decay + beta * (ed - ed_old));
+        b.deviatoric_extension[h] = static_cast<float>(ed);
       }
-      return b.back_extension[k];
+      return b.back_extension[h];
     };
     for (auto k = first_forward_bond(b, i); k < b.offset[i + 1]; ++k) {
       if (b.intact[k] != bond_intact) continue;
       const auto j = static_cast<std::size_t>(b.neighbor[k]);
-      const auto k_j = static_cast<std::size_t>(reverse_bond(b, body, i, k));  // the bond j-i
+      const auto h = static_cast<std::size_t>(2 * (k + b.pair_shift[i]));  // i-j at h, j-i at h + 1 (history_slot)
       const FamilyOffset& family = b.families[b.family[k]];
       const double xi = family.length;
       const double e = norm<D>(m.position[j] - xi_pos) - xi;
       const double ed_i = e - theta_i * xi / D, ed_j = e - m.dilatation[j] * xi / D;
-      const double eb_i = back_extension(static_cast<std::size_t>(k), ed_i), eb_j = back_extension(k_j, ed_j);
+      const double eb_i = back_extension(h, ed_i), eb_j = back_extension(h + 1, ed_j);
       const double w = influence(Omega, xi, horizon) * xi * family.volume;
       p += b.factors[static_cast<std::size_t>(row_i + b.family[k])].correction * w * (ed_i - lambda * eb_i);
       m.dilatation_coupling[j] += b.factors[static_cast<std::size_t>(b.factor_row[j] + family.mirror)].correction * w * (ed_j - lambda * eb_j);
