@@ -95,7 +95,8 @@ struct Reference {
 
 // rift's ves forces equal the independent evaluation over three steps of a changing deformation
 // (lambda = 0.4, tau = 2 dt: the back extensions move a lot per step); tolerance 2e-7 of the largest
-// force: rift stores the dilatation weights and the extension histories in single precision (6e-8).
+// force: rift stores the extension histories in single precision (6e-8; the dilatation weights of
+// this uncorrected lattice are taken in double, lps.hpp dilatation_scale).
 TEST(Viscoelastic, ForcesMatchAnIndependentEvaluationOverSteps) {
   const double lambda = 0.4, dt = 1e-7, tau = 2e-7;
   const int edge = 8;

@@ -27,8 +27,17 @@ namespace rift::pd {
 
 /// The force state t_i<j> = b_ij p_i + a_i sigma_ij e_dev of one end of a bond, p_i = kappa theta_i -
 /// a_i P_i / d its pressure-like factor, e_dev its deviatoric extension (VES: less lambda e_b).
-inline double force_state(float dilatation_weight, double pressure, double a, float correction, double omega, double deviatoric) {
+inline double force_state(double dilatation_weight, double pressure, double a, float correction, double omega, double deviatoric) {
   return dilatation_weight * pressure + a * correction * omega * deviatoric;
+}
+
+/// b_ij of end i: with the surface correction the weight of its row of factors
+/// (surface_correction.hpp); without it LAMMPS's d omega |xi| / m_i, which every particle's bonds
+/// share up to the scale d / m_i, so the passes take omega |xi| per bond and the scale per particle
+/// (no rows of factors of their own for the particles a surface cuts: their loads missed the cache).
+template <int D>
+double dilatation_scale(double weighted_volume) {
+  return weighted_volume > 0.0 ? D / weighted_volume : 0.0;
 }
 
 /// p_i = kappa theta_i - a_i P_i / d.
@@ -44,7 +53,16 @@ double pressure_factor(double kappa, double theta, double a, double coupling) {
 /// m.dilatation), with Coupling also q_i = sum sigma_ij e |xi| V (into `coupling`), and the smallest
 /// stretch of each particle (into `smallest`, none: no intact bond). e = |y| - |xi| is the same seen
 /// from either end; b and sigma are each end's own (surface_correction.hpp).
+template <int D, scene::Influence Omega, bool Coupling, bool Corrected>
+void dilatation_pass(Model<D>& m, const BodyInfo& body, double* coupling, double* smallest);
+
 template <int D, scene::Influence Omega, bool Coupling>
+void dilatation_pass(Model<D>& m, const BodyInfo& body, double* coupling, double* smallest) {
+  if (body.constants.surface_correction) dilatation_pass<D, Omega, Coupling, true>(m, body, coupling, smallest);
+  else dilatation_pass<D, Omega, Coupling, false>(m, body, coupling, smallest);
+}
+
+template <int D, scene::Influence Omega, bool Coupling, bool Corrected>
 void dilatation_pass(Model<D>& m, const BodyInfo& body, double* coupling, double* smallest) {
   const auto& c = body.constants;
   Bonds& b = m.bonds;
@@ -96,15 +114,26 @@ void dilatation_pass(Model<D>& m, const BodyInfo& body, double* coupling, double
       const double s = e * family.inverse_length;
       s_min = std::min(s_min, s);
       smallest[j] = std::min(smallest[j], s);
-      const BondFactors& own = b.factors[static_cast<std::size_t>(row_i + b.family[k])];
-      const BondFactors& other = b.factors[static_cast<std::size_t>(b.factor_row[j] + family.mirror)];
       const double ev = e * family.volume;
-      theta += own.dilatation_weight * ev;
-      m.dilatation[j] += other.dilatation_weight * ev;
-      if constexpr (Coupling) {
+      if constexpr (Corrected) {
+        const BondFactors& own = b.factors[static_cast<std::size_t>(row_i + b.family[k])];
+        const BondFactors& other = b.factors[static_cast<std::size_t>(b.factor_row[j] + family.mirror)];
+        theta += own.dilatation_weight * ev;
+        m.dilatation[j] += other.dilatation_weight * ev;
+        if constexpr (Coupling) {
+          const double w = influence(Omega, xi, c.horizon) * xi * ev;
+          q += own.correction * w;
+          coupling[j] += other.correction * w;
+        }
+      } else {
+        // omega |xi| e V, scaled by d / m after the pass (dilatation_scale)
         const double w = influence(Omega, xi, c.horizon) * xi * ev;
-        q += own.correction * w;
-        coupling[j] += other.correction * w;
+        theta += w;
+        m.dilatation[j] += w;
+        if constexpr (Coupling) {
+          q += w;
+          coupling[j] += w;
+        }
       }
     }
     m.dilatation[i] += theta;
@@ -122,6 +151,10 @@ void dilatation_pass(Model<D>& m, const BodyInfo& body, double* coupling, double
   else rows.template operator()<false>();
   for (const auto& [i, k] : broken) break_mirror_bond(b, body, i, k);
   record_crossing_breaks<D>(m, crossing);
+  if constexpr (!Corrected) {
+#pragma omp parallel for if(rift::parallel::worth_a_team(body.last - body.first)) schedule(static)
+    for (std::size_t i = body.first; i < body.last; ++i) m.dilatation[i] *= dilatation_scale<D>(m.weighted_volume[i]);
+  }
 }
 
 template <int D, scene::Influence Omega>
@@ -139,14 +172,23 @@ void lps_dilatation(Model<D>& m, const BodyInfo& body) {
 template <int D>
 struct ForceStateInputs {
   Vec<D> position;
-  double pressure, a, theta;
+  double pressure, a, theta;  // without the surface correction the pressure times d / m (dilatation_scale)
   std::int64_t factor_row;
 };
 
 /// Second pass of the LPS and of its viscoelastic variant (ves.hpp, Viscous: the deviatoric
 /// extension of each end less lambda times its back extension), each bond once (bond_slabs.hpp):
 /// the pair force density (t_i<j> + t_j<i>) V along the deformed bond, on i and, opposite, on j.
+template <int D, scene::Influence Omega, bool Viscous, bool Corrected>
+void state_based_forces(Model<D>& m, const BodyInfo& body);
+
 template <int D, scene::Influence Omega, bool Viscous>
+void state_based_forces(Model<D>& m, const BodyInfo& body) {
+  if (body.constants.surface_correction) state_based_forces<D, Omega, Viscous, true>(m, body);
+  else state_based_forces<D, Omega, Viscous, false>(m, body);
+}
+
+template <int D, scene::Influence Omega, bool Viscous, bool Corrected>
 void state_based_forces(Model<D>& m, const BodyInfo& body) {
   const auto& c = body.constants;
   const Bonds& b = m.bonds;
@@ -159,7 +201,9 @@ void state_based_forces(Model<D>& m, const BodyInfo& body) {
 #pragma omp parallel for if(rift::parallel::worth_a_team(body.last - body.first)) schedule(static)
   for (std::size_t j = body.first; j < body.last; ++j) {
     const double a_j = m.weighted_volume[j] > 0.0 ? a_dev / m.weighted_volume[j] : 0.0;
-    in[j] = {m.position[j], pressure_factor<D>(kappa, m.dilatation[j], a_j, m.dilatation_coupling[j]), a_j, m.dilatation[j], b.factor_row[j]};
+    double p_j = pressure_factor<D>(kappa, m.dilatation[j], a_j, m.dilatation_coupling[j]);
+    if constexpr (!Corrected) p_j *= dilatation_scale<D>(m.weighted_volume[j]);
+    in[j] = {m.position[j], p_j, a_j, m.dilatation[j], b.factor_row[j]};
     m.force[j] = Vec<D>{};
   }
   for_each_row_by_slabs(b, body.first, body.last, [&](std::size_t i) {
@@ -181,10 +225,16 @@ void state_based_forces(Model<D>& m, const BodyInfo& body) {
         dev_i -= lambda * b.back_extension[h];
         dev_j -= lambda * b.back_extension[h + 1];
       }
-      const BondFactors& g_i = b.factors[static_cast<std::size_t>(own.factor_row + b.family[k])];
-      const BondFactors& g_j = b.factors[static_cast<std::size_t>(other.factor_row + family.mirror)];
-      const double t_i = force_state(g_i.dilatation_weight, own.pressure, own.a, g_i.correction, omega, dev_i);
-      const double t_j = force_state(g_j.dilatation_weight, other.pressure, other.a, g_j.correction, omega, dev_j);
+      double t_i, t_j;
+      if constexpr (Corrected) {
+        const BondFactors& g_i = b.factors[static_cast<std::size_t>(own.factor_row + b.family[k])];
+        const BondFactors& g_j = b.factors[static_cast<std::size_t>(other.factor_row + family.mirror)];
+        t_i = force_state(g_i.dilatation_weight, own.pressure, own.a, g_i.correction, omega, dev_i);
+        t_j = force_state(g_j.dilatation_weight, other.pressure, other.a, g_j.correction, omega, dev_j);
+      } else {
+        t_i = force_state(omega * xi, own.pressure, own.a, 1.0f, omega, dev_i);
+        t_j = force_state(omega * xi, other.pressure, other.a, 1.0f, omega, dev_j);
+      }
       const double scalar = (t_i + t_j) * family.volume / r;
       for (int q = 0; q < D; ++q) {
         f[q] += scalar * eta[q];

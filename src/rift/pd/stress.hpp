@@ -57,8 +57,10 @@ void bond_pair_stress(const Model<D>& m, std::size_t i, double s[3][3]) {
       const double eb_i = ves ? lambda * b.back_extension[history_slot(b, body, i, k)] : 0.0;
       const double eb_j = ves ? lambda * b.back_extension[history_slot(b, body, j, reverse_bond(b, body, i, k))] : 0.0;
       const BondFactors &g_i = b.factors_of(i, k), &g_j = b.mirror_factors_of(j, k);
-      pair = force_state(g_i.dilatation_weight, pressure_i, a_i, g_i.correction, omega, e - m.dilatation[i] * xi / D - eb_i) +
-             force_state(g_j.dilatation_weight, pressure_j, a_j, g_j.correction, omega, e - m.dilatation[j] * xi / D - eb_j);
+      const double b_i = c.surface_correction ? double(g_i.dilatation_weight) : omega * xi * dilatation_scale<D>(m.weighted_volume[i]);
+      const double b_j = c.surface_correction ? double(g_j.dilatation_weight) : omega * xi * dilatation_scale<D>(m.weighted_volume[j]);
+      pair = force_state(b_i, pressure_i, a_i, g_i.correction, omega, e - m.dilatation[i] * xi / D - eb_i) +
+             force_state(b_j, pressure_j, a_j, g_j.correction, omega, e - m.dilatation[j] * xi / D - eb_j);
     }
     const double scale = 0.5 * pair * b.volume(k) / r;
     for (int p = 0; p < D; ++p)

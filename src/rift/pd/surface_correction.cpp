@@ -50,8 +50,9 @@ std::vector<std::size_t> assign_factor_rows(Model<D>& m) {
   std::vector<std::size_t> owners;
   for (const auto& body : m.bodies) {
     const std::size_t count = body.family_count, first_family = body.first_family;
-    // without the correction a PMB particle's factors are all 1, whatever its family
-    const bool uniform = !body.constants.surface_correction && !body.constants.state_based();
+    // without the correction a particle's factors are all 1, whatever its family, and the LPS and
+    // VES dilatation weights d omega |xi| / m_i are taken in the passes (lps.hpp dilatation_scale)
+    const bool uniform = !body.constants.surface_correction;
     std::int64_t shared = 0;
     bool have_shared = false;
     for (std::size_t i = body.first; i < body.last; ++i) {
@@ -127,11 +128,7 @@ void compute_dilatation_weights(Model<D>& m, const std::vector<std::size_t>& own
     auto weight = [&](std::int64_t k) -> float& {
       return b.factors[static_cast<std::size_t>(b.factor_row[i] + b.family[static_cast<std::size_t>(k)])].dilatation_weight;
     };
-    if (!c.surface_correction) {
-      for (auto k = b.offset[i]; k < b.offset[i + 1]; ++k)
-        weight(k) = static_cast<float>(D * influence(c.influence, b.length(k), c.horizon) * b.length(k) / m.weighted_volume[i]);
-      continue;
-    }
+    if (!c.surface_correction) continue;  // d omega |xi| / m_i, taken in the passes (lps.hpp dilatation_scale)
     // b_ij = omega |xi| (mu . phi(n)) with sum_j b_ij V_j |xi| n_a n_b = delta_ab
     Eigen::Matrix<double, nq, nq> A = Eigen::Matrix<double, nq, nq>::Zero();
     Eigen::Matrix<double, nq, 1> rhs, phi;
