@@ -56,6 +56,19 @@
 // With T = 4 MPa it crossed as well (20.8 mm past at t = 4 s, p = 7.01 MPa on arrival). Renshaw and
 // Pollard's ratio sigma_H / (T + sigma_h) is 1.0 for 2-8, the lowest of the crossing candidates
 // (2-1: 1.25), so the row sits at the criterion's edge.
+// Tried for 2-8 on 2026-11-25 (3 mm, platens; none kept): the interface's tensile strength 0
+// instead of 1 MPa (a cohesionless sheet): crossed, 20 mm past at t = 3.7 s, no interface bond
+// failed (the normal stress across the plane at the junction stays 7.1-8.0 MPa of compression as
+// the tip arrives: the pressurized fracture's T-stress is compressive along its path); 2-4
+// unchanged (20.8 mm). The fracture's fluid against the interface at the junction (the interface
+// bonds of fracture faces within a spacing of the plane taking its pressure off their normal
+// stress, Warpinski and Teufel with the fluid at the junction): with the local pressure of the
+// viscous fluid there (0.09 MPa as the tip arrives, 2.6-5.0 MPa a load step later) nothing slipped
+// and 2-8 crossed (27.5 mm), 2-4 crossed (28.6 mm); with the borehole's pressure both slipped along
+// the interface from t = 1.8 s and the crossing slowed alike in both (2-8 9 mm at t = 3.1 s, 2-4
+// 17.8 mm at t = 3.8 s, under its 18.1 mm threshold): the rule cannot tell them apart, as the
+// thresholds say (2-8 slips above 0.79 MPa of net pressure at the junction, 2-4 above 1.85, and
+// both arrive with about 1.9 at the borehole).
 // With traction faces instead (the same scenes, faces = "tractions"): 7 of 9. 2-6 arrested (13.7 mm
 // past the plane at t = 4 s; both wings turned toward +y some 80 mm out, as in 2-4, under the 13 /
 // 3 MPa that should keep them straight: the free faces let the block bend), 2-8 crossed (22.3 mm);
