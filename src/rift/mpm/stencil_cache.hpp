@@ -1,8 +1,8 @@
 // The shape functions of every material point for one step. Every transfer of an explicit MPM step
 // (particles to grid, grid to particles, MUSL's remap of the new momenta and the stress update)
 // uses S_ip and grad S_ip at the point's position at the start of the step, x_p^n (Sulsky et al.
-// 1994; Nairn's NairnMPM keeps them per point too), so they are taken once per step (stencil.hpp)
-// and read by each transfer, instead of being taken again by each. Memory: support(shape)^D nodes
+// 1994), so they are taken once per step (stencil.hpp) and read by each transfer, instead of being
+// taken again by each. Memory: support(shape)^D nodes
 // per point, each its index, weight and gradient (2D quadratic B-splines: 9 x 32 bytes).
 #pragma once
 #include <cstddef>
