@@ -100,7 +100,7 @@ double Solver<D>::stable_time_step(const Model<D>& m) const {
 template <int D>
 void Solver<D>::scatter(Model<D>& m, bool momentum_only, bool internal_force) {
   auto& ps = m.particles;
-  // one buffer per thread of the team for_each_stencil forks (one thread for a few points)
+  // one buffer per thread of the team for_each_cached_stencil forks (one thread for a few points)
   const std::size_t buffers = rift::parallel::worth_a_team(ps.size()) ? thread_grids_.size() : 1;
   const int threads = static_cast<int>(buffers);
   for (std::size_t t = 0; t < buffers; ++t) {

@@ -8,7 +8,6 @@
 
 #include "rift/core/error.hpp"
 #include "rift/mpm/model.hpp"
-#include "rift/parallel/team.hpp"
 
 namespace rift::mpm {
 
@@ -64,27 +63,6 @@ bool make_stencil(const Model<D>& m, const Vec<D>& x, Stencil<D>& st) {
         if constexpr (D == 3) st.gradient[q][2] = wx * wy * s[2].gradient[k];
       }
   return true;
-}
-
-/// Runs body(p, stencil) for every material point p in parallel (static schedule, `threads`
-/// threads, or the calling thread alone for a few points: parallel/team.hpp), the stencil taken at positions[p]; a point whose stencil leaves the grid raises a
-/// PhysicsError after the loop.
-template <int D, class Body>
-void for_each_stencil(const Model<D>& m, const std::vector<Vec<D>>& positions, int threads, Body body) {
-  LostParticle lost;
-#pragma omp parallel num_threads(threads) if(rift::parallel::worth_a_team(positions.size()))
-  {
-    Stencil<D> st;
-#pragma omp for schedule(static)
-    for (std::size_t p = 0; p < positions.size(); ++p) {
-      if (!make_stencil<D>(m, positions[p], st)) {
-        lost.record(p);
-        continue;
-      }
-      body(p, st);
-    }
-  }
-  lost.raise(m.time);
 }
 
 }  // namespace rift::mpm
