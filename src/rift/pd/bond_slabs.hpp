@@ -69,33 +69,23 @@ void next_stretch_limits(Model<D>& m, const BodyInfo& body, const double* smalle
 }
 
 /// The slab length for the particles [first, last): at least the farthest forward reach, and more
-/// slabs than a few threads need for balance on large bodies. Found once per range and kept
-/// (Bonds::slab_lengths): the scan of every row's last neighbour took 4% of a PMB step.
+/// slabs than a few threads need for balance on large bodies. Found once, when the bonds are made
+/// (BodyInfo::slab_length): scanned in every pass, it took 4% of a PMB step.
 inline std::size_t slab_length(const Bonds& b, std::size_t first, std::size_t last) {
-  std::size_t length = 0;
-#pragma omp critical(rift_slab_lengths)
-  {
-    for (const auto& s : b.slab_lengths)
-      if (s.first == first && s.last == last) length = s.length;
-    if (length == 0) {
-      std::size_t reach = 1;
-      for (std::size_t i = first; i < last; ++i)
-        if (b.offset[i + 1] > b.offset[i]) {
-          const auto j = static_cast<std::size_t>(b.neighbor[static_cast<std::size_t>(b.offset[i + 1] - 1)]);
-          if (j > i) reach = std::max(reach, j - i);
-        }
-      length = std::max(reach, (last - first + 255) / 256);
-      b.slab_lengths.push_back({first, last, length});
+  std::size_t reach = 1;
+  for (std::size_t i = first; i < last; ++i)
+    if (b.offset[i + 1] > b.offset[i]) {
+      const auto j = static_cast<std::size_t>(b.neighbor[static_cast<std::size_t>(b.offset[i + 1] - 1)]);
+      if (j > i) reach = std::max(reach, j - i);
     }
-  }
-  return length;
+  return std::max(reach, (last - first + 255) / 256);
 }
 
-/// Calls row(i) for every particle of [first, last), slab by slab as above.
+/// Calls row(i) for every particle of the body, slab by slab as above.
 template <class Row>
-void for_each_row_by_slabs(const Bonds& b, std::size_t first, std::size_t last, Row&& row) {
+void for_each_row_by_slabs(const BodyInfo& body, Row&& row) {
+  const std::size_t first = body.first, last = body.last, length = body.slab_length;
   if (last <= first) return;
-  const std::size_t length = slab_length(b, first, last);
   const std::size_t slabs = (last - first + length - 1) / length;
   for (std::size_t parity = 0; parity < 2; ++parity) {
     const auto count = static_cast<std::int64_t>((slabs + 1 - parity) / 2);

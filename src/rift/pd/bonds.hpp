@@ -69,12 +69,6 @@ struct Bonds {
   // another row, a cache miss per bond.
   std::vector<float> deviatoric_extension, back_extension;
   std::vector<std::int64_t> pair_shift;  // VES only, per particle: pair of forward bond k of row i = k + pair_shift[i]
-  // The slabs of the passes that visit each bond once (bond_slabs.hpp), per particle range
-  // [first, last) they were asked for: found once, as the bonds keep their neighbours.
-  struct SlabLength {
-    std::size_t first, last, length;
-  };
-  mutable std::vector<SlabLength> slab_lengths;
 
   std::int64_t size() const { return static_cast<std::int64_t>(neighbor.size()); }
   BondView view() {

@@ -142,9 +142,9 @@ void dilatation_pass(Model<D>& m, const BodyInfo& body, double* coupling, double
   };
   auto rows = [&]<bool Normal>() {
     if (wet)
-      for_each_row_by_slabs(b, body.first, body.last, [&](std::size_t i) { row.template operator()<true, Normal>(i); });
+      for_each_row_by_slabs(body, [&](std::size_t i) { row.template operator()<true, Normal>(i); });
     else
-      for_each_row_by_slabs(b, body.first, body.last, [&](std::size_t i) { row.template operator()<false, Normal>(i); });
+      for_each_row_by_slabs(body, [&](std::size_t i) { row.template operator()<false, Normal>(i); });
   };
   // the normal stress only where a bond may break (the strain is not made while breaking is held)
   if (c.normal_stress_failure && c.breakable) rows.template operator()<true>();
@@ -206,7 +206,7 @@ void state_based_forces(Model<D>& m, const BodyInfo& body) {
     in[j] = {m.position[j], p_j, a_j, m.dilatation[j], b.factor_row[j]};
     m.force[j] = Vec<D>{};
   }
-  for_each_row_by_slabs(b, body.first, body.last, [&](std::size_t i) {
+  for_each_row_by_slabs(body, [&](std::size_t i) {
     const ForceStateInputs<D> own = in[i];
     Vec<D> f{};
     for (auto k = first_forward_bond(b, i); k < b.offset[i + 1]; ++k) {

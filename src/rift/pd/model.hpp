@@ -17,6 +17,7 @@ struct BodyInfo {
   std::string name;
   std::size_t first = 0, last = 0;  // particle range [first, last)
   std::size_t first_family = 0, family_count = 0;  // its family offsets in Bonds::families
+  std::size_t slab_length = 1;  // of the passes that visit each bond once (bond_slabs.hpp), set with the bonds
   MaterialConstants constants;
 };
 

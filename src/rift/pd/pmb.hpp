@@ -106,9 +106,9 @@ void pmb_forces(Model<D>& m, const BodyInfo& body) {
   };
   auto rows = [&]<bool Wet>() {
     if (c.surface_correction)
-      for_each_row_by_slabs(b, body.first, body.last, [&](std::size_t i) { row.template operator()<Wet, true>(i); });
+      for_each_row_by_slabs(body, [&](std::size_t i) { row.template operator()<Wet, true>(i); });
     else
-      for_each_row_by_slabs(b, body.first, body.last, [&](std::size_t i) { row.template operator()<Wet, false>(i); });
+      for_each_row_by_slabs(body, [&](std::size_t i) { row.template operator()<Wet, false>(i); });
   };
   if (wet)
     rows.template operator()<true>();

@@ -62,7 +62,7 @@ void ves_dilatation(Model<D>& m, const BodyInfo& body, double dt) {
 #pragma omp parallel for if(rift::parallel::worth_a_team(body.last - body.first)) schedule(static)
   for (std::size_t i = body.first; i < body.last; ++i) m.dilatation_coupling[i] = 0.0;
   // each bond once (bond_slabs.hpp): the back extensions of both directions, and P of both ends
-  for_each_row_by_slabs(b, body.first, body.last, [&](std::size_t i) {
+  for_each_row_by_slabs(body, [&](std::size_t i) {
     const Vec<D> xi_pos = m.position[i];
     const double theta_i = m.dilatation[i];
     const std::int64_t row_i = b.factor_row[i];
