@@ -74,11 +74,16 @@ double strain_energy_density(const Model<D>& m, std::size_t i) {
 }
 
 template <int D>
-EnergySummary summarize(const Model<D>& m) {
+EnergySummary summarize(const Model<D>& m, bool strain_energy) {
   auto sums = parallel::ordered_sums<3>(m.size(), [&](std::size_t i, std::array<double, 3>& acc) {
     const double rho = m.constants_of(i).density;
     acc[0] += 0.5 * rho * dot<D>(m.velocity[i], m.velocity[i]) * m.volume[i];
-    acc[1] += strain_energy_density<D>(m, i) * m.volume[i];
+    if (strain_energy) {
+      acc[1] += strain_energy_density<D>(m, i) * m.volume[i];
+    } else {
+      for (int k = 0; k < D; ++k)
+        if (!std::isfinite(m.position[i][k])) acc[1] = std::numeric_limits<double>::quiet_NaN();
+    }
     for (auto k = m.bonds.offset[i]; k < m.bonds.offset[i + 1]; ++k) acc[2] += m.bonds.intact[k] != bond_intact;
   });
   EnergySummary s;
@@ -115,7 +120,7 @@ double stable_time_step(const Model<D>& m) {
   template void compute_forces<D>(Model<D>&, Contact<D>*, double);        \
   template void update_damage<D>(Model<D>&);                              \
   template double strain_energy_density<D>(const Model<D>&, std::size_t); \
-  template EnergySummary summarize<D>(const Model<D>&);                   \
+  template EnergySummary summarize<D>(const Model<D>&, bool);             \
   template double stable_time_step<D>(const Model<D>&);
 RIFT_INSTANTIATE(2)
 RIFT_INSTANTIATE(3)

@@ -35,8 +35,12 @@ struct EnergySummary {
   std::int64_t broken_bonds = 0;  // bonds broken (each bond counted once)
   double broken_fraction = 0.0;
 };
+/// Kinetic and strain energy and the broken bonds. The strain energy visits every bond again
+/// (state-based: each from both ends); with `strain_energy` false it is left 0 unless a position is
+/// not finite, which it then carries as NaN (runner's check_finite), and the sum costs one pass
+/// over the particles and their bond states.
 template <int D>
-EnergySummary summarize(const Model<D>& m);
+EnergySummary summarize(const Model<D>& m, bool strain_energy = true);
 
 /// Stable time step (Silling and Askari 2005, eq. 29): dt < sqrt(2 rho / sum_j V_j C_ij),
 /// C_ij = c / |xi| of the PMB body with the same P-wave modulus; minimum over particles.
