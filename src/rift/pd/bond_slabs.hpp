@@ -50,9 +50,9 @@ inline void break_mirror_bond(Bonds& b, const BodyInfo& body, std::size_t i, std
 }
 
 /// Per-particle scratch of the passes, the calling thread's (the team reads and writes it through
-/// the pointer): one array of n doubles per `slot`.
+/// the pointer): one array of n doubles per `slot` (0 to 7).
 inline double* pass_scratch(std::size_t n, int slot) {
-  static thread_local std::vector<double> scratch[2];
+  static thread_local std::vector<double> scratch[8];
   scratch[slot].resize(n);
   return scratch[slot].data();
 }

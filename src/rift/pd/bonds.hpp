@@ -30,6 +30,17 @@ struct FamilyOffset {
   std::uint32_t mirror = 0;    // the offset -xi: the bond j-i of the bond i-j
 };
 
+/// A run of bonds (bond_runs.hpp): `length` consecutive particles i, i + 1, ... whose bonds of one
+/// family offset join them to j, j + 1, ...: on a lattice numbered x fastest, a line of sites and
+/// the same line moved by the offset. The passes take a run's bonds together, in vectors.
+struct BondRun {
+  static constexpr std::uint32_t varies = 0xffffffffu;
+  std::int32_t i = 0, j = 0;        // the first particle and its neighbour
+  std::uint32_t position = varies;  // the bonds' place in their rows, bond offset[i + t] + position, where all have the same
+  std::uint16_t family = 0;         // the offset's index in Bonds::families
+  std::uint16_t length = 0;
+};
+
 /// What one particle's influence function makes of one family offset (surface_correction.hpp).
 struct BondFactors {
   float correction = 1.0f;         // g_i: the particle's influence-function factor (1 when off)

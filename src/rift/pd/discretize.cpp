@@ -7,6 +7,7 @@
 
 #include "rift/geometry/precrack.hpp"
 #include "rift/geometry/region.hpp"
+#include "rift/pd/bond_runs.hpp"
 #include "rift/pd/bond_slabs.hpp"
 #include "rift/pd/crack_pressure.hpp"
 #include "rift/pd/influence.hpp"
@@ -315,6 +316,7 @@ void build_bonds(const scene::Scene& s, Model<D>& m, const std::vector<std::arra
 #pragma omp parallel for if(rift::parallel::worth_a_team(info.last - info.first)) schedule(dynamic, 256)
     for (std::size_t i = info.first; i < info.last; ++i) row(i, true);
     info.slab_length = slab_length(b, info.first, info.last);
+    make_bond_runs(b, info);
   }
   b.intact.assign(b.neighbor.size(), bond_intact);
   InterfaceBonds& ib = m.interface_bonds;

@@ -18,6 +18,8 @@ struct BodyInfo {
   std::size_t first = 0, last = 0;  // particle range [first, last)
   std::size_t first_family = 0, family_count = 0;  // its family offsets in Bonds::families
   std::size_t slab_length = 1;  // of the passes that visit each bond once (bond_slabs.hpp), set with the bonds
+  std::vector<BondRun> runs;    // its forward bonds as runs (bond_runs.hpp), slab after slab
+  std::vector<std::size_t> slab_runs;  // the runs of slab q: [slab_runs[q], slab_runs[q + 1])
   MaterialConstants constants;
 };
 

@@ -5,11 +5,15 @@
 // crack's wet rock the limit is on the effective stretch (effective_stretch.hpp).
 #pragma once
 #include <algorithm>
+#include <array>
+#include <cmath>
 #include <cstdint>
 #include <limits>
 #include <utility>
 #include <vector>
 
+#include "rift/core/vector_isa.hpp"
+#include "rift/pd/bond_runs.hpp"
 #include "rift/pd/bond_slabs.hpp"
 #include "rift/pd/effective_stretch.hpp"
 #include "rift/pd/influence.hpp"
@@ -23,14 +27,98 @@ inline double pmb_bond_force(double micromodulus, double omega, double s, float 
   return micromodulus * omega * s * (0.5f * (correction + mirror_correction));
 }
 
-/// What the PMB pass reads of a neighbour, packed in one record per particle instead of three
-/// arrays: its position, s0_j and its row of factors.
-template <int D>
-struct BondEndInputs {
-  Vec<D> position;
-  double stretch_limit;
-  std::int64_t factor_row;
+/// The pair forces of a run of PMB bonds (bond_runs.hpp) into buffers: g, the force density on
+/// the lower ends per unit V_j, component by component (the upper ends take -g), and `stretch`, each
+/// bond's stretch (`none` for a bond that is not intact). The lower ends' positions and stretch
+/// limits start at a, the upper ends' at b. `alive` (Masked; else every bond is intact): 1 for an
+/// intact bond, 0 for another; `factor` (Corrected): (g_i + g_j) / 2; `past`: scratch. Returns
+/// whether an intact bond's stretch passes its limit, lowered by the wet rock's shift where
+/// `Shifted` (effective_stretch.hpp): the run may then break a bond, which the caller settles bond
+/// by bond. One loop without branches over contiguous arrays, so the compiler makes it vector code;
+/// every bond's force is the row's to the last bit.
+template <int D, bool Corrected, bool Shifted, bool Masked>
+[[gnu::always_inline]] inline bool pmb_run_pair_forces(std::size_t length, const double* __restrict xa, const double* __restrict ya,
+                                const double* __restrict za, const double* __restrict xb, const double* __restrict yb,
+                                const double* __restrict zb, const double* __restrict limit_a, const double* __restrict limit_b,
+                                const double* __restrict pore_a, const double* __restrict pore_b, double shift_scale,
+                                const double* __restrict alive, const double* __restrict factor, double bond_length,
+                                double inverse_length, double coefficient, double volume, double* __restrict gx,
+                                double* __restrict gy, double* __restrict gz, double* __restrict stretch,
+                                double* __restrict past) {
+  constexpr double none = std::numeric_limits<double>::max();
+  for (std::size_t t = 0; t < length; ++t) {
+    const double ex = xb[t] - xa[t], ey = yb[t] - ya[t];
+    double ez = 0.0, r2 = ex * ex + ey * ey;
+    if constexpr (D == 3) {
+      ez = zb[t] - za[t];
+      r2 += ez * ez;
+    }
+    const double r = std::sqrt(r2);
+    const double s = (r - bond_length) * inverse_length;
+    double limit = limit_b[t] < limit_a[t] ? limit_b[t] : limit_a[t];
+    if constexpr (Shifted) limit -= shift_scale * (pore_a[t] < pore_b[t] ? pore_a[t] : pore_b[t]);
+    const bool on = Masked ? alive[t] != 0.0 : true;
+    past[t] = on && s > limit ? 1.0 : 0.0;
+    double scalar = coefficient * s;
+    if constexpr (Corrected) scalar *= factor[t];
+    scalar = scalar * volume / r;
+    scalar = on ? scalar : 0.0;
+    gx[t] = scalar * ex;
+    gy[t] = scalar * ey;
+    if constexpr (D == 3) gz[t] = scalar * ez;
+    stretch[t] = on ? s : none;
+  }
+  return any_set(past, length);
+}
+
+/// One run's arrays and constants (pmb_run_pair_forces), and where its forces go: f_a and
+/// smallest_a at its lower ends, f_b and smallest_b at its upper ends.
+struct PmbRun {
+  std::size_t length = 0;
+  const double *xa = nullptr, *ya = nullptr, *za = nullptr, *xb = nullptr, *yb = nullptr, *zb = nullptr;
+  const double *limit_a = nullptr, *limit_b = nullptr, *pore_a = nullptr, *pore_b = nullptr, *alive = nullptr, *factor = nullptr;
+  double shift_scale = 1.0, bond_length = 0.0, inverse_length = 0.0, coefficient = 0.0, volume = 0.0;
+  double *fxa = nullptr, *fya = nullptr, *fza = nullptr, *fxb = nullptr, *fyb = nullptr, *fzb = nullptr;
+  double *smallest_a = nullptr, *smallest_b = nullptr;
+  bool breakable = false;
 };
+
+/// A run's pair forces added to its ends, unless a bond of it may break (returns true: the caller
+/// then takes the run bond by bond).
+template <int D, bool Corrected, bool Shifted, bool Masked>
+[[gnu::always_inline]] inline bool pmb_run(const PmbRun& a) {
+  alignas(64) double g[3][max_run_length], stretch[max_run_length], past[max_run_length];
+  const bool may_break = pmb_run_pair_forces<D, Corrected, Shifted, Masked>(
+      a.length, a.xa, a.ya, a.za, a.xb, a.yb, a.zb, a.limit_a, a.limit_b, a.pore_a, a.pore_b, a.shift_scale, a.alive, a.factor,
+      a.bond_length, a.inverse_length, a.coefficient, a.volume, g[0], g[1], g[2], stretch, past);
+  if (a.breakable && may_break) return true;
+  add_to_run_ends(a.fxa, g[0], a.length);
+  add_to_run_ends(a.fya, g[1], a.length);
+  if constexpr (D == 3) add_to_run_ends(a.fza, g[2], a.length);
+  subtract_from_run_ends(a.fxb, g[0], a.length);
+  subtract_from_run_ends(a.fyb, g[1], a.length);
+  if constexpr (D == 3) subtract_from_run_ends(a.fzb, g[2], a.length);
+  lower_to_run_stretches(a.smallest_a, stretch, a.length);
+  lower_to_run_stretches(a.smallest_b, stretch, a.length);
+  return false;
+}
+
+// pmb_run for each instruction set (core/vector_isa.hpp)
+template <int D, bool Corrected, bool Shifted, bool Masked>
+bool pmb_run_sse2(const PmbRun& a) { return pmb_run<D, Corrected, Shifted, Masked>(a); }
+template <int D, bool Corrected, bool Shifted, bool Masked>
+RIFT_TARGET_AVX2 bool pmb_run_avx2(const PmbRun& a) { return pmb_run<D, Corrected, Shifted, Masked>(a); }
+template <int D, bool Corrected, bool Shifted, bool Masked>
+RIFT_TARGET_AVX512 bool pmb_run_avx512(const PmbRun& a) { return pmb_run<D, Corrected, Shifted, Masked>(a); }
+
+template <int D, bool Corrected, bool Shifted, bool Masked>
+auto pmb_run_kernel(VectorIsa isa) {
+  switch (isa) {
+    case VectorIsa::avx512: return &pmb_run_avx512<D, Corrected, Shifted, Masked>;
+    case VectorIsa::avx2: return &pmb_run_avx2<D, Corrected, Shifted, Masked>;
+    default: return &pmb_run_sse2<D, Corrected, Shifted, Masked>;
+  }
+}
 
 template <int D, scene::Influence Omega>
 void pmb_forces(Model<D>& m, const BodyInfo& body) {
@@ -39,81 +127,114 @@ void pmb_forces(Model<D>& m, const BodyInfo& body) {
   const double micromodulus = c.micromodulus, horizon = c.horizon;
   const bool breakable = c.breakable;
   const WetRock<D> wet = wet_rock(m);
-  // bonds join particles of one body; the buffer is the calling thread's, which the team writes and
-  // reads through `in`; `smallest`: the smallest stretch of each particle's intact bonds
-  static thread_local std::vector<BondEndInputs<D>> inputs;
-  inputs.resize(m.size());
-  BondEndInputs<D>* const in = inputs.data();
-  double* const smallest = pass_scratch(m.size(), 1);
+  // bonds join particles of one body. The positions and forces one array per component (the runs
+  // read and write them contiguously), and the smallest stretch of each particle's intact bonds: the
+  // calling thread's buffers, which the team reads and writes through these pointers
+  const std::size_t n = m.size();
+  std::array<double*, 3> x{}, f{};
+  for (int q = 0; q < D; ++q) x[q] = pass_scratch(n, 2 + q), f[q] = pass_scratch(n, 5 + q);
+  double* const smallest = pass_scratch(n, 1);
   constexpr double none = std::numeric_limits<double>::max();
 #pragma omp parallel for if(rift::parallel::worth_a_team(body.last - body.first)) schedule(static)
   for (std::size_t j = body.first; j < body.last; ++j) {
-    in[j] = {m.position[j], m.stretch_limit[j], b.factor_row[j]};
-    m.force[j] = Vec<D>{};
+    for (int q = 0; q < D; ++q) x[q][j] = m.position[j][q], f[q][j] = 0.0;
     smallest[j] = none;
   }
-  // each bond once, from its lower end (bond_slabs.hpp): s is the same seen from either end, and so
-  // is the pair force c omega s (g_i + g_j)/2 V along the bond (one lattice cell volume per body)
   std::vector<std::pair<std::size_t, std::int64_t>> broken, crossing;  // (i, k) of the bonds broken here, and of those across the crack
-  const BondView bonds = b.view();
-  Vec<D>* const forces = m.force.data();
-  // the wet rock's shift is compiled in only where there is wet rock (effective_stretch.hpp), the
-  // influence-function factors only with the surface correction (without it they are all 1)
-  auto row = [&]<bool Wet, bool Corrected>(std::size_t i) {
-    const BondView v = bonds;  // locals: registers (bonds.hpp)
-    Vec<D>* const force = forces;
-    double* const s_smallest = smallest;
-    const BondEndInputs<D>* const ends = in;
-    const BondEndInputs<D> own = ends[i];
-    Vec<D> f{};
-    double s_min = s_smallest[i];
-    for (auto k = first_forward_bond(b, i); k < v.offset[i + 1]; ++k) {
-      if (v.intact[k] != bond_intact) continue;
-      const auto j = static_cast<std::size_t>(v.neighbor[k]);
-      const BondEndInputs<D>& other = ends[j];
-      const Vec<D> eta = other.position - own.position;
-      const double r = norm<D>(eta);
-      const FamilyOffset& family = v.families[v.family[k]];
-      const double xi = family.length;
-      const double s = (r - xi) * family.inverse_length;
-      const double limit = std::min(own.stretch_limit, other.stretch_limit);
-      bool past = s > limit, crossed = false;
-      if constexpr (Wet) past = breakable && breaks_in_wet_rock<D>(wet, c.alpha, i, j, s, limit, crossed);
-      if (breakable && past) {
-        v.intact[k] = bond_broken;
+  const BondView v = b.view();
+  const double* const limits = m.stretch_limit.data();
+  const std::uint8_t* const whole = whole_rows(b, body);
+  const VectorIsa isa = vector_isa();
+  // bond t of a run, one at a time, as a row would take it: for a run that may break a bond
+  auto settle = [&]<bool Wet, bool Corrected>(const BondRun& run, std::size_t t) {
+    const std::size_t i = static_cast<std::size_t>(run.i) + t, j = static_cast<std::size_t>(run.j) + t;
+    const std::int64_t k = run_bond(b, run, t);
+    if (v.intact[k] != bond_intact) return;
+    Vec<D> eta;
+    for (int q = 0; q < D; ++q) eta[q] = x[q][j] - x[q][i];
+    const double r = norm<D>(eta);
+    const FamilyOffset& family = v.families[run.family];
+    const double s = (r - family.length) * family.inverse_length;
+    const double limit = std::min(limits[i], limits[j]);
+    bool past = s > limit, crossed = false;
+    if constexpr (Wet) past = breakable && breaks_in_wet_rock<D>(wet, c.alpha, i, j, s, limit, crossed);
+    if (breakable && past) {
+      v.intact[k] = bond_broken;
 #pragma omp critical(rift_pmb_broken)
-        {
-          broken.emplace_back(i, k);
-          if (crossed) crossing.emplace_back(i, k);
-        }
-        continue;
+      {
+        broken.emplace_back(i, k);
+        if (crossed) crossing.emplace_back(i, k);
       }
-      s_min = std::min(s_min, s);
-      s_smallest[j] = std::min(s_smallest[j], s);
-      float g_i = 1.0f, g_j = 1.0f;
-      if constexpr (Corrected) {
-        g_i = v.factors[own.factor_row + v.family[k]].correction;
-        g_j = v.factors[other.factor_row + family.mirror].correction;
-      }
-      const double scalar = pmb_bond_force(micromodulus, influence(Omega, xi, horizon), s, g_i, g_j) * family.volume / r;
-      for (int q = 0; q < D; ++q) {
-        f[q] += scalar * eta[q];
-        force[j][q] -= scalar * eta[q];
-      }
+      return;
     }
-    for (int q = 0; q < D; ++q) force[i][q] += f[q];
-    s_smallest[i] = s_min;
+    smallest[i] = std::min(smallest[i], s);
+    smallest[j] = std::min(smallest[j], s);
+    float g_i = 1.0f, g_j = 1.0f;
+    if constexpr (Corrected) {
+      g_i = v.factors[v.factor_row[i] + run.family].correction;
+      g_j = v.factors[v.factor_row[j] + family.mirror].correction;
+    }
+    const double scalar = pmb_bond_force(micromodulus, influence(Omega, family.length, horizon), s, g_i, g_j) * family.volume / r;
+    for (int q = 0; q < D; ++q) {
+      f[q][i] += scalar * eta[q];
+      f[q][j] -= scalar * eta[q];
+    }
   };
-  auto rows = [&]<bool Wet>() {
-    if (c.surface_correction)
-      for_each_row_by_slabs(body, [&](std::size_t i) { row.template operator()<Wet, true>(i); });
+  // a run of bonds (bond_runs.hpp): s is the same seen from either end, and so is the pair force
+  // c omega s (g_i + g_j)/2 V along the bond. The wet rock's shift is compiled in only where there is
+  // wet rock (effective_stretch.hpp), the influence-function factors only with the surface
+  // correction (without it they are all 1)
+  auto run_forces = [&]<bool Wet, bool Corrected>(const BondRun& run) {
+    const std::size_t length = run.length, i = static_cast<std::size_t>(run.i), j = static_cast<std::size_t>(run.j);
+    if (length < short_run) {  // a vector's set-up would cost more than the bonds
+      for (std::size_t t = 0; t < length; ++t) settle.template operator()<Wet, Corrected>(run, t);
+      return;
+    }
+    const FamilyOffset& family = v.families[run.family];
+    alignas(64) double alive[max_run_length], factor[max_run_length];
+    // the bonds' states (in their lower ends' rows) only where a row is not whole (bond_runs.hpp)
+    const bool masked = !whole_run(whole + i, length);
+    if (masked)
+      for (std::size_t t = 0; t < length; ++t) alive[t] = v.intact[run_bond(b, run, t)] == bond_intact ? 1.0 : 0.0;
+    if constexpr (Corrected)
+      for (std::size_t t = 0; t < length; ++t)
+        factor[t] = 0.5f * (v.factors[v.factor_row[i + t] + run.family].correction +
+                            v.factors[v.factor_row[j + t] + family.mirror].correction);
+    const double* const pore = Wet ? wet.pore_stretch : nullptr;
+    PmbRun a;
+    a.length = length;
+    a.xa = x[0] + i, a.ya = x[1] + i, a.xb = x[0] + j, a.yb = x[1] + j;
+    a.fxa = f[0] + i, a.fya = f[1] + i, a.fxb = f[0] + j, a.fyb = f[1] + j;
+    if constexpr (D == 3) a.za = x[2] + i, a.zb = x[2] + j, a.fza = f[2] + i, a.fzb = f[2] + j;
+    a.limit_a = limits + i, a.limit_b = limits + j;
+    if (pore) a.pore_a = pore + i, a.pore_b = pore + j;
+    a.shift_scale = 1.0 + c.alpha;
+    a.alive = alive, a.factor = factor;
+    a.bond_length = family.length, a.inverse_length = family.inverse_length, a.volume = family.volume;
+    a.coefficient = micromodulus * influence(Omega, family.length, horizon);
+    a.smallest_a = smallest + i, a.smallest_b = smallest + j;
+    a.breakable = breakable;
+    bool may_break;
+    if (pore)
+      may_break = masked ? pmb_run_kernel<D, Corrected, true, true>(isa)(a) : pmb_run_kernel<D, Corrected, true, false>(isa)(a);
     else
-      for_each_row_by_slabs(body, [&](std::size_t i) { row.template operator()<Wet, false>(i); });
+      may_break = masked ? pmb_run_kernel<D, Corrected, false, true>(isa)(a) : pmb_run_kernel<D, Corrected, false, false>(isa)(a);
+    if (may_break)
+      for (std::size_t t = 0; t < length; ++t) settle.template operator()<Wet, Corrected>(run, t);
+  };
+  auto runs = [&]<bool Wet>() {
+    if (c.surface_correction)
+      for_each_run_by_slabs(body, [&](const BondRun& r) { run_forces.template operator()<Wet, true>(r); });
+    else
+      for_each_run_by_slabs(body, [&](const BondRun& r) { run_forces.template operator()<Wet, false>(r); });
   };
   if (wet)
-    rows.template operator()<true>();
+    runs.template operator()<true>();
   else
-    rows.template operator()<false>();
+    runs.template operator()<false>();
+#pragma omp parallel for if(rift::parallel::worth_a_team(body.last - body.first)) schedule(static)
+  for (std::size_t j = body.first; j < body.last; ++j)
+    for (int q = 0; q < D; ++q) m.force[j][q] = f[q][j];
   for (const auto& [i, k] : broken) break_mirror_bond(b, body, i, k);
   record_crossing_breaks<D>(m, crossing);
   next_stretch_limits<D>(m, body, smallest);

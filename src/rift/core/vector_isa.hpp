@@ -1,0 +1,47 @@
+// The vector instructions the passes' run kernels use (pd/bond_runs.hpp). The default build targets
+// the x86-64 baseline (SSE2: two doubles a vector), so that one binary runs everywhere; the kernels
+// are also compiled for AVX2 (four) and AVX-512 (eight) and chosen once, at run time, by what the
+// processor has. Every clone does the same IEEE operations in the same order (no fused multiply-add:
+// -ffp-contract=off; square roots and divisions are correctly rounded at every width), so results
+// are the same bits whichever runs (tests/test_bond_runs.cpp).
+#pragma once
+
+namespace rift {
+
+enum class VectorIsa { sse2, avx2, avx512 };
+
+namespace detail {
+inline VectorIsa& chosen_vector_isa() {
+  static VectorIsa isa = [] {
+#if defined(__x86_64__) && defined(__GNUC__)
+    __builtin_cpu_init();
+    if (__builtin_cpu_supports("avx512f")) return VectorIsa::avx512;
+    if (__builtin_cpu_supports("avx2")) return VectorIsa::avx2;
+#endif
+    return VectorIsa::sse2;
+  }();
+  return isa;
+}
+}  // namespace detail
+
+/// The widest vector instructions the processor has (or the narrower ones set below).
+inline VectorIsa vector_isa() { return detail::chosen_vector_isa(); }
+
+/// Makes the kernels use `isa` (a narrower set than the processor's, for tests); returns the one before.
+inline VectorIsa set_vector_isa(VectorIsa isa) {
+  const VectorIsa before = detail::chosen_vector_isa();
+  if (static_cast<int>(isa) < static_cast<int>(before) || isa == VectorIsa::sse2) detail::chosen_vector_isa() = isa;
+  return before;
+}
+
+}  // namespace rift
+
+// The attributes of a kernel's clones. A clone's body calls an always-inline function, which is then
+// compiled into each clone with that clone's instructions.
+#if defined(__x86_64__) && defined(__GNUC__)
+#define RIFT_TARGET_AVX2 __attribute__((target("avx2")))
+#define RIFT_TARGET_AVX512 __attribute__((target("avx512f,prefer-vector-width=512")))
+#else
+#define RIFT_TARGET_AVX2
+#define RIFT_TARGET_AVX512
+#endif

@@ -1,0 +1,139 @@
+// Runs of bonds: the forward bonds of a body (bond_slabs.hpp) grouped so that a pass takes many at
+// once. On a lattice numbered x fastest, consecutive particles along a line have the same family,
+// so the bonds of one family offset from particles i, i + 1, ..., i + L - 1 go to j, j + 1, ...,
+// j + L - 1. Their positions, stretch limits and forces are then contiguous on both ends, and the
+// pair forces of a run are a loop the compiler turns into vector instructions (two, four or eight
+// bonds per instruction) where a row's loop gathers every neighbour. A run stays inside one slab, so
+// the slabs' even-odd order keeps the passes free of races, and its sums are made in an order that
+// depends on the bonds alone. The bonds' states stay in their rows: a pass looks at them only for a
+// run with a row that is not whole (intact_rows), by the run's place in the rows where the rows
+// have it in common (inside the body), else by a search.
+#pragma once
+#include <algorithm>
+#include <cstddef>
+#include <cstdint>
+#include <cstring>
+#include <vector>
+
+#include "rift/pd/bond_slabs.hpp"
+#include "rift/pd/model.hpp"
+#include "rift/parallel/team.hpp"
+
+namespace rift::pd {
+
+/// The longest run: a pass's buffers for one run live on the stack.
+inline constexpr std::size_t max_run_length = 256;
+
+/// Runs shorter than this are taken bond by bond: a vector's set-up would cost more.
+inline constexpr std::size_t short_run = 4;
+
+/// Groups the body's forward bonds into runs (after its bonds and slab length are made): every
+/// forward bond belongs to exactly one run.
+inline void make_bond_runs(const Bonds& b, BodyInfo& body) {
+  body.runs.clear();
+  body.slab_runs.clear();
+  if (body.last <= body.first) return;
+  const std::size_t length = body.slab_length;
+  auto slab = [&](std::size_t i) { return (i - body.first) / length; };
+  std::vector<std::int64_t> open(body.family_count, -1);  // per family offset: the run that may grow
+  for (std::size_t i = body.first; i < body.last; ++i)
+    for (auto k = first_forward_bond(b, i); k < b.offset[i + 1]; ++k) {
+      const auto position = static_cast<std::uint32_t>(k - b.offset[i]);
+      const auto family = b.family[static_cast<std::size_t>(k)];
+      const auto j = b.neighbor[static_cast<std::size_t>(k)];
+      auto& o = open[family - body.first_family];
+      if (o >= 0) {
+        BondRun& r = body.runs[static_cast<std::size_t>(o)];
+        if (static_cast<std::size_t>(r.i) + r.length == i && r.j + r.length == j && slab(static_cast<std::size_t>(r.i)) == slab(i) &&
+            r.length < max_run_length) {
+          if (r.position != position) r.position = BondRun::varies;
+          ++r.length;
+          continue;
+        }
+      }
+      o = static_cast<std::int64_t>(body.runs.size());
+      body.runs.push_back({static_cast<std::int32_t>(i), j, position, family, 1});
+    }
+  // runs start in particle order, so each slab's are contiguous
+  const std::size_t slabs = (body.last - body.first + length - 1) / length;
+  body.slab_runs.assign(slabs + 1, 0);
+  for (const auto& r : body.runs) ++body.slab_runs[slab(static_cast<std::size_t>(r.i)) + 1];
+  for (std::size_t q = 0; q < slabs; ++q) body.slab_runs[q + 1] += body.slab_runs[q];
+}
+
+/// Per particle of the body: 1 where every bond of its row is intact (the bonds' states are 1 or
+/// less for a broken bond, 2 for a failed interface bond: their AND is 1 only when all are 1). A run
+/// of whole rows needs no look at its bonds' states. One read of the states per pass, a small part
+/// of a pass that reads every bond's neighbour.
+inline const std::uint8_t* whole_rows(const Bonds& b, const BodyInfo& body) {
+  static thread_local std::vector<std::uint8_t> whole;
+  whole.resize(b.offset.size());
+  std::uint8_t* const out = whole.data();
+  const std::int64_t* const offset = b.offset.data();
+  const std::uint8_t* const state = b.intact.data();
+#pragma omp parallel for if(rift::parallel::worth_a_team(body.last - body.first)) schedule(static)
+  for (std::size_t i = body.first; i < body.last; ++i) {
+    std::uint8_t all = bond_intact;
+    for (auto k = offset[i]; k < offset[i + 1]; ++k) all &= state[k];
+    out[i] = all;
+  }
+  return out;
+}
+
+/// Whether the rows [i, i + length) are whole (whole_rows).
+inline bool whole_run(const std::uint8_t* __restrict whole, std::size_t length) {
+  std::uint8_t all = 1;
+  for (std::size_t t = 0; t < length; ++t) all &= whole[t];
+  return all != 0;
+}
+
+/// The index of bond t of the run in its row.
+inline std::int64_t run_bond(const Bonds& b, const BondRun& run, std::size_t t) {
+  const std::size_t i = static_cast<std::size_t>(run.i) + t;
+  if (run.position != BondRun::varies) return b.offset[i] + run.position;
+  const auto first = b.neighbor.begin() + b.offset[i], last = b.neighbor.begin() + b.offset[i + 1];
+  return std::lower_bound(first, last, static_cast<std::int32_t>(run.j + static_cast<std::int32_t>(t))) - b.neighbor.begin();
+}
+
+/// Calls run(r) for every run of the body, slab by slab as for_each_row_by_slabs does: the even
+/// slabs in parallel, then the odd ones.
+template <class Run>
+void for_each_run_by_slabs(const BodyInfo& body, Run&& run) {
+  if (body.slab_runs.size() < 2) return;
+  const std::size_t slabs = body.slab_runs.size() - 1;
+  for (std::size_t parity = 0; parity < 2; ++parity) {
+    const auto count = static_cast<std::int64_t>((slabs + 1 - parity) / 2);
+#pragma omp parallel for if(rift::parallel::worth_a_team(body.last - body.first) && count > 1) schedule(dynamic, 1)
+    for (std::int64_t q = 0; q < count; ++q) {
+      const std::size_t slab = 2 * static_cast<std::size_t>(q) + parity;
+      for (std::size_t r = body.slab_runs[slab]; r < body.slab_runs[slab + 1]; ++r) run(body.runs[r]);
+    }
+  }
+}
+
+/// Whether any of the flags (1.0 or 0.0) is set; read as bits, so that the loop is vector code (a
+/// loop that compares the doubles is not).
+[[gnu::always_inline]] inline bool any_set(const double* __restrict flags, std::size_t length) {
+  std::uint64_t bits = 0;
+  for (std::size_t t = 0; t < length; ++t) {
+    std::uint64_t u;
+    std::memcpy(&u, flags + t, sizeof u);
+    bits |= u;
+  }
+  return bits != 0;
+}
+
+/// What a run's pair forces add to its particles: f_i += g on the lower ends, f_j -= g on the upper
+/// ones (called with f + i and f + j), and the smallest stretch of each end. Separate loops for the two
+/// ends: a run's ends overlap where the offset moves along the line by less than the run.
+[[gnu::always_inline]] inline void add_to_run_ends(double* __restrict f, const double* __restrict g, std::size_t length) {
+  for (std::size_t t = 0; t < length; ++t) f[t] += g[t];
+}
+[[gnu::always_inline]] inline void subtract_from_run_ends(double* __restrict f, const double* __restrict g, std::size_t length) {
+  for (std::size_t t = 0; t < length; ++t) f[t] -= g[t];
+}
+[[gnu::always_inline]] inline void lower_to_run_stretches(double* __restrict smallest, const double* __restrict s, std::size_t length) {
+  for (std::size_t t = 0; t < length; ++t) smallest[t] = s[t] < smallest[t] ? s[t] : smallest[t];
+}
+
+}  // namespace rift::pd

@@ -1,0 +1,203 @@
+// Runs of bonds (pd/bond_runs.hpp) and the PMB pass that takes them in vectors (pd/pmb.hpp):
+// (1) every forward bond belongs to exactly one run, and a run's bonds are what it says (3D block
+//     with a borehole through it, 2D plate with a round hole and a crack);
+// (2) forces, broken bonds and smallest stretches of the pass equal a straightforward evaluation of
+//     Silling and Askari (2005) eq. 15-16 and 23 row by row (f = c omega s (g_i + g_j)/2 V_j along the
+//     deformed bond; breaks where s > min(s0_i, s0_j)), with bonds already broken, bonds that break in
+//     the pass, and the surface correction on; tolerance 1e-12 of the largest force (the sums are
+//     made in another order; measured about 1e-16);
+// (3) the SSE2, AVX2 and AVX-512 clones of the run kernel give the same bits (core/vector_isa.hpp).
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <limits>
+#include <set>
+#include <sstream>
+#include <utility>
+
+#include "rift/core/vector_isa.hpp"
+#include "rift/pd/bond_runs.hpp"
+#include "rift/pd/discretize.hpp"
+#include "rift/pd/forces.hpp"
+#include "rift/scene/parse.hpp"
+
+namespace {
+
+std::string block_scene(int dimension, bool surface_correction) {
+  std::ostringstream s;
+  s << "[scene]\ndimension = " << dimension << (dimension == 2 ? "\nplane = \"strain\"\nthickness = 0.001\n" : "\n")
+    << "[materials.glass]\nmodel = \"pmb\"\ndensity = 2440.0\nyoungs_modulus = 72e9\npoisson_ratio = 0.25\n"
+    << "critical_stretch = 2e-3\nalpha = 0.25\nsurface_correction = " << (surface_correction ? "true" : "false") << "\n";
+  if (dimension == 3)
+    s << "[regions.block]\nshape = \"box\"\nmin = [0.0, 0.0, 0.0]\nmax = [0.014, 0.011, 0.009]\n"
+      << "[regions.hole]\nshape = \"cylinder\"\ncenter = [0.007, 0.0055, -0.005]\naxis = [0.0, 0.0, 0.02]\nradius = 0.002\n";
+  else
+    s << "[regions.block]\nshape = \"box\"\nmin = [0.0, 0.0]\nmax = [0.030, 0.021]\n"
+      << "[regions.hole]\nshape = \"cylinder\"\ncenter = [0.012, 0.010]\nradius = 0.003\n";
+  s << "[regions.body]\nshape = \"difference\"\nof = [\"block\", \"hole\"]\n"
+    << "[bodies.b]\nmaterial = \"glass\"\nregion = \"body\"\nspacing = 0.001\nhorizon = 3.015\n";
+  if (dimension == 2) s << "[[cracks]]\npoints = [[0.018, 0.0105], [0.026, 0.0105]]\n";
+  s << "[contact]\nenabled = false\n[solver]\nend_time = 1e-6\n";
+  return s.str();
+}
+
+template <int D>
+rift::pd::Model<D> block(bool surface_correction) {
+  return rift::pd::discretize<D>(rift::scene::parse_string(block_scene(D, surface_correction), "block.toml"));
+}
+
+// a smooth displacement with strains up to about 3e-3 (past s00 = 2e-3 on the right), and every
+// fifth bond of the rows below the middle broken beforehand (both directions)
+template <int D>
+void deform_and_break(rift::pd::Model<D>& m) {
+  for (std::size_t i = 0; i < m.size(); ++i) {
+    const auto& x = m.reference_position[i];
+    m.position[i][0] = x[0] + 1e-1 * x[0] * x[0] + 4e-4 * x[1];
+    m.position[i][1] = x[1] + 2e-4 * x[0] - 1e-3 * x[1];
+    if constexpr (D == 3) m.position[i][2] = x[2] + 5e-4 * x[2] + 1e-4 * x[0];
+  }
+  auto& b = m.bonds;
+  const double middle = 0.5 * (0.011 + (D == 2 ? 0.010 : 0.0));
+  for (std::size_t i = 0; i < m.size(); ++i)
+    for (auto k = b.offset[i]; k < b.offset[i + 1]; ++k) {
+      const auto j = static_cast<std::size_t>(b.neighbor[k]);
+      if (j > i && m.reference_position[i][1] < middle && (i + j) % 5 == 0) {
+        b.intact[k] = rift::pd::bond_broken;
+        for (auto q = b.offset[j]; q < b.offset[j + 1]; ++q)
+          if (static_cast<std::size_t>(b.neighbor[q]) == i) b.intact[q] = rift::pd::bond_broken;
+      }
+    }
+}
+
+template <int D>
+void check_runs_cover_forward_bonds(const rift::pd::Model<D>& m) {
+  const auto& b = m.bonds;
+  for (const auto& body : m.bodies) {
+    std::set<std::int64_t> seen;
+    ASSERT_EQ(body.slab_runs.size(), (body.last - body.first + body.slab_length - 1) / body.slab_length + 1);
+    for (std::size_t q = 0; q + 1 < body.slab_runs.size(); ++q)
+      for (std::size_t r = body.slab_runs[q]; r < body.slab_runs[q + 1]; ++r) {
+        const auto& run = body.runs[r];
+        ASSERT_GE(run.length, 1u);
+        ASSERT_LE(run.length, rift::pd::max_run_length);
+        // inside slab q
+        ASSERT_EQ((static_cast<std::size_t>(run.i) - body.first) / body.slab_length, q);
+        ASSERT_EQ((static_cast<std::size_t>(run.i) + run.length - 1 - body.first) / body.slab_length, q);
+        for (std::size_t t = 0; t < run.length; ++t) {
+          const auto k = rift::pd::run_bond(b, run, t);
+          const auto i = static_cast<std::size_t>(run.i) + t;
+          ASSERT_GE(k, b.offset[i]);
+          ASSERT_LT(k, b.offset[i + 1]);
+          ASSERT_EQ(b.neighbor[static_cast<std::size_t>(k)], run.j + static_cast<std::int32_t>(t));
+          ASSERT_EQ(b.family[static_cast<std::size_t>(k)], run.family);
+          ASSERT_TRUE(seen.insert(k).second) << "bond " << k << " in two runs";
+        }
+      }
+    std::size_t forward = 0;
+    for (std::size_t i = body.first; i < body.last; ++i)
+      for (auto k = b.offset[i]; k < b.offset[i + 1]; ++k) forward += static_cast<std::size_t>(b.neighbor[k]) > i;
+    EXPECT_EQ(seen.size(), forward);
+    // the runs hold most bonds in long runs (lines of sites)
+    EXPECT_LT(double(body.runs.size()), 0.25 * double(forward));
+  }
+}
+
+TEST(BondRuns, EveryForwardBondInExactlyOneRun) {
+  check_runs_cover_forward_bonds(block<3>(false));
+  check_runs_cover_forward_bonds(block<2>(true));
+}
+
+// The pass against Silling and Askari's formulas row by row.
+template <int D>
+void check_pmb_against_rows(bool surface_correction) {
+  auto m = block<D>(surface_correction);
+  deform_and_break(m);
+  const auto before = m.bonds.intact;
+  const auto& c = m.bodies[0].constants;
+  const auto& b = m.bonds;
+  const std::size_t n = m.size();
+  std::vector<rift::Vec<D>> expected(n, rift::Vec<D>{});
+  std::vector<double> smallest(n, std::numeric_limits<double>::max());
+  std::vector<std::uint8_t> breaks(b.intact.size(), 0);
+  std::size_t broken_here = 0;
+  for (std::size_t i = 0; i < n; ++i)
+    for (auto k = b.offset[i]; k < b.offset[i + 1]; ++k) {
+      if (before[static_cast<std::size_t>(k)] != rift::pd::bond_intact) continue;
+      const auto j = static_cast<std::size_t>(b.neighbor[k]);
+      rift::Vec<D> eta;
+      double r = 0.0;
+      for (int q = 0; q < D; ++q) eta[q] = m.position[j][q] - m.position[i][q], r += eta[q] * eta[q];
+      r = std::sqrt(r);
+      const double xi = b.length(k), s = (r - xi) / xi;
+      if (s > std::min(m.stretch_limit[i], m.stretch_limit[j])) {
+        breaks[static_cast<std::size_t>(k)] = 1;
+        broken_here += j > i;
+        continue;
+      }
+      smallest[i] = std::min(smallest[i], s);
+      // the influence-function factors are stored, and averaged, in single precision (bonds.hpp)
+      const double g = 0.5f * (b.correction(i, k) + b.mirror_correction(j, k));
+      const double f = c.micromodulus * s * g * b.volume(k) / r;  // constant influence function
+      for (int q = 0; q < D; ++q) expected[i][q] += f * eta[q];
+    }
+  ASSERT_GT(broken_here, 20u);
+  rift::pd::compute_forces<D>(m, nullptr);
+  double largest = 0.0;
+  for (std::size_t i = 0; i < n; ++i)
+    for (int q = 0; q < D; ++q) largest = std::max(largest, std::abs(expected[i][q]));
+  double worst = 0.0;
+  for (std::size_t i = 0; i < n; ++i)
+    for (int q = 0; q < D; ++q) worst = std::max(worst, std::abs(m.force[i][q] - expected[i][q]) / largest);
+  std::printf("PMB runs, %dD, surface correction %d: largest force difference %.1e of the largest force, %zu bonds broken\n", D,
+              int(surface_correction), worst, broken_here);
+  EXPECT_LT(worst, 1e-12);
+  for (std::size_t k = 0; k < b.intact.size(); ++k) {
+    const bool was = before[k] == rift::pd::bond_intact;
+    ASSERT_EQ(b.intact[k] == rift::pd::bond_intact, was && !breaks[k]) << "bond " << k;
+  }
+  // s0 = s00 - alpha s_min for the next step (eq. 23)
+  for (std::size_t i = 0; i < n; ++i) {
+    if (smallest[i] < std::numeric_limits<double>::max()) {
+      ASSERT_DOUBLE_EQ(m.next_stretch_limit[i], c.critical_stretch - c.alpha * smallest[i]) << i;
+    }
+  }
+}
+
+TEST(BondRuns, PmbPassEqualsRowByRowFormulas) {
+  check_pmb_against_rows<3>(false);
+  check_pmb_against_rows<3>(true);
+  check_pmb_against_rows<2>(true);
+}
+
+// Every instruction set the processor has gives the bits of the SSE2 build.
+template <int D>
+void check_same_bits(bool surface_correction) {
+  auto run = [&](rift::VectorIsa isa) {
+    const auto before = rift::set_vector_isa(isa);
+    auto m = block<D>(surface_correction);
+    deform_and_break(m);
+    rift::pd::compute_forces<D>(m, nullptr);
+    rift::set_vector_isa(before);
+    return m;
+  };
+  const auto best = rift::vector_isa();
+  const auto wide = run(best), narrow = run(rift::VectorIsa::sse2);
+  ASSERT_EQ(wide.bonds.intact, narrow.bonds.intact);
+  ASSERT_EQ(0, std::memcmp(wide.force.data(), narrow.force.data(), wide.force.size() * sizeof(wide.force[0])));
+  ASSERT_EQ(0, std::memcmp(wide.next_stretch_limit.data(), narrow.next_stretch_limit.data(), wide.size() * sizeof(double)));
+  if (best == rift::VectorIsa::avx512) {
+    const auto middle = run(rift::VectorIsa::avx2);
+    ASSERT_EQ(0, std::memcmp(wide.force.data(), middle.force.data(), wide.force.size() * sizeof(wide.force[0])));
+  }
+}
+
+TEST(BondRuns, VectorClonesGiveTheSameBits) {
+  std::printf("vector instructions here: %s\n",
+              rift::vector_isa() == rift::VectorIsa::avx512 ? "AVX-512" : rift::vector_isa() == rift::VectorIsa::avx2 ? "AVX2" : "SSE2");
+  check_same_bits<3>(false);
+  check_same_bits<2>(true);
+}
+
+}  // namespace
