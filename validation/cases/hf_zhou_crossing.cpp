@@ -91,7 +91,11 @@
 // s, its interface never wet; 62 min), 2-8 crossed (22.7 mm past at t = 3.4 s: the same miss as at
 // 3 mm), 2-2 crossed (39 mm past at t = 4 s; 24 min on one thread, 2026-11-25), S-1 crossed (34.8
 // mm past the plane at t = 0.9 s, 58.9 mm when the fluid broke through at t = 1.0 s; 19 min to
-// there, 2026-11-25). Not yet run with the platens at 2 mm: S-2, 2-3, 2-5. With traction faces: 2-1 crossed
+// there, 2026-11-25), 2-5 dilated (its interface open and wet from t = 1.6 s with the borehole at
+// 7.00 MPa, along 46.5 mm at t = 4 s; broken rock 2.0 mm past the plane; 30 min), 2-3 dilated (from
+// t = 1.6 s, p = 7.00 MPa; open and wet along 39.3 mm at t = 4 s, broken rock 3.3 mm past; 27 min;
+// 2026-11-25): 8 of 9 as the experiment, as at 3 mm. Not yet run with the platens at 2 mm: S-2 (no
+// experiment). With traction faces: 2-1 crossed
 // (35 mm past the plane at t = 4 s) and 2-2 crossed (25 mm past at t = 3.4 s); before the fix of
 // the junction 2-4 crossed (30.1 mm) and S-1 crossed (25.7 mm at t = 0.6 s).
 // Before the guar (the lumped fluid, 2026-11-23 and before): 5 of 9, 2-6 arrested as its free wing
