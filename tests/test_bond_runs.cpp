@@ -6,7 +6,9 @@
 //     deformed bond; breaks where s > min(s0_i, s0_j)), with bonds already broken, bonds that break in
 //     the pass, and the surface correction on; tolerance 1e-12 of the largest force (the sums are
 //     made in another order; measured about 1e-16);
-// (3) the SSE2, AVX2 and AVX-512 clones of the run kernel give the same bits (core/vector_isa.hpp).
+// (3) the same for the LPS passes (dilatation and forces) against Silling et al. (2007);
+// (4) the SSE2, AVX2 and AVX-512 clones of the run kernels give the same bits (core/vector_isa.hpp),
+//     PMB, LPS and VES (its history too).
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -25,10 +27,12 @@
 
 namespace {
 
-std::string block_scene(int dimension, bool surface_correction) {
+std::string block_scene(int dimension, bool surface_correction, const char* model = "pmb") {
   std::ostringstream s;
   s << "[scene]\ndimension = " << dimension << (dimension == 2 ? "\nplane = \"strain\"\nthickness = 0.001\n" : "\n")
-    << "[materials.glass]\nmodel = \"pmb\"\ndensity = 2440.0\nyoungs_modulus = 72e9\npoisson_ratio = 0.25\n"
+    << "[materials.glass]\nmodel = \"" << model << "\"\ndensity = 2440.0\nyoungs_modulus = 72e9\npoisson_ratio = 0.25\n"
+    << (std::string(model) == "ves" ? "viscous_fraction = 0.5\nrelaxation_time = 1e-6\n" : "")
+    << (std::string(model) == "lps" ? "influence = \"inverse_distance\"\n" : "")
     << "critical_stretch = 2e-3\nalpha = 0.25\nsurface_correction = " << (surface_correction ? "true" : "false") << "\n";
   if (dimension == 3)
     s << "[regions.block]\nshape = \"box\"\nmin = [0.0, 0.0, 0.0]\nmax = [0.014, 0.011, 0.009]\n"
@@ -44,8 +48,8 @@ std::string block_scene(int dimension, bool surface_correction) {
 }
 
 template <int D>
-rift::pd::Model<D> block(bool surface_correction) {
-  return rift::pd::discretize<D>(rift::scene::parse_string(block_scene(D, surface_correction), "block.toml"));
+rift::pd::Model<D> block(bool surface_correction, const char* model = "pmb") {
+  return rift::pd::discretize<D>(rift::scene::parse_string(block_scene(D, surface_correction, model), "block.toml"));
 }
 
 // a smooth displacement with strains up to about 3e-3 (past s00 = 2e-3 on the right), and every
@@ -171,14 +175,82 @@ TEST(BondRuns, PmbPassEqualsRowByRowFormulas) {
   check_pmb_against_rows<2>(true);
 }
 
-// Every instruction set the processor has gives the bits of the SSE2 build.
+// The LPS passes (uncorrected, 3D) against Silling et al. (2007) eq. 37 and 39 row by row: theta_i =
+// 3/m_i sum omega |xi| e V_j, t_i<j> = 3 K theta_i omega |xi| / m_i + 15 G omega (e - theta_i |xi| / 3)
+// / m_i, f_i = sum (t_i<j> + t_j<i>) V_j along the deformed bond, omega = delta/|xi| (the scene's
+// inverse_distance), with bonds already broken and bonds that break in the pass (e > |xi| s0);
+// tolerance 1e-12 of the largest force.
+TEST(BondRuns, LpsPassesEqualRowByRowFormulas) {
+  auto m = block<3>(false, "lps");
+  deform_and_break(m);
+  const auto before = m.bonds.intact;
+  const auto& c = m.bodies[0].constants;
+  const auto& b = m.bonds;
+  const std::size_t n = m.size();
+  auto extension = [&](std::size_t i, std::size_t j, double xi, rift::Vec<3>& eta) {
+    double r = 0.0;
+    for (int q = 0; q < 3; ++q) eta[q] = m.position[j][q] - m.position[i][q], r += eta[q] * eta[q];
+    return std::sqrt(r) - xi;
+  };
+  std::vector<std::uint8_t> alive(b.intact.size(), 0);
+  std::vector<double> theta(n, 0.0);
+  std::size_t broken_here = 0;
+  for (std::size_t i = 0; i < n; ++i)
+    for (auto k = b.offset[i]; k < b.offset[i + 1]; ++k) {
+      if (before[static_cast<std::size_t>(k)] != rift::pd::bond_intact) continue;
+      const auto j = static_cast<std::size_t>(b.neighbor[k]);
+      rift::Vec<3> eta;
+      const double xi = b.length(k), e = extension(i, j, xi, eta);
+      if (e > xi * std::min(m.stretch_limit[i], m.stretch_limit[j])) {
+        broken_here += j > i;
+        continue;
+      }
+      alive[static_cast<std::size_t>(k)] = 1;
+      theta[i] += (c.horizon / xi) * xi * e * b.volume(k);
+    }
+  for (std::size_t i = 0; i < n; ++i) theta[i] *= 3.0 / m.weighted_volume[i];
+  std::vector<rift::Vec<3>> expected(n, rift::Vec<3>{});
+  const double K = c.kappa, G = c.shear_modulus;
+  for (std::size_t i = 0; i < n; ++i)
+    for (auto k = b.offset[i]; k < b.offset[i + 1]; ++k) {
+      if (!alive[static_cast<std::size_t>(k)]) continue;
+      const auto j = static_cast<std::size_t>(b.neighbor[k]);
+      rift::Vec<3> eta;
+      const double xi = b.length(k), e = extension(i, j, xi, eta), omega = c.horizon / xi;
+      auto t = [&](std::size_t p) {
+        return 3 * K * theta[p] * omega * xi / m.weighted_volume[p] + 15 * G * omega * (e - theta[p] * xi / 3) / m.weighted_volume[p];
+      };
+      const double r = e + xi;
+      for (int q = 0; q < 3; ++q) expected[i][q] += (t(i) + t(j)) * b.volume(k) * eta[q] / r;
+    }
+  ASSERT_GT(broken_here, 20u);
+  rift::pd::compute_forces<3>(m, nullptr);
+  double largest = 0.0, worst = 0.0, worst_theta = 0.0;
+  for (std::size_t i = 0; i < n; ++i)
+    for (int q = 0; q < 3; ++q) largest = std::max(largest, std::abs(expected[i][q]));
+  for (std::size_t i = 0; i < n; ++i) {
+    for (int q = 0; q < 3; ++q) worst = std::max(worst, std::abs(m.force[i][q] - expected[i][q]) / largest);
+    worst_theta = std::max(worst_theta, std::abs(m.dilatation[i] - theta[i]));
+  }
+  std::printf("LPS runs: largest force difference %.1e of the largest force, dilatation %.1e, %zu bonds broken\n", worst, worst_theta,
+              broken_here);
+  EXPECT_LT(worst, 1e-12);
+  EXPECT_LT(worst_theta, 1e-15);
+  for (std::size_t k = 0; k < b.intact.size(); ++k)
+    ASSERT_EQ(b.intact[k] == rift::pd::bond_intact, alive[k] == 1) << "bond " << k;
+}
+
+// Every instruction set the processor has gives the bits of the SSE2 build (PMB, LPS, VES with two
+// steps of history).
 template <int D>
-void check_same_bits(bool surface_correction) {
+void check_same_bits(bool surface_correction, const char* model = "pmb") {
   auto run = [&](rift::VectorIsa isa) {
     const auto before = rift::set_vector_isa(isa);
-    auto m = block<D>(surface_correction);
+    auto m = block<D>(surface_correction, model);
     deform_and_break(m);
-    rift::pd::compute_forces<D>(m, nullptr);
+    rift::pd::compute_forces<D>(m, nullptr, 1e-7);
+    for (std::size_t i = 0; i < m.size(); ++i) m.position[i][0] += 1e-6 * m.reference_position[i][1];
+    rift::pd::compute_forces<D>(m, nullptr, 1e-7);
     rift::set_vector_isa(before);
     return m;
   };
@@ -187,6 +259,9 @@ void check_same_bits(bool surface_correction) {
   ASSERT_EQ(wide.bonds.intact, narrow.bonds.intact);
   ASSERT_EQ(0, std::memcmp(wide.force.data(), narrow.force.data(), wide.force.size() * sizeof(wide.force[0])));
   ASSERT_EQ(0, std::memcmp(wide.next_stretch_limit.data(), narrow.next_stretch_limit.data(), wide.size() * sizeof(double)));
+  ASSERT_EQ(0, std::memcmp(wide.dilatation.data(), narrow.dilatation.data(), wide.size() * sizeof(double)));
+  ASSERT_EQ(0, std::memcmp(wide.dilatation_coupling.data(), narrow.dilatation_coupling.data(), wide.size() * sizeof(double)));
+  ASSERT_EQ(wide.bonds.back_extension, narrow.bonds.back_extension);
   if (best == rift::VectorIsa::avx512) {
     const auto middle = run(rift::VectorIsa::avx2);
     ASSERT_EQ(0, std::memcmp(wide.force.data(), middle.force.data(), wide.force.size() * sizeof(wide.force[0])));
@@ -196,8 +271,10 @@ void check_same_bits(bool surface_correction) {
 TEST(BondRuns, VectorClonesGiveTheSameBits) {
   std::printf("vector instructions here: %s\n",
               rift::vector_isa() == rift::VectorIsa::avx512 ? "AVX-512" : rift::vector_isa() == rift::VectorIsa::avx2 ? "AVX2" : "SSE2");
-  check_same_bits<3>(false);
-  check_same_bits<2>(true);
+  for (const char* model : {"pmb", "lps", "ves"}) {
+    check_same_bits<3>(false, model);
+    check_same_bits<2>(true, model);
+  }
 }
 
 }  // namespace

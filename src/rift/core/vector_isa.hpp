@@ -36,8 +36,7 @@ inline VectorIsa set_vector_isa(VectorIsa isa) {
 
 }  // namespace rift
 
-// The attributes of a kernel's clones. A clone's body calls an always-inline function, which is then
-// compiled into each clone with that clone's instructions.
+// The attributes of a kernel's clones.
 #if defined(__x86_64__) && defined(__GNUC__)
 #define RIFT_TARGET_AVX2 __attribute__((target("avx2")))
 #define RIFT_TARGET_AVX512 __attribute__((target("avx512f,prefer-vector-width=512")))
@@ -45,3 +44,26 @@ inline VectorIsa set_vector_isa(VectorIsa isa) {
 #define RIFT_TARGET_AVX2
 #define RIFT_TARGET_AVX512
 #endif
+
+namespace rift {
+
+// Kernel::run(args) compiled for each instruction set: Kernel::run is always-inline, so each clone
+// compiles its body with the clone's instructions.
+template <class Kernel, class Args>
+bool vector_clone_sse2(const Args& a) { return Kernel::run(a); }
+template <class Kernel, class Args>
+RIFT_TARGET_AVX2 bool vector_clone_avx2(const Args& a) { return Kernel::run(a); }
+template <class Kernel, class Args>
+RIFT_TARGET_AVX512 bool vector_clone_avx512(const Args& a) { return Kernel::run(a); }
+
+/// The clone of Kernel::run for the instruction set `isa`.
+template <class Kernel, class Args>
+auto vector_clone(VectorIsa isa) -> bool (*)(const Args&) {
+  switch (isa) {
+    case VectorIsa::avx512: return &vector_clone_avx512<Kernel, Args>;
+    case VectorIsa::avx2: return &vector_clone_avx2<Kernel, Args>;
+    default: return &vector_clone_sse2<Kernel, Args>;
+  }
+}
+
+}  // namespace rift

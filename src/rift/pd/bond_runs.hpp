@@ -10,6 +10,7 @@
 // have it in common (inside the body), else by a search.
 #pragma once
 #include <algorithm>
+#include <array>
 #include <cstddef>
 #include <cstdint>
 #include <cstring>
@@ -22,7 +23,7 @@
 namespace rift::pd {
 
 /// The longest run: a pass's buffers for one run live on the stack.
-inline constexpr std::size_t max_run_length = 256;
+inline constexpr std::size_t max_run_length = Bonds::history_block;
 
 /// Runs shorter than this are taken bond by bond: a vector's set-up would cost more.
 inline constexpr std::size_t short_run = 4;
@@ -35,6 +36,8 @@ inline void make_bond_runs(const Bonds& b, BodyInfo& body) {
   if (body.last <= body.first) return;
   const std::size_t length = body.slab_length;
   auto slab = [&](std::size_t i) { return (i - body.first) / length; };
+  // and inside one block of the VES history (bonds.hpp), which holds max_run_length particles
+  auto block = [&](std::size_t i) { return (i - body.first) / max_run_length; };
   std::vector<std::int64_t> open(body.family_count, -1);  // per family offset: the run that may grow
   for (std::size_t i = body.first; i < body.last; ++i)
     for (auto k = first_forward_bond(b, i); k < b.offset[i + 1]; ++k) {
@@ -45,7 +48,7 @@ inline void make_bond_runs(const Bonds& b, BodyInfo& body) {
       if (o >= 0) {
         BondRun& r = body.runs[static_cast<std::size_t>(o)];
         if (static_cast<std::size_t>(r.i) + r.length == i && r.j + r.length == j && slab(static_cast<std::size_t>(r.i)) == slab(i) &&
-            r.length < max_run_length) {
+            block(static_cast<std::size_t>(r.i)) == block(i)) {
           if (r.position != position) r.position = BondRun::varies;
           ++r.length;
           continue;
@@ -93,6 +96,18 @@ inline std::int64_t run_bond(const Bonds& b, const BondRun& run, std::size_t t) 
   if (run.position != BondRun::varies) return b.offset[i] + run.position;
   const auto first = b.neighbor.begin() + b.offset[i], last = b.neighbor.begin() + b.offset[i + 1];
   return std::lower_bound(first, last, static_cast<std::int32_t>(run.j + static_cast<std::int32_t>(t))) - b.neighbor.begin();
+}
+
+/// The particles' positions one array per component (the runs read them contiguously): the calling
+/// thread's buffers (pass_scratch slots 2 to 4), which the team reads through the pointers.
+template <int D>
+std::array<double*, 3> positions_by_component(const std::vector<Vec<D>>& position, const BodyInfo& body) {
+  std::array<double*, 3> x{};
+  for (int q = 0; q < D; ++q) x[static_cast<std::size_t>(q)] = pass_scratch(position.size(), 2 + q);
+#pragma omp parallel for if(rift::parallel::worth_a_team(body.last - body.first)) schedule(static)
+  for (std::size_t j = body.first; j < body.last; ++j)
+    for (int q = 0; q < D; ++q) x[static_cast<std::size_t>(q)][j] = position[j][q];
+  return x;
 }
 
 /// Calls run(r) for every run of the body, slab by slab as for_each_row_by_slabs does: the even

@@ -36,13 +36,26 @@ inline std::int64_t reverse_bond(const Bonds& b, const BodyInfo& body, std::size
   return std::lower_bound(first, last, static_cast<std::int32_t>(i)) - b.neighbor.begin();
 }
 
-/// Where the VES history of directed bond k = i-j sits (bonds.hpp: pair order): 2 p for the lower
-/// end's direction, 2 p + 1 for the upper end's, p the pair of the forward bond.
+/// Where the VES history of the pair of particle i (its lower end) with the forward family offset
+/// `family` sits (bonds.hpp): direction 0 is i's (i-j), 1 the upper end's (j-i). The family is
+/// symmetric and ordered as the lattice is numbered, so its second half are the forward offsets.
+inline std::size_t history_index(const BodyInfo& body, std::size_t i, std::size_t family, std::size_t direction) {
+  constexpr std::size_t block = Bonds::history_block;
+  const std::size_t forward = body.family_count / 2, local = i - body.first;
+  const std::size_t offset = family - body.first_family - forward;
+  return body.history_base + ((local / block) * forward + offset) * 2 * block + direction * block + local % block;
+}
+
+/// Where the VES history of directed bond k = i-j sits.
 inline std::size_t history_slot(const Bonds& b, const BodyInfo& body, std::size_t i, std::int64_t k) {
   const auto j = static_cast<std::size_t>(b.neighbor[static_cast<std::size_t>(k)]);
-  if (j > i) return static_cast<std::size_t>(2 * (k + b.pair_shift[i]));
-  return static_cast<std::size_t>(2 * (reverse_bond(b, body, i, k) + b.pair_shift[j]) + 1);
+  const FamilyOffset& family = b.family_of(k);
+  if (j > i) return history_index(body, i, b.family[static_cast<std::size_t>(k)], 0);
+  return history_index(body, j, family.mirror, 1);
 }
+
+/// The history slot of the other direction of slot h's pair.
+inline std::size_t mirror_history_slot(std::size_t h) { return h ^ Bonds::history_block; }
 
 /// Marks broken the reverse of bond k = i-j, which a pass broke from i's side.
 inline void break_mirror_bond(Bonds& b, const BodyInfo& body, std::size_t i, std::int64_t k) {
@@ -50,9 +63,9 @@ inline void break_mirror_bond(Bonds& b, const BodyInfo& body, std::size_t i, std
 }
 
 /// Per-particle scratch of the passes, the calling thread's (the team reads and writes it through
-/// the pointer): one array of n doubles per `slot` (0 to 7).
+/// the pointer): one array of n doubles per `slot` (0 to 11).
 inline double* pass_scratch(std::size_t n, int slot) {
-  static thread_local std::vector<double> scratch[8];
+  static thread_local std::vector<double> scratch[12];
   scratch[slot].resize(n);
   return scratch[slot].data();
 }

@@ -11,14 +11,18 @@
 // dilatation (and P), then forces. Uncorrected in 3D: t = (3K - 5G) theta omega |xi| / m + 15 G omega e / m.
 #pragma once
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <utility>
 #include <vector>
 
+#include "rift/core/vector_isa.hpp"
+#include "rift/pd/bond_runs.hpp"
 #include "rift/pd/bond_slabs.hpp"
 #include "rift/pd/effective_stretch.hpp"
 #include "rift/pd/influence.hpp"
+#include "rift/pd/lps_runs.hpp"
 #include "rift/pd/model.hpp"
 #include "rift/pd/normal_stress_failure.hpp"
 #include "rift/parallel/team.hpp"
@@ -60,6 +64,116 @@ template <int D, scene::Influence Omega, bool Coupling>
 void dilatation_pass(Model<D>& m, const BodyInfo& body, double* coupling, double* smallest) {
   if (body.constants.surface_correction) dilatation_pass<D, Omega, Coupling, true>(m, body, coupling, smallest);
   else dilatation_pass<D, Omega, Coupling, false>(m, body, coupling, smallest);
+}
+
+/// The dilatation pass's bonds in runs (bond_runs.hpp, lps_runs.hpp), the stretch criterion: the
+/// same terms as the rows of dilatation_pass. A run that may break a bond is taken bond by bond.
+template <int D, scene::Influence Omega, bool Coupling, bool Corrected>
+void dilatation_runs(Model<D>& m, const BodyInfo& body, double* coupling, double* smallest,
+                     std::vector<std::pair<std::size_t, std::int64_t>>& broken, std::vector<std::pair<std::size_t, std::int64_t>>& crossing) {
+  const auto& c = body.constants;
+  Bonds& b = m.bonds;
+  const BondView v = b.view();
+  const WetRock<D> wet = wet_rock(m);
+  const auto x = positions_by_component<D>(m.position, body);
+  const double* const limits = m.stretch_limit.data();
+  double* const theta = m.dilatation.data();
+  const std::uint8_t* const whole = whole_rows(b, body);
+  const VectorIsa isa = vector_isa();
+  // bond t of a run, as a row takes it
+  auto settle = [&]<bool Wet>(const BondRun& run, std::size_t t) {
+    const std::size_t i = static_cast<std::size_t>(run.i) + t, j = static_cast<std::size_t>(run.j) + t;
+    const std::int64_t k = run_bond(b, run, t);
+    if (v.intact[k] != bond_intact) return;
+    Vec<D> eta;
+    for (int q = 0; q < D; ++q) eta[q] = x[q][j] - x[q][i];
+    const FamilyOffset& family = v.families[run.family];
+    const double xi = family.length;
+    const double e = norm<D>(eta) - xi;
+    const double limit = std::min(limits[i], limits[j]);
+    const double value = e * family.inverse_length;
+    bool past = e > xi * limit, crossed = false;
+    if constexpr (Wet) past = c.breakable && breaks_in_wet_rock<D>(wet, c.alpha, i, j, value, limit, crossed);
+    if (c.breakable && past) {
+      v.intact[k] = bond_broken;
+#pragma omp critical(rift_lps_broken)
+      {
+        broken.emplace_back(i, k);
+        if (crossed) crossing.emplace_back(i, k);
+      }
+      return;
+    }
+    smallest[i] = std::min(smallest[i], value);
+    smallest[j] = std::min(smallest[j], value);
+    const double ev = e * family.volume;
+    const double w = influence(Omega, xi, c.horizon) * xi * ev;
+    if constexpr (Corrected) {
+      const BondFactors& own = v.factors[v.factor_row[i] + run.family];
+      const BondFactors& other = v.factors[v.factor_row[j] + family.mirror];
+      theta[i] += own.dilatation_weight * ev;
+      theta[j] += other.dilatation_weight * ev;
+      if constexpr (Coupling) {
+        coupling[i] += own.correction * w;
+        coupling[j] += other.correction * w;
+      }
+    } else {
+      theta[i] += w;
+      theta[j] += w;
+      if constexpr (Coupling) {
+        coupling[i] += w;
+        coupling[j] += w;
+      }
+    }
+  };
+  auto run_terms = [&]<bool Wet>(const BondRun& run) {
+    const std::size_t length = run.length, i = static_cast<std::size_t>(run.i), j = static_cast<std::size_t>(run.j);
+    if (length < short_run) {
+      for (std::size_t t = 0; t < length; ++t) settle.template operator()<Wet>(run, t);
+      return;
+    }
+    const FamilyOffset& family = v.families[run.family];
+    alignas(64) double alive[max_run_length], weight_a[max_run_length], weight_b[max_run_length], correction_a[max_run_length],
+        correction_b[max_run_length];
+    const bool masked = !whole_run(whole + i, length);
+    if (masked)
+      for (std::size_t t = 0; t < length; ++t) alive[t] = v.intact[run_bond(b, run, t)] == bond_intact ? 1.0 : 0.0;
+    if constexpr (Corrected)
+      for (std::size_t t = 0; t < length; ++t) {
+        const BondFactors& own = v.factors[v.factor_row[i + t] + run.family];
+        const BondFactors& other = v.factors[v.factor_row[j + t] + family.mirror];
+        weight_a[t] = own.dilatation_weight, weight_b[t] = other.dilatation_weight;
+        correction_a[t] = own.correction, correction_b[t] = other.correction;
+      }
+    const double* const pore = Wet ? wet.pore_stretch : nullptr;
+    DilatationRun a;
+    a.length = length;
+    a.xa = x[0] + i, a.ya = x[1] + i, a.xb = x[0] + j, a.yb = x[1] + j;
+    if constexpr (D == 3) a.za = x[2] + i, a.zb = x[2] + j;
+    a.limit_a = limits + i, a.limit_b = limits + j;
+    if (pore) a.pore_a = pore + i, a.pore_b = pore + j;
+    a.shift_scale = 1.0 + c.alpha;
+    a.alive = alive;
+    a.weight_a = weight_a, a.weight_b = weight_b, a.correction_a = correction_a, a.correction_b = correction_b;
+    a.bond_length = family.length, a.inverse_length = family.inverse_length, a.volume = family.volume;
+    a.omega_length = influence(Omega, family.length, c.horizon) * family.length;
+    a.theta_a = theta + i, a.theta_b = theta + j;
+    if constexpr (Coupling) a.coupling_a = coupling + i, a.coupling_b = coupling + j;
+    a.smallest_a = smallest + i, a.smallest_b = smallest + j;
+    a.breakable = c.breakable;
+    bool may_break;
+    if (pore)
+      may_break = masked ? vector_clone<DilatationRunKernel<D, Corrected, Coupling, true, true>, DilatationRun>(isa)(a)
+                         : vector_clone<DilatationRunKernel<D, Corrected, Coupling, true, false>, DilatationRun>(isa)(a);
+    else
+      may_break = masked ? vector_clone<DilatationRunKernel<D, Corrected, Coupling, false, true>, DilatationRun>(isa)(a)
+                         : vector_clone<DilatationRunKernel<D, Corrected, Coupling, false, false>, DilatationRun>(isa)(a);
+    if (may_break)
+      for (std::size_t t = 0; t < length; ++t) settle.template operator()<Wet>(run, t);
+  };
+  if (wet)
+    for_each_run_by_slabs(body, [&](const BondRun& r) { run_terms.template operator()<true>(r); });
+  else
+    for_each_run_by_slabs(body, [&](const BondRun& r) { run_terms.template operator()<false>(r); });
 }
 
 template <int D, scene::Influence Omega, bool Coupling, bool Corrected>
@@ -140,15 +254,16 @@ void dilatation_pass(Model<D>& m, const BodyInfo& body, double* coupling, double
     if constexpr (Coupling) coupling[i] += q;
     smallest[i] = s_min;
   };
-  auto rows = [&]<bool Normal>() {
+  // the normal stress only where a bond may break (the strain is not made while breaking is held):
+  // row by row; the stretch in runs of bonds (bond_runs.hpp, lps_runs.hpp)
+  if (c.normal_stress_failure && c.breakable) {
     if (wet)
-      for_each_row_by_slabs(body, [&](std::size_t i) { row.template operator()<true, Normal>(i); });
+      for_each_row_by_slabs(body, [&](std::size_t i) { row.template operator()<true, true>(i); });
     else
-      for_each_row_by_slabs(body, [&](std::size_t i) { row.template operator()<false, Normal>(i); });
-  };
-  // the normal stress only where a bond may break (the strain is not made while breaking is held)
-  if (c.normal_stress_failure && c.breakable) rows.template operator()<true>();
-  else rows.template operator()<false>();
+      for_each_row_by_slabs(body, [&](std::size_t i) { row.template operator()<false, true>(i); });
+  } else {
+    dilatation_runs<D, Omega, Coupling, Corrected>(m, body, coupling, smallest, broken, crossing);
+  }
   for (const auto& [i, k] : broken) break_mirror_bond(b, body, i, k);
   record_crossing_breaks<D>(m, crossing);
   if constexpr (!Corrected) {
@@ -167,15 +282,6 @@ void lps_dilatation(Model<D>& m, const BodyInfo& body) {
   next_stretch_limits<D>(m, body, smallest);
 }
 
-/// What the force pass reads of each end of a bond, packed in one record per particle instead of
-/// five arrays: its position, p, a, theta and its row of factors.
-template <int D>
-struct ForceStateInputs {
-  Vec<D> position;
-  double pressure, a, theta;  // without the surface correction the pressure times d / m (dilatation_scale)
-  std::int64_t factor_row;
-};
-
 /// Second pass of the LPS and of its viscoelastic variant (ves.hpp, Viscous: the deviatoric
 /// extension of each end less lambda times its back extension), each bond once (bond_slabs.hpp):
 /// the pair force density (t_i<j> + t_j<i>) V along the deformed bond, on i and, opposite, on j.
@@ -193,56 +299,104 @@ void state_based_forces(Model<D>& m, const BodyInfo& body) {
   const auto& c = body.constants;
   const Bonds& b = m.bonds;
   const double horizon = c.horizon, kappa = c.kappa, a_dev = c.lps_deviatoric_coefficient(), lambda = c.viscous_fraction;
-  // bonds join particles of one body (bodies meet through contact only); the buffer is the calling
-  // thread's, which the team writes and reads through `in`
-  static thread_local std::vector<ForceStateInputs<D>> inputs;
-  inputs.resize(m.size());
-  ForceStateInputs<D>* const in = inputs.data();
+  // bonds join particles of one body (bodies meet through contact only). Per particle, one array per
+  // quantity (the runs read them contiguously; bond_runs.hpp): the calling thread's buffers, which
+  // the team reads and writes through these pointers
+  const std::size_t n = m.size();
+  const auto x = positions_by_component<D>(m.position, body);
+  std::array<double*, 3> f{};
+  for (int q = 0; q < D; ++q) f[q] = pass_scratch(n, 5 + q);
+  double* const pressure = pass_scratch(n, 8);  // without the surface correction times d / m (dilatation_scale)
+  double* const coefficient = pass_scratch(n, 9);  // a = A_dev / m
+  const double* const theta = m.dilatation.data();
 #pragma omp parallel for if(rift::parallel::worth_a_team(body.last - body.first)) schedule(static)
   for (std::size_t j = body.first; j < body.last; ++j) {
     const double a_j = m.weighted_volume[j] > 0.0 ? a_dev / m.weighted_volume[j] : 0.0;
     double p_j = pressure_factor<D>(kappa, m.dilatation[j], a_j, m.dilatation_coupling[j]);
     if constexpr (!Corrected) p_j *= dilatation_scale<D>(m.weighted_volume[j]);
-    in[j] = {m.position[j], p_j, a_j, m.dilatation[j], b.factor_row[j]};
-    m.force[j] = Vec<D>{};
+    pressure[j] = p_j, coefficient[j] = a_j;
+    for (int q = 0; q < D; ++q) f[q][j] = 0.0;
   }
-  for_each_row_by_slabs(body, [&](std::size_t i) {
-    const ForceStateInputs<D> own = in[i];
-    Vec<D> f{};
-    for (auto k = first_forward_bond(b, i); k < b.offset[i + 1]; ++k) {
-      if (b.intact[k] != bond_intact) continue;
-      const auto j = static_cast<std::size_t>(b.neighbor[k]);
-      const ForceStateInputs<D>& other = in[j];
-      const Vec<D> eta = other.position - own.position;
-      const double r = norm<D>(eta);
-      const FamilyOffset& family = b.families[b.family[k]];
-      const double xi = family.length;
-      const double e = r - xi;
-      const double omega = influence(Omega, xi, horizon);
-      double dev_i = e - own.theta * xi / D, dev_j = e - other.theta * xi / D;
-      if constexpr (Viscous) {
-        const auto h = static_cast<std::size_t>(2 * (k + b.pair_shift[i]));  // i-j at h, j-i at h + 1 (history_slot)
-        dev_i -= lambda * b.back_extension[h];
-        dev_j -= lambda * b.back_extension[h + 1];
-      }
-      double t_i, t_j;
-      if constexpr (Corrected) {
-        const BondFactors& g_i = b.factors[static_cast<std::size_t>(own.factor_row + b.family[k])];
-        const BondFactors& g_j = b.factors[static_cast<std::size_t>(other.factor_row + family.mirror)];
-        t_i = force_state(g_i.dilatation_weight, own.pressure, own.a, g_i.correction, omega, dev_i);
-        t_j = force_state(g_j.dilatation_weight, other.pressure, other.a, g_j.correction, omega, dev_j);
-      } else {
-        t_i = force_state(omega * xi, own.pressure, own.a, 1.0f, omega, dev_i);
-        t_j = force_state(omega * xi, other.pressure, other.a, 1.0f, omega, dev_j);
-      }
-      const double scalar = (t_i + t_j) * family.volume / r;
-      for (int q = 0; q < D; ++q) {
-        f[q] += scalar * eta[q];
-        m.force[j][q] -= scalar * eta[q];
-      }
+  const std::uint8_t* const whole = whole_rows(b, body);
+  const VectorIsa isa = vector_isa();
+  // bond t of a run, as a row takes it
+  auto settle = [&](const BondRun& run, std::size_t t) {
+    const std::size_t i = static_cast<std::size_t>(run.i) + t, j = static_cast<std::size_t>(run.j) + t;
+    const std::int64_t k = run_bond(b, run, t);
+    if (b.intact[static_cast<std::size_t>(k)] != bond_intact) return;
+    Vec<D> eta;
+    for (int q = 0; q < D; ++q) eta[q] = x[q][j] - x[q][i];
+    const double r = norm<D>(eta);
+    const FamilyOffset& family = b.families[run.family];
+    const double xi = family.length;
+    const double e = r - xi;
+    const double omega = influence(Omega, xi, horizon);
+    double dev_i = e - theta[i] * (xi / D), dev_j = e - theta[j] * (xi / D);  // as the runs (lps_runs.hpp)
+    if constexpr (Viscous) {
+      const std::size_t h = history_index(body, i, run.family, 0);
+      dev_i -= lambda * b.back_extension[h];
+      dev_j -= lambda * b.back_extension[mirror_history_slot(h)];
     }
-    for (int q = 0; q < D; ++q) m.force[i][q] += f[q];
+    double t_i, t_j;
+    if constexpr (Corrected) {
+      const BondFactors& g_i = b.factors[static_cast<std::size_t>(b.factor_row[i] + run.family)];
+      const BondFactors& g_j = b.factors[static_cast<std::size_t>(b.factor_row[j] + family.mirror)];
+      t_i = force_state(g_i.dilatation_weight, pressure[i], coefficient[i], g_i.correction, omega, dev_i);
+      t_j = force_state(g_j.dilatation_weight, pressure[j], coefficient[j], g_j.correction, omega, dev_j);
+    } else {
+      t_i = force_state(omega * xi, pressure[i], coefficient[i], 1.0f, omega, dev_i);
+      t_j = force_state(omega * xi, pressure[j], coefficient[j], 1.0f, omega, dev_j);
+    }
+    const double scalar = (t_i + t_j) * family.volume / r;
+    for (int q = 0; q < D; ++q) {
+      f[q][i] += scalar * eta[q];
+      f[q][j] -= scalar * eta[q];
+    }
+  };
+  // a run of bonds (bond_runs.hpp, lps_runs.hpp): the pair force density (t_i<j> + t_j<i>) V along
+  // the deformed bond, on i and, opposite, on j
+  for_each_run_by_slabs(body, [&](const BondRun& run) {
+    const std::size_t length = run.length, i = static_cast<std::size_t>(run.i), j = static_cast<std::size_t>(run.j);
+    if (length < short_run) {
+      for (std::size_t t = 0; t < length; ++t) settle(run, t);
+      return;
+    }
+    const FamilyOffset& family = b.families[run.family];
+    alignas(64) double alive[max_run_length], weight_a[max_run_length], weight_b[max_run_length], correction_a[max_run_length],
+        correction_b[max_run_length];
+    const bool masked = !whole_run(whole + i, length);
+    if (masked)
+      for (std::size_t t = 0; t < length; ++t)
+        alive[t] = b.intact[static_cast<std::size_t>(run_bond(b, run, t))] == bond_intact ? 1.0 : 0.0;
+    if constexpr (Corrected)
+      for (std::size_t t = 0; t < length; ++t) {
+        const BondFactors& own = b.factors[static_cast<std::size_t>(b.factor_row[i + t] + run.family)];
+        const BondFactors& other = b.factors[static_cast<std::size_t>(b.factor_row[j + t] + family.mirror)];
+        weight_a[t] = own.dilatation_weight, weight_b[t] = other.dilatation_weight;
+        correction_a[t] = own.correction, correction_b[t] = other.correction;
+      }
+    StateForceRun a;
+    a.length = length;
+    a.xa = x[0] + i, a.ya = x[1] + i, a.xb = x[0] + j, a.yb = x[1] + j;
+    a.fxa = f[0] + i, a.fya = f[1] + i, a.fxb = f[0] + j, a.fyb = f[1] + j;
+    if constexpr (D == 3) a.za = x[2] + i, a.zb = x[2] + j, a.fza = f[2] + i, a.fzb = f[2] + j;
+    a.pressure_a = pressure + i, a.pressure_b = pressure + j, a.coefficient_a = coefficient + i, a.coefficient_b = coefficient + j;
+    a.theta_a = theta + i, a.theta_b = theta + j;
+    a.alive = alive;
+    a.weight_a = weight_a, a.weight_b = weight_b, a.correction_a = correction_a, a.correction_b = correction_b;
+    if constexpr (Viscous) {
+      const std::size_t h = history_index(body, i, run.family, 0);  // both directions contiguous (bonds.hpp)
+      a.back_a = b.back_extension.data() + h, a.back_b = b.back_extension.data() + mirror_history_slot(h), a.lambda = lambda;
+    }
+    a.bond_length = family.length, a.omega = influence(Omega, family.length, horizon), a.volume = family.volume;
+    if (masked)
+      vector_clone<StateForceRunKernel<D, Corrected, Viscous, true>, StateForceRun>(isa)(a);
+    else
+      vector_clone<StateForceRunKernel<D, Corrected, Viscous, false>, StateForceRun>(isa)(a);
   });
+#pragma omp parallel for if(rift::parallel::worth_a_team(body.last - body.first)) schedule(static)
+  for (std::size_t j = body.first; j < body.last; ++j)
+    for (int q = 0; q < D; ++q) m.force[j][q] = f[q][j];
 }
 
 /// W_i (uses the current dilatation; Viscous: and back extensions, ves.hpp).

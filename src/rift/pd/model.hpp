@@ -20,6 +20,7 @@ struct BodyInfo {
   std::size_t slab_length = 1;  // of the passes that visit each bond once (bond_slabs.hpp), set with the bonds
   std::vector<BondRun> runs;    // its forward bonds as runs (bond_runs.hpp), slab after slab
   std::vector<std::size_t> slab_runs;  // the runs of slab q: [slab_runs[q], slab_runs[q + 1])
+  std::size_t history_base = 0;  // VES: its first slot in Bonds::back_extension (bond_slabs.hpp history_slot)
   MaterialConstants constants;
 };
 

@@ -86,38 +86,28 @@ struct PmbRun {
 /// A run's pair forces added to its ends, unless a bond of it may break (returns true: the caller
 /// then takes the run bond by bond).
 template <int D, bool Corrected, bool Shifted, bool Masked>
-[[gnu::always_inline]] inline bool pmb_run(const PmbRun& a) {
-  alignas(64) double g[3][max_run_length], stretch[max_run_length], past[max_run_length];
-  const bool may_break = pmb_run_pair_forces<D, Corrected, Shifted, Masked>(
-      a.length, a.xa, a.ya, a.za, a.xb, a.yb, a.zb, a.limit_a, a.limit_b, a.pore_a, a.pore_b, a.shift_scale, a.alive, a.factor,
-      a.bond_length, a.inverse_length, a.coefficient, a.volume, g[0], g[1], g[2], stretch, past);
-  if (a.breakable && may_break) return true;
-  add_to_run_ends(a.fxa, g[0], a.length);
-  add_to_run_ends(a.fya, g[1], a.length);
-  if constexpr (D == 3) add_to_run_ends(a.fza, g[2], a.length);
-  subtract_from_run_ends(a.fxb, g[0], a.length);
-  subtract_from_run_ends(a.fyb, g[1], a.length);
-  if constexpr (D == 3) subtract_from_run_ends(a.fzb, g[2], a.length);
-  lower_to_run_stretches(a.smallest_a, stretch, a.length);
-  lower_to_run_stretches(a.smallest_b, stretch, a.length);
-  return false;
-}
-
-// pmb_run for each instruction set (core/vector_isa.hpp)
-template <int D, bool Corrected, bool Shifted, bool Masked>
-bool pmb_run_sse2(const PmbRun& a) { return pmb_run<D, Corrected, Shifted, Masked>(a); }
-template <int D, bool Corrected, bool Shifted, bool Masked>
-RIFT_TARGET_AVX2 bool pmb_run_avx2(const PmbRun& a) { return pmb_run<D, Corrected, Shifted, Masked>(a); }
-template <int D, bool Corrected, bool Shifted, bool Masked>
-RIFT_TARGET_AVX512 bool pmb_run_avx512(const PmbRun& a) { return pmb_run<D, Corrected, Shifted, Masked>(a); }
+struct PmbRunKernel {
+  [[gnu::always_inline]] static bool run(const PmbRun& a) {
+    alignas(64) double g[3][max_run_length], stretch[max_run_length], past[max_run_length];
+    const bool may_break = pmb_run_pair_forces<D, Corrected, Shifted, Masked>(
+        a.length, a.xa, a.ya, a.za, a.xb, a.yb, a.zb, a.limit_a, a.limit_b, a.pore_a, a.pore_b, a.shift_scale, a.alive, a.factor,
+        a.bond_length, a.inverse_length, a.coefficient, a.volume, g[0], g[1], g[2], stretch, past);
+    if (a.breakable && may_break) return true;
+    add_to_run_ends(a.fxa, g[0], a.length);
+    add_to_run_ends(a.fya, g[1], a.length);
+    if constexpr (D == 3) add_to_run_ends(a.fza, g[2], a.length);
+    subtract_from_run_ends(a.fxb, g[0], a.length);
+    subtract_from_run_ends(a.fyb, g[1], a.length);
+    if constexpr (D == 3) subtract_from_run_ends(a.fzb, g[2], a.length);
+    lower_to_run_stretches(a.smallest_a, stretch, a.length);
+    lower_to_run_stretches(a.smallest_b, stretch, a.length);
+    return false;
+  }
+};
 
 template <int D, bool Corrected, bool Shifted, bool Masked>
 auto pmb_run_kernel(VectorIsa isa) {
-  switch (isa) {
-    case VectorIsa::avx512: return &pmb_run_avx512<D, Corrected, Shifted, Masked>;
-    case VectorIsa::avx2: return &pmb_run_avx2<D, Corrected, Shifted, Masked>;
-    default: return &pmb_run_sse2<D, Corrected, Shifted, Masked>;
-  }
+  return vector_clone<PmbRunKernel<D, Corrected, Shifted, Masked>, PmbRun>(isa);
 }
 
 template <int D, scene::Influence Omega>

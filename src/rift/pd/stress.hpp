@@ -54,9 +54,9 @@ void bond_pair_stress(const Model<D>& m, std::size_t i, double s[3][3]) {
       const double a_j = a_dev / m.weighted_volume[j];
       const double pressure_j = pressure_factor<D>(c.kappa, m.dilatation[j], a_j, m.dilatation_coupling[j]);
       const BodyInfo& body = m.bodies[m.body[i]];
-      const std::size_t h = ves ? history_slot(b, body, i, k) : 0;  // bond j-i's history is its pair's other entry, h ^ 1
+      const std::size_t h = ves ? history_slot(b, body, i, k) : 0;
       const double eb_i = ves ? lambda * b.back_extension[h] : 0.0;
-      const double eb_j = ves ? lambda * b.back_extension[h ^ 1u] : 0.0;
+      const double eb_j = ves ? lambda * b.back_extension[mirror_history_slot(h)] : 0.0;
       const BondFactors &g_i = b.factors_of(i, k), &g_j = b.mirror_factors_of(j, k);
       const double b_i = c.surface_correction ? double(g_i.dilatation_weight) : omega * xi * dilatation_scale<D>(m.weighted_volume[i]);
       const double b_j = c.surface_correction ? double(g_j.dilatation_weight) : omega * xi * dilatation_scale<D>(m.weighted_volume[j]);

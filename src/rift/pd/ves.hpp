@@ -19,30 +19,31 @@
 #pragma once
 #include <cmath>
 
+#include "rift/core/vector_isa.hpp"
+#include "rift/pd/bond_runs.hpp"
 #include "rift/pd/bond_slabs.hpp"
 #include "rift/pd/influence.hpp"
 #include "rift/pd/lps.hpp"
+#include "rift/pd/lps_runs.hpp"
 #include "rift/pd/model.hpp"
 #include "rift/parallel/team.hpp"
 
 namespace rift::pd {
 
-/// Zero history for the VES bodies.
+/// Zero history for the VES bodies, laid out by lattice offset (bonds.hpp, bond_slabs.hpp
+/// history_index): per block of Bonds::history_block particles, two directions of every forward offset.
 template <int D>
 void prepare_viscous_history(Model<D>& m) {
-  bool any = false;
-  for (const auto& body : m.bodies) any = any || body.constants.model == scene::ModelKind::ves;
-  if (!any) return;
-  Bonds& b = m.bonds;
-  b.pair_shift.assign(m.size(), 0);
-  std::int64_t pairs = 0;  // bonds join both ways, so the pairs are half the directed bonds
-  for (std::size_t i = 0; i < m.size(); ++i) {
-    const auto forward = first_forward_bond(b, i);
-    b.pair_shift[i] = pairs - forward;
-    pairs += b.offset[i + 1] - forward;
+  std::size_t slots = 0;
+  for (auto& body : m.bodies) {
+    if (body.constants.model != scene::ModelKind::ves) continue;
+    constexpr std::size_t block = Bonds::history_block;
+    body.history_base = slots;
+    slots += (body.last - body.first + block - 1) / block * (body.family_count / 2) * 2 * block;
   }
-  b.deviatoric_extension.assign(static_cast<std::size_t>(2 * pairs), 0.0f);
-  b.back_extension.assign(static_cast<std::size_t>(2 * pairs), 0.0f);
+  if (slots == 0) return;
+  m.bonds.deviatoric_extension.assign(slots, 0.0f);
+  m.bonds.back_extension.assign(slots, 0.0f);
 }
 
 /// First pass: dilatation and bond breaking (as the LPS), then the back extension of every intact
@@ -54,21 +55,27 @@ void ves_dilatation(Model<D>& m, const BodyInfo& body, double dt) {
   Bonds& b = m.bonds;
   const double horizon = c.horizon, lambda = c.viscous_fraction;
   const bool advance = dt > 0.0;
-  const double x = advance ? dt / c.relaxation_time : 0.0;
-  const double one_minus_decay = -std::expm1(-x), decay = 1.0 - one_minus_decay;
-  const double beta = advance ? 1.0 - one_minus_decay / x : 0.0;
+  const double ratio = advance ? dt / c.relaxation_time : 0.0;  // dt / tau
+  const double one_minus_decay = -std::expm1(-ratio), decay = 1.0 - one_minus_decay;
+  const double beta = advance ? 1.0 - one_minus_decay / ratio : 0.0;
   double* const smallest = pass_scratch(m.size(), 1);
   dilatation_pass<D, Omega, false>(m, body, nullptr, smallest);
 #pragma omp parallel for if(rift::parallel::worth_a_team(body.last - body.first)) schedule(static)
   for (std::size_t i = body.first; i < body.last; ++i) m.dilatation_coupling[i] = 0.0;
-  // each bond once (bond_slabs.hpp): the back extensions of both directions, and P of both ends
-  for_each_row_by_slabs(body, [&](std::size_t i) {
-    const Vec<D> xi_pos = m.position[i];
-    const double theta_i = m.dilatation[i];
-    const std::int64_t row_i = b.factor_row[i];
-    double p = 0.0;
-    // advances the history in slot h (bonds.hpp) with deviatoric extension ed (in double, stored
-    // in single precision) and returns its back extension
+  // each bond once, in runs (bond_runs.hpp, lps_runs.hpp): the back extensions of both directions,
+  // and P of both ends
+  const auto x = positions_by_component<D>(m.position, body);
+  const double* const theta = m.dilatation.data();
+  double* const coupling = m.dilatation_coupling.data();
+  const std::uint8_t* const whole = whole_rows(b, body);
+  const VectorIsa isa = vector_isa();
+  // bond t of a run, as a row takes it
+  auto settle = [&](const BondRun& run, std::size_t t) {
+    const std::size_t i = static_cast<std::size_t>(run.i) + t, j = static_cast<std::size_t>(run.j) + t;
+    const std::int64_t k = run_bond(b, run, t);
+    if (b.intact[static_cast<std::size_t>(k)] != bond_intact) return;
+    // advances the history in slot h with deviatoric extension ed (in double, stored in single
+    // precision) and returns its back extension
     auto back_extension = [&](std::size_t h, double ed) -> double {
       if (advance) {
         const double ed_old = b.deviatoric_extension[h];
@@ -77,21 +84,58 @@ void ves_dilatation(Model<D>& m, const BodyInfo& body, double dt) {
       }
       return b.back_extension[h];
     };
-    for (auto k = first_forward_bond(b, i); k < b.offset[i + 1]; ++k) {
-      if (b.intact[k] != bond_intact) continue;
-      const auto j = static_cast<std::size_t>(b.neighbor[k]);
-      const auto h = static_cast<std::size_t>(2 * (k + b.pair_shift[i]));  // i-j at h, j-i at h + 1 (history_slot)
-      const FamilyOffset& family = b.families[b.family[k]];
-      const double xi = family.length;
-      const double e = norm<D>(m.position[j] - xi_pos) - xi;
-      const double ed_i = e - theta_i * xi / D, ed_j = e - m.dilatation[j] * xi / D;
-      const double eb_i = back_extension(h, ed_i), eb_j = back_extension(h + 1, ed_j);
-      const double w = influence(Omega, xi, horizon) * xi * family.volume;
-      p += b.factors[static_cast<std::size_t>(row_i + b.family[k])].correction * w * (ed_i - lambda * eb_i);
-      m.dilatation_coupling[j] += b.factors[static_cast<std::size_t>(b.factor_row[j] + family.mirror)].correction * w * (ed_j - lambda * eb_j);
+    Vec<D> eta;
+    for (int q = 0; q < D; ++q) eta[q] = x[q][j] - x[q][i];
+    const FamilyOffset& family = b.families[run.family];
+    const double xi = family.length;
+    const double e = norm<D>(eta) - xi;
+    const double ed_i = e - theta[i] * (xi / D), ed_j = e - theta[j] * (xi / D);  // as the runs (lps_runs.hpp)
+    const std::size_t h = history_index(body, i, run.family, 0);
+    const double eb_i = back_extension(h, ed_i), eb_j = back_extension(mirror_history_slot(h), ed_j);
+    const double w = influence(Omega, xi, horizon) * xi * family.volume;
+    coupling[i] += b.factors[static_cast<std::size_t>(b.factor_row[i] + run.family)].correction * w * (ed_i - lambda * eb_i);
+    coupling[j] += b.factors[static_cast<std::size_t>(b.factor_row[j] + family.mirror)].correction * w * (ed_j - lambda * eb_j);
+  };
+  auto run_history = [&]<bool Corrected>(const BondRun& run) {
+    const std::size_t length = run.length, i = static_cast<std::size_t>(run.i), j = static_cast<std::size_t>(run.j);
+    if (length < short_run) {
+      for (std::size_t t = 0; t < length; ++t) settle(run, t);
+      return;
     }
-    m.dilatation_coupling[i] += p;
-  });
+    const FamilyOffset& family = b.families[run.family];
+    alignas(64) double alive[max_run_length], correction_a[max_run_length], correction_b[max_run_length];
+    const bool masked = !whole_run(whole + i, length);
+    if (masked)
+      for (std::size_t t = 0; t < length; ++t)
+        alive[t] = b.intact[static_cast<std::size_t>(run_bond(b, run, t))] == bond_intact ? 1.0 : 0.0;
+    if constexpr (Corrected)
+      for (std::size_t t = 0; t < length; ++t) {
+        correction_a[t] = b.factors[static_cast<std::size_t>(b.factor_row[i + t] + run.family)].correction;
+        correction_b[t] = b.factors[static_cast<std::size_t>(b.factor_row[j + t] + family.mirror)].correction;
+      }
+    const std::size_t h = history_index(body, i, run.family, 0);  // both directions contiguous (bonds.hpp)
+    HistoryRun a;
+    a.length = length;
+    a.xa = x[0] + i, a.ya = x[1] + i, a.xb = x[0] + j, a.yb = x[1] + j;
+    if constexpr (D == 3) a.za = x[2] + i, a.zb = x[2] + j;
+    a.theta_a = theta + i, a.theta_b = theta + j;
+    a.alive = alive, a.correction_a = correction_a, a.correction_b = correction_b;
+    a.deviatoric_a = b.deviatoric_extension.data() + h, a.deviatoric_b = b.deviatoric_extension.data() + mirror_history_slot(h);
+    a.back_a = b.back_extension.data() + h, a.back_b = b.back_extension.data() + mirror_history_slot(h);
+    a.bond_length = family.length, a.weight = influence(Omega, family.length, horizon) * family.length * family.volume;
+    a.lambda = lambda, a.one_minus_decay = one_minus_decay, a.decay = decay, a.beta = beta;
+    a.coupling_a = coupling + i, a.coupling_b = coupling + j;
+    auto kernel = [&]<bool Advance>() {
+      if (masked) vector_clone<HistoryRunKernel<D, Corrected, Advance, true>, HistoryRun>(isa)(a);
+      else vector_clone<HistoryRunKernel<D, Corrected, Advance, false>, HistoryRun>(isa)(a);
+    };
+    if (advance) kernel.template operator()<true>();
+    else kernel.template operator()<false>();
+  };
+  if (c.surface_correction)
+    for_each_run_by_slabs(body, [&](const BondRun& r) { run_history.template operator()<true>(r); });
+  else
+    for_each_run_by_slabs(body, [&](const BondRun& r) { run_history.template operator()<false>(r); });
   next_stretch_limits<D>(m, body, smallest);
 }
 

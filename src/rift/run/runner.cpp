@@ -54,10 +54,8 @@ Plan make_plan(const Simulation<D>& p) {
   Plan plan;
   plan.particles = p.model.size();
   plan.bonds = p.model.bonds.size() / 2;
-  // per particle: its fields, its row offset, the index of its row of factors and (VES) the shift
-  // to its pairs' histories (bonds.hpp)
-  plan.bytes_per_particle = double(pd::Model<D>::bytes_per_particle()) + 2 * sizeof(std::int64_t) +
-                            (p.model.bonds.pair_shift.empty() ? 0.0 : double(sizeof(std::int64_t)));
+  // per particle: its fields, its row offset and the index of its row of factors (bonds.hpp)
+  plan.bytes_per_particle = double(pd::Model<D>::bytes_per_particle()) + 2 * sizeof(std::int64_t);
   // both directions of a bond are stored
   plan.bytes_per_bond = 2.0 * p.model.bonds.bytes_per_directed_bond();
   plan.stable_time_step = p.stable_dt;

@@ -1,0 +1,244 @@
+// The run kernels of the LPS and VES passes (lps.hpp, ves.hpp; runs: bond_runs.hpp). Each takes the
+// bonds of one run together in one loop without branches over contiguous arrays, which the compiler
+// makes vector code, into buffers that are then added to the run's two ends. Every bond's terms are
+// the row formulas' to the last bit (the same operations in the same order), but for the deviatoric
+// extension e - theta (|xi| / d), which takes |xi| / d per run where a row divided theta |xi| by d
+// per bond (a rounding apart; the bonds a run takes one by one use the run's form).
+#pragma once
+#include <cmath>
+#include <cstddef>
+#include <limits>
+
+#include "rift/core/vector_isa.hpp"
+#include "rift/pd/bond_runs.hpp"
+
+namespace rift::pd {
+
+/// One run of the dilatation pass: the lower ends' arrays start at a, the upper ends' at b.
+/// `alive` (Masked): 1 for an intact bond, 0 for another; Corrected: the dilatation weights b_ij,
+/// b_ji and the influence factors g_i, g_j of the run's bonds (bonds.hpp BondFactors).
+struct DilatationRun {
+  std::size_t length = 0;
+  const double *xa = nullptr, *ya = nullptr, *za = nullptr, *xb = nullptr, *yb = nullptr, *zb = nullptr;
+  const double *limit_a = nullptr, *limit_b = nullptr, *pore_a = nullptr, *pore_b = nullptr, *alive = nullptr;
+  const double *weight_a = nullptr, *weight_b = nullptr, *correction_a = nullptr, *correction_b = nullptr;
+  double shift_scale = 1.0, bond_length = 0.0, inverse_length = 0.0, volume = 0.0, omega_length = 0.0;  // omega |xi|
+  double *theta_a = nullptr, *theta_b = nullptr, *coupling_a = nullptr, *coupling_b = nullptr;
+  double *smallest_a = nullptr, *smallest_b = nullptr;
+  bool breakable = false;
+};
+
+/// The terms of a run's bonds in the dilatation pass (lps.hpp dilatation_pass): theta of each end
+/// (wa, wb: b e V, or omega |xi| e V without the correction, scaled after the pass), q of each end
+/// (qa, qb: g omega |xi| e V; Coupling), the stretch (`none` where not intact). Returns whether an
+/// intact bond may break: its extension past |xi| min(s0_i, s0_j), or its stretch past that limit
+/// less the wet rock's shift (Shifted); the caller then takes the run bond by bond.
+template <int D, bool Corrected, bool Coupling, bool Shifted, bool Masked>
+[[gnu::always_inline]] inline bool dilatation_run_terms(
+    std::size_t length, const double* __restrict xa, const double* __restrict ya, const double* __restrict za,
+    const double* __restrict xb, const double* __restrict yb, const double* __restrict zb, const double* __restrict limit_a,
+    const double* __restrict limit_b, const double* __restrict pore_a, const double* __restrict pore_b, double shift_scale,
+    const double* __restrict alive, const double* __restrict weight_a, const double* __restrict weight_b,
+    const double* __restrict correction_a, const double* __restrict correction_b, double bond_length, double inverse_length,
+    double volume, double omega_length, double* __restrict wa, double* __restrict wb, double* __restrict qa, double* __restrict qb,
+    double* __restrict stretch, double* __restrict past) {
+  constexpr double none = std::numeric_limits<double>::max();
+  for (std::size_t t = 0; t < length; ++t) {
+    const double ex = xb[t] - xa[t], ey = yb[t] - ya[t];
+    double r2 = ex * ex + ey * ey;
+    if constexpr (D == 3) {
+      const double ez = zb[t] - za[t];
+      r2 += ez * ez;
+    }
+    const double e = std::sqrt(r2) - bond_length;
+    const double s = e * inverse_length;
+    const double limit = limit_b[t] < limit_a[t] ? limit_b[t] : limit_a[t];
+    double lowered = limit;
+    if constexpr (Shifted) lowered -= shift_scale * (pore_a[t] < pore_b[t] ? pore_a[t] : pore_b[t]);
+    const bool on = Masked ? alive[t] != 0.0 : true;
+    past[t] = on && (e > bond_length * limit || s > lowered) ? 1.0 : 0.0;
+    const double ev = e * volume;
+    const double w = omega_length * ev;
+    if constexpr (Corrected) {
+      wa[t] = on ? weight_a[t] * ev : 0.0;
+      wb[t] = on ? weight_b[t] * ev : 0.0;
+      if constexpr (Coupling) {
+        qa[t] = on ? correction_a[t] * w : 0.0;
+        qb[t] = on ? correction_b[t] * w : 0.0;
+      }
+    } else {
+      wa[t] = on ? w : 0.0;
+    }
+    stretch[t] = on ? s : none;
+  }
+  return any_set(past, length);
+}
+
+template <int D, bool Corrected, bool Coupling, bool Shifted, bool Masked>
+struct DilatationRunKernel {
+  [[gnu::always_inline]] static bool run(const DilatationRun& a) {
+    alignas(64) double wa[max_run_length], wb[max_run_length], qa[max_run_length], qb[max_run_length], stretch[max_run_length],
+        past[max_run_length];
+    const bool may_break = dilatation_run_terms<D, Corrected, Coupling, Shifted, Masked>(
+        a.length, a.xa, a.ya, a.za, a.xb, a.yb, a.zb, a.limit_a, a.limit_b, a.pore_a, a.pore_b, a.shift_scale, a.alive, a.weight_a,
+        a.weight_b, a.correction_a, a.correction_b, a.bond_length, a.inverse_length, a.volume, a.omega_length, wa, wb, qa, qb, stretch,
+        past);
+    if (a.breakable && may_break) return true;
+    // without the correction both ends take omega |xi| e V (and so does q)
+    const double* const to_b = Corrected ? wb : wa;
+    add_to_run_ends(a.theta_a, wa, a.length);
+    add_to_run_ends(a.theta_b, to_b, a.length);
+    if constexpr (Coupling) {
+      add_to_run_ends(a.coupling_a, Corrected ? qa : wa, a.length);
+      add_to_run_ends(a.coupling_b, Corrected ? qb : wa, a.length);
+    }
+    lower_to_run_stretches(a.smallest_a, stretch, a.length);
+    lower_to_run_stretches(a.smallest_b, stretch, a.length);
+    return false;
+  }
+};
+
+/// One run of the force pass: the lower ends' arrays start at a, the upper ends' at b (positions,
+/// pressure factors p, a = A_dev / m, dilatations theta); `alive` (Masked); Corrected: b_ij, b_ji, g_i,
+/// g_j; Viscous: the back extensions of both directions (ves.hpp) and lambda.
+struct StateForceRun {
+  std::size_t length = 0;
+  const double *xa = nullptr, *ya = nullptr, *za = nullptr, *xb = nullptr, *yb = nullptr, *zb = nullptr;
+  const double *pressure_a = nullptr, *pressure_b = nullptr, *coefficient_a = nullptr, *coefficient_b = nullptr;
+  const double *theta_a = nullptr, *theta_b = nullptr, *alive = nullptr;
+  const double *weight_a = nullptr, *weight_b = nullptr, *correction_a = nullptr, *correction_b = nullptr;
+  const float *back_a = nullptr, *back_b = nullptr;
+  double bond_length = 0.0, omega = 0.0, volume = 0.0, lambda = 0.0;
+  double *fxa = nullptr, *fya = nullptr, *fza = nullptr, *fxb = nullptr, *fyb = nullptr, *fzb = nullptr;
+};
+
+/// The pair force densities (t_i<j> + t_j<i>) V / |y| times the deformed bond, per component, of a
+/// run's bonds (lps.hpp state_based_forces).
+template <int D, bool Corrected, bool Viscous, bool Masked>
+[[gnu::always_inline]] inline void state_force_run_terms(
+    std::size_t length, const double* __restrict xa, const double* __restrict ya, const double* __restrict za,
+    const double* __restrict xb, const double* __restrict yb, const double* __restrict zb, const double* __restrict pressure_a,
+    const double* __restrict pressure_b, const double* __restrict coefficient_a, const double* __restrict coefficient_b,
+    const double* __restrict theta_a, const double* __restrict theta_b, const double* __restrict alive,
+    const double* __restrict weight_a, const double* __restrict weight_b, const double* __restrict correction_a,
+    const double* __restrict correction_b, const float* __restrict back_a, const float* __restrict back_b, double lambda,
+    double bond_length, double omega, double volume, double* __restrict gx, double* __restrict gy, double* __restrict gz) {
+  const double omega_length = omega * bond_length;
+  const double length_over_d = bond_length / D;  // e_d = e - theta |xi| / d, without a division per bond
+  for (std::size_t t = 0; t < length; ++t) {
+    const double ex = xb[t] - xa[t], ey = yb[t] - ya[t];
+    double ez = 0.0, r2 = ex * ex + ey * ey;
+    if constexpr (D == 3) {
+      ez = zb[t] - za[t];
+      r2 += ez * ez;
+    }
+    const double r = std::sqrt(r2);
+    const double e = r - bond_length;
+    double dev_a = e - theta_a[t] * length_over_d, dev_b = e - theta_b[t] * length_over_d;
+    if constexpr (Viscous) {
+      dev_a -= lambda * back_a[t];
+      dev_b -= lambda * back_b[t];
+    }
+    double t_a, t_b;  // force_state (lps.hpp)
+    if constexpr (Corrected) {
+      t_a = weight_a[t] * pressure_a[t] + coefficient_a[t] * correction_a[t] * omega * dev_a;
+      t_b = weight_b[t] * pressure_b[t] + coefficient_b[t] * correction_b[t] * omega * dev_b;
+    } else {
+      t_a = omega_length * pressure_a[t] + coefficient_a[t] * omega * dev_a;
+      t_b = omega_length * pressure_b[t] + coefficient_b[t] * omega * dev_b;
+    }
+    double scalar = (t_a + t_b) * volume / r;
+    if constexpr (Masked) scalar = alive[t] != 0.0 ? scalar : 0.0;
+    gx[t] = scalar * ex;
+    gy[t] = scalar * ey;
+    if constexpr (D == 3) gz[t] = scalar * ez;
+  }
+}
+
+template <int D, bool Corrected, bool Viscous, bool Masked>
+struct StateForceRunKernel {
+  [[gnu::always_inline]] static bool run(const StateForceRun& a) {
+    alignas(64) double g[3][max_run_length];
+    state_force_run_terms<D, Corrected, Viscous, Masked>(a.length, a.xa, a.ya, a.za, a.xb, a.yb, a.zb, a.pressure_a, a.pressure_b,
+                                                         a.coefficient_a, a.coefficient_b, a.theta_a, a.theta_b, a.alive, a.weight_a,
+                                                         a.weight_b, a.correction_a, a.correction_b, a.back_a, a.back_b, a.lambda,
+                                                         a.bond_length, a.omega, a.volume, g[0], g[1], g[2]);
+    add_to_run_ends(a.fxa, g[0], a.length);
+    add_to_run_ends(a.fya, g[1], a.length);
+    if constexpr (D == 3) add_to_run_ends(a.fza, g[2], a.length);
+    subtract_from_run_ends(a.fxb, g[0], a.length);
+    subtract_from_run_ends(a.fyb, g[1], a.length);
+    if constexpr (D == 3) subtract_from_run_ends(a.fzb, g[2], a.length);
+    return false;
+  }
+};
+
+/// One run of the VES history pass (ves.hpp): the lower ends' arrays start at a, the upper ends'
+/// at b; the histories of the two directions (bonds.hpp); Corrected: g_i, g_j.
+struct HistoryRun {
+  std::size_t length = 0;
+  const double *xa = nullptr, *ya = nullptr, *za = nullptr, *xb = nullptr, *yb = nullptr, *zb = nullptr;
+  const double *theta_a = nullptr, *theta_b = nullptr, *alive = nullptr, *correction_a = nullptr, *correction_b = nullptr;
+  float *deviatoric_a = nullptr, *deviatoric_b = nullptr, *back_a = nullptr, *back_b = nullptr;
+  double bond_length = 0.0, weight = 0.0, lambda = 0.0;  // weight: omega |xi| V
+  double one_minus_decay = 0.0, decay = 1.0, beta = 0.0;
+  double *coupling_a = nullptr, *coupling_b = nullptr;
+};
+
+/// Advances (Advance) the back extension of both directions of a run's bonds over the step (ves.hpp:
+/// e_b(n+1) = e_d(n) (1 - decay) + e_b(n) decay + beta (e_d(n+1) - e_d(n)), in double, stored in
+/// single precision) and returns their terms of P, g omega |xi| V (e_d - lambda e_b), in qa and qb.
+/// A bond that is not intact keeps its history and adds nothing.
+template <int D, bool Corrected, bool Advance, bool Masked>
+[[gnu::always_inline]] inline void history_run_terms(
+    std::size_t length, const double* __restrict xa, const double* __restrict ya, const double* __restrict za,
+    const double* __restrict xb, const double* __restrict yb, const double* __restrict zb, const double* __restrict theta_a,
+    const double* __restrict theta_b, const double* __restrict alive, const double* __restrict correction_a,
+    const double* __restrict correction_b, float* __restrict deviatoric_a, float* __restrict deviatoric_b, float* __restrict back_a,
+    float* __restrict back_b, double bond_length, double weight, double lambda, double one_minus_decay, double decay, double beta,
+    double* __restrict qa, double* __restrict qb) {
+  const double length_over_d = bond_length / D;  // e_d = e - theta |xi| / d, without a division per bond
+  for (std::size_t t = 0; t < length; ++t) {
+    const double ex = xb[t] - xa[t], ey = yb[t] - ya[t];
+    double r2 = ex * ex + ey * ey;
+    if constexpr (D == 3) {
+      const double ez = zb[t] - za[t];
+      r2 += ez * ez;
+    }
+    const double e = std::sqrt(r2) - bond_length;
+    const double ed_a = e - theta_a[t] * length_over_d, ed_b = e - theta_b[t] * length_over_d;
+    const bool on = Masked ? alive[t] != 0.0 : true;
+    if constexpr (Advance) {
+      const double old_a = deviatoric_a[t], old_b = deviatoric_b[t];
+      const float new_a = static_cast<float>(old_a * one_minus_decay + back_a[t] * decay + beta * (ed_a - old_a));
+      const float new_b = static_cast<float>(old_b * one_minus_decay + back_b[t] * decay + beta * (ed_b - old_b));
+      back_a[t] = on ? new_a : back_a[t];
+      back_b[t] = on ? new_b : back_b[t];
+      deviatoric_a[t] = on ? static_cast<float>(ed_a) : deviatoric_a[t];
+      deviatoric_b[t] = on ? static_cast<float>(ed_b) : deviatoric_b[t];
+    }
+    const double eb_a = back_a[t], eb_b = back_b[t];
+    double term_a = weight * (ed_a - lambda * eb_a), term_b = weight * (ed_b - lambda * eb_b);
+    if constexpr (Corrected) {
+      term_a = correction_a[t] * weight * (ed_a - lambda * eb_a);
+      term_b = correction_b[t] * weight * (ed_b - lambda * eb_b);
+    }
+    qa[t] = on ? term_a : 0.0;
+    qb[t] = on ? term_b : 0.0;
+  }
+}
+
+template <int D, bool Corrected, bool Advance, bool Masked>
+struct HistoryRunKernel {
+  [[gnu::always_inline]] static bool run(const HistoryRun& a) {
+    alignas(64) double qa[max_run_length], qb[max_run_length];
+    history_run_terms<D, Corrected, Advance, Masked>(a.length, a.xa, a.ya, a.za, a.xb, a.yb, a.zb, a.theta_a, a.theta_b, a.alive,
+                                                     a.correction_a, a.correction_b, a.deviatoric_a, a.deviatoric_b, a.back_a, a.back_b,
+                                                     a.bond_length, a.weight, a.lambda, a.one_minus_decay, a.decay, a.beta, qa, qb);
+    add_to_run_ends(a.coupling_a, qa, a.length);
+    add_to_run_ends(a.coupling_b, qb, a.length);
+    return false;
+  }
+};
+
+}  // namespace rift::pd
