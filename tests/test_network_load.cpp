@@ -1,0 +1,114 @@
+// The fluid's load on the rock around the cracks it fills (pd/network_load.hpp) is defined by two
+// force evaluations under a uniform expansion, F with the bonds as they are and F^s with the
+// network's broken bonds held intact: g_s,i = (F_i - F^s_i) / (eps d kappa_i). rift evaluates them on
+// the particles within reach of the network alone; here g is made from the definition with the
+// model's own passes over the whole body (pmb.hpp, lps.hpp: what network_load.hpp did before), on a
+// 2D and a 3D block whose crack grew from a pressurized pre-crack, PMB, LPS with and without the
+// surface correction and VES (by its LPS response). Tolerance 1e-12 of the largest |g|: the same
+// formulas summed in another order, the rounding of F magnified by 1/eps = 1e6 (measured 2e-15).
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "rift/pd/discretize.hpp"
+#include "rift/pd/fluid_network.hpp"
+#include "rift/pd/held_breaking.hpp"
+#include "rift/pd/network_load.hpp"
+#include "rift/scene/parse.hpp"
+
+namespace {
+
+std::string grown_crack_scene(int dim, const std::string& material) {
+  std::ostringstream s;
+  s << "[scene]\ndimension = " << dim << "\n" << (dim == 2 ? "plane = \"strain\"\nthickness = 0.001\n" : "")
+    << "[materials.rock]\ndensity = 2500.0\nyoungs_modulus = 10e9\npoisson_ratio = 0.25\n" << material
+    << "[regions.block]\nshape = \"box\"\nmin = [0.0, 0.0" << (dim == 3 ? ", 0.0]" : "]") << "\nmax = [0.024, 0.016"
+    << (dim == 3 ? ", 0.008]" : "]") << "\n[bodies.block]\nmaterial = \"rock\"\nregion = \"block\"\nspacing = 0.001\nhorizon = 3.015\n"
+    << "lattice_origin = [0.0, 0.0" << (dim == 3 ? ", 0.0]" : "]") << "\n[[cracks]]\n"
+    << (dim == 3 ? "points = [[-0.01, 0.008, -0.01], [0.012, 0.008, -0.01], [0.012, 0.008, 0.02], [-0.01, 0.008, 0.02]]\n"
+                 : "points = [[-0.01, 0.008], [0.012, 0.008]]\n")
+    << "pressure = 2e6\n[solver]\nend_time = 1e-6\n";
+  return s.str();
+}
+
+// g by the definition, with the passes over the whole model
+template <int D>
+std::vector<double> load_by_passes(rift::pd::Model<D>& m, const std::vector<std::int64_t>& network) {
+  using I = rift::scene::Influence;
+  const double eps = 1e-6;
+  for (std::size_t i = 0; i < m.size(); ++i)
+    for (int q = 0; q < D; ++q) m.position[i][q] = (1.0 + eps) * m.reference_position[i][q];
+  auto forces = [&] {
+    const rift::pd::HeldBreaking<D> held(m);
+    for (const auto& body : m.bodies) {
+      const I omega = body.constants.influence;
+      if (body.constants.model == rift::scene::ModelKind::pmb) {
+        if (omega == I::constant) rift::pd::pmb_forces<D, I::constant>(m, body);
+        else rift::pd::pmb_forces<D, I::inverse_distance>(m, body);
+      } else if (omega == I::constant) {
+        rift::pd::lps_dilatation<D, I::constant>(m, body), rift::pd::state_based_forces<D, I::constant, false>(m, body);
+      } else {
+        rift::pd::lps_dilatation<D, I::inverse_distance>(m, body), rift::pd::state_based_forces<D, I::inverse_distance, false>(m, body);
+      }
+    }
+    return m.force;
+  };
+  const auto cracked = forces();
+  const auto states = m.bonds.intact;
+  for (const auto k : network) m.bonds.intact[static_cast<std::size_t>(k)] = rift::pd::bond_intact;
+  const auto whole = forces();
+  m.bonds.intact = states;
+  std::vector<double> g(m.size() * D, 0.0);
+  for (std::size_t i = 0; i < m.size(); ++i)
+    for (int q = 0; q < D; ++q)
+      g[i * D + static_cast<std::size_t>(q)] = (cracked[i][q] - whole[i][q]) / (eps * D * m.constants_of(i).kappa);
+  return g;
+}
+
+template <int D>
+void check(const std::string& material) {
+  auto m = rift::pd::discretize<D>(rift::scene::parse_string(grown_crack_scene(D, material), "grown.toml"));
+  // the crack grown along y = 8 mm beyond the pre-crack's end, to x = 20 mm
+  auto& b = m.bonds;
+  const double line = 0.008;
+  for (std::size_t i = 0; i < m.size(); ++i)
+    for (auto k = b.offset[i]; k < b.offset[i + 1]; ++k) {
+      const auto& xi = m.reference_position[i];
+      const auto& xj = m.reference_position[static_cast<std::size_t>(b.neighbor[k])];
+      if ((xi[1] - line) * (xj[1] - line) >= 0.0) continue;
+      const double crossing = xi[0] + (line - xi[1]) * (xj[0] - xi[0]) / (xj[1] - xi[1]);
+      if (crossing >= 0.012 && crossing < 0.020) b.intact[k] = rift::pd::bond_broken;
+    }
+  rift::pd::update_fluid_network<D>(m);
+  const auto& network = m.fluid_network.network_bonds.at(0);
+  ASSERT_GT(network.size(), 20u);
+  const auto state = b.intact;
+  rift::pd::update_network_load<D>(m);
+  ASSERT_EQ(b.intact, state);  // the model as it was
+  const auto local = m.fluid_network.network_load.at(0);
+  const auto reference = load_by_passes<D>(m, network);
+  double largest = 0.0, worst = 0.0;
+  for (const double v : reference) largest = std::max(largest, std::abs(v));
+  for (std::size_t q = 0; q < local.size(); ++q) worst = std::max(worst, std::abs(local[q] - reference[q]));
+  std::string name = material;
+  std::replace(name.begin(), name.end(), '\n', ' ');
+  std::printf("%dD %s: %zu network bonds, largest |g| %.4g 1/m, largest difference %.2e of it\n", D, name.c_str(), network.size(),
+              largest, worst / largest);
+  EXPECT_GT(largest, 0.0);
+  EXPECT_LT(worst, 1e-12 * largest);
+}
+
+TEST(NetworkLoad, LocalEvaluationEqualsTheDefinitionOverTheWholeBody) {
+  for (const char* material : {"model = \"pmb\"\n", "model = \"lps\"\n", "model = \"lps\"\nsurface_correction = false\n",
+                               "model = \"ves\"\nviscous_fraction = 0.5\nrelaxation_time = 1e-4\n"}) {
+    check<2>(material);
+    check<3>(material);
+  }
+}
+
+}  // namespace
