@@ -69,6 +69,18 @@
 // 17.8 mm at t = 3.8 s, under its 18.1 mm threshold): the rule cannot tell them apart, as the
 // thresholds say (2-8 slips above 0.79 MPa of net pressure at the junction, 2-4 above 1.85, and
 // both arrive with about 1.9 at the borehole).
+// What the table itself suggests (2026-11-25, not yet tried): every row's outcome follows from the
+// fluid reaching the interface at about the borehole's breakdown pressure, p_b = 3 sigma_h - sigma_H
+// + T (Hubbert and Willis; no less than sigma_h), read against the thesis' EQ 4.7 (dilated where p_b
+// > sigma_n): with T = 3 MPa, 2-8 p_b = 10 > sigma_n = 7.25 (dilated), S-2 10 > 6.5, 2-3 8 > 6.25,
+// 2-5 10 > 5.75 (dilated); 2-1 8 < 10, 2-2, 2-4, 2-6, S-1 about sigma_h, far below their 8.25-11.25
+// (crossed); 2-7 about 3 < 5.5 at 30 degrees (arrested): ten of ten, the thesis' row S-2 too. In the
+// laboratory the fracture breaks down from the bare hole and runs on the fluid the injection line
+// stored at p_b. This scene's 24 mm pre-crack takes that peak away (the fracture starts at sigma_h +
+// K_Ic / sqrt(pi a), 6.3 MPa in 2-8, and arrives at 6.88). So the next try: a short notch instead of
+// the pre-crack (the in-situ stage keeps the wall whole; S-1's wall is in 15 MPa of hoop tension
+// there) and the injection system's compliance (a lumped volume of fluid at the borehole's pressure),
+// one value for every row, with the breakdown case (hf_breakdown) as its check.
 // With traction faces instead (the same scenes, faces = "tractions"): 7 of 9. 2-6 arrested (13.7 mm
 // past the plane at t = 4 s; both wings turned toward +y some 80 mm out, as in 2-4, under the 13 /
 // 3 MPa that should keep them straight: the free faces let the block bend), 2-8 crossed (22.3 mm);
