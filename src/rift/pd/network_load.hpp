@@ -22,7 +22,7 @@
 // F and F^s differ only within reach of the network's bonds: on their ends, whose dilatation (and P)
 // change, and on those ends' neighbours. So g is evaluated bond by bond on those particles alone
 // (the dilatations on their neighbours too), the rest of the body untouched: the thesis-size block
-// (4 million particles) took two passes over all its 494 million bonds whenever a crack grew.
+// (4 million particles) took two passes over all its 494 million directed bonds whenever a crack grew.
 #pragma once
 #include <algorithm>
 #include <cstdint>
