@@ -76,6 +76,39 @@ assert len(grids) == 4, len(grids)  # initial state + 3 snapshots
 names = {a.get("Name") for a in grids[-1].findall("Attribute")}
 assert {"displacement", "velocity", "damage", "dilatation"} <= names, names
 PY
+# in-situ stresses more than the rock holds: plane strain, E = 10 GPa, nu = 0.25 under -10 / -2 MPa
+# stretches it by 1.25e-4 along sigma_h (Hooke), past its critical stretch of 1e-4: the in-situ
+# stage holds every bond, and the run warns that they broke at its start
+cat > "$tmp/in_situ.toml" <<'SCENE'
+[scene]
+dimension = 2
+plane = "strain"
+thickness = 0.001
+[materials.rock]
+model = "lps"
+density = 2500.0
+youngs_modulus = 10e9
+poisson_ratio = 0.25
+critical_stretch = 1e-4
+[regions.block]
+shape = "box"
+min = [-0.01, -0.01]
+max = [0.01, 0.01]
+[bodies.block]
+material = "rock"
+region = "block"
+spacing = 0.001
+horizon = 3.015
+[in_situ_stress]
+sigma_H = -10e6
+sigma_h = -2e6
+start = "uniform_strain"
+[solver]
+end_time = 1e-8
+SCENE
+"$rift" run "$tmp/in_situ.toml" -o "$tmp/in_situ_out" --threads 1 > "$tmp/in_situ.log" 2> "$tmp/in_situ.err"
+grep -q "in-situ stage: equilibrium in" "$tmp/in_situ.log"
+grep -q "are past their limit at the in-situ equilibrium and broke at the start" "$tmp/in_situ.err"
 # a mistake: exit status 2, the message (file:line:column, key), nothing written
 refused() {  # scene, expected text of the message
   set +e

@@ -3,8 +3,10 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 #include <string>
 
+#include "rift/pd/in_situ_strain.hpp"
 #include "rift/pd/stress.hpp"
 #include "rift/run/simulation.hpp"
 #include "rift/scene/parse.hpp"
@@ -118,6 +120,42 @@ TEST(InSituStress, AFreeBlockTurnedBeforeTheStageReachesTheSameEquilibrium) {
   for (const auto& x : m.position)
     for (int k = 0; k < 2; ++k) centre[k] += x[k] / double(m.size());
   for (int k = 0; k < 2; ++k) EXPECT_NEAR(centre[k], 0.0, 1e-9);
+}
+
+// start = "uniform_strain" (pd/in_situ_strain.hpp) starts the relaxation from Hooke's strain of the
+// far-field stresses: for the block above (plane strain, E = 10 GPa, nu = 0.25) the strains of the
+// formulas above to 1e-12, and the stage reaches the equilibrium it reaches from the reference
+// lattice (the strain between the particles at +-5.5 mm the same within 1e-3 of eps_H, both relaxed
+// to 1e-9) in fewer iterations.
+TEST(InSituStress, UniformStrainStartReachesTheSameEquilibriumSooner) {
+  const double E = 10e9, nu = 0.25, sigma_H = -10e6, sigma_h = -2e6;
+  const double eps_H = ((1 - nu * nu) * sigma_H - nu * (1 + nu) * sigma_h) / E;
+  const double eps_h = ((1 - nu * nu) * sigma_h - nu * (1 + nu) * sigma_H) / E;
+  double strain[2][2] = {};
+  int iterations[2] = {};
+  for (int start = 0; start < 2; ++start) {
+    auto s = rift::scene::parse_string(block_scene("", start ? "start = \"uniform_strain\"\n" : ""), "in_situ_start.toml");
+    rift::run::Simulation<2> sim(s);
+    auto& m = sim.model;
+    if (start) {
+      const auto eps = rift::pd::in_situ_strain<2>(m.bodies[0].constants, s.in_situ);
+      EXPECT_NEAR(eps[0], eps_H, 1e-12 * std::abs(eps_H));
+      EXPECT_NEAR(eps[1], eps_h, 1e-12 * std::abs(eps_H));
+    }
+    const auto relaxed = sim.equilibrate_in_situ(s.in_situ);
+    ASSERT_TRUE(relaxed.converged) << relaxed.residual;
+    iterations[start] = relaxed.iterations;
+    for (std::size_t i = 0; i < m.size(); ++i) {
+      const auto& X = m.reference_position[i];
+      for (int k = 0; k < 2; ++k)
+        if (std::abs(std::abs(X[k]) - 0.0055) < 1e-6 && std::abs(X[1 - k]) < 0.001)
+          strain[start][k] += (m.position[i][k] - X[k]) / (X[k] > 0 ? 0.011 : -0.011) / 2.0;
+    }
+  }
+  for (int k = 0; k < 2; ++k) EXPECT_NEAR(strain[1][k], strain[0][k], 1e-3 * std::abs(eps_H)) << k;
+  EXPECT_NEAR(strain[1][0], eps_H, 0.01 * std::abs(eps_H));
+  EXPECT_LT(iterations[1], iterations[0]);
+  std::printf("in-situ stage of the 40 mm block: %d iterations from the reference, %d from the uniform strain\n", iterations[0], iterations[1]);
 }
 
 }  // namespace

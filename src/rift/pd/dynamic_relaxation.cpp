@@ -106,6 +106,10 @@ RelaxationResult DynamicRelaxation<D>::relax(Model<D>& m, const load::Boundaries
   // held by tractions alone, no component of any particle prescribed: no rigid motion (rigid_acceleration)
   const bool free_body = std::none_of(m.constrained.begin(), m.constrained.end(), [](std::uint8_t c) { return c != 0; });
   const std::vector<std::uint8_t> on_platen = platen_components(m);
+  // the displacement of Rayleigh's quotient: from the reference, or from where this call started
+  std::vector<Vec<D>> start;
+  if (damping_from_start_) start = m.position;
+  const std::vector<Vec<D>>& origin = damping_from_start_ ? start : m.reference_position;
   for (int it = 0; it < max_iterations; ++it) {
     advance_stretch_limits<D>(m);
     compute_forces<D>(m, contact);
@@ -129,7 +133,7 @@ RelaxationResult DynamicRelaxation<D>::relax(Model<D>& m, const load::Boundaries
         else acc[2] += total * total * m.volume[i] * m.volume[i];
         const double f = total / fictitious_density_[i];
         const double v = m.velocity[i][k];
-        const double u = m.position[i][k] - m.reference_position[i][k];
+        const double u = m.position[i][k] - origin[i][k];
         if (it > 0 && v != 0.0) acc[0] += u * (-(f - previous[i][k]) / v) * u;
         acc[1] += u * u;
       }

@@ -30,11 +30,15 @@ class DynamicRelaxation {
   /// pressure, say) have not yet found the deformation they belong to. The passes stop once an
   /// injected fluid breaks through to the outer surface: a laboratory test ends there, its pressure
   /// lost, and the bonds keep the crack it had then (what a cut block shows).
+  /// Damping from Rayleigh's quotient of the displacement since the start of each relax call
+  /// instead of since the reference state (in_situ_strain.hpp: a start already near equilibrium).
+  void measure_damping_from_start(bool on) { damping_from_start_ = on; }
   RelaxationResult relax_breaking_at_equilibrium(Model<D>& m, const load::Boundaries<D>& loads, Contact<D>* contact, double t,
                                                  int max_iterations, double tolerance, int max_passes);
 
  private:
   std::vector<double> fictitious_density_;  // lambda_ii (eq. 10), time step 1
+  bool damping_from_start_ = false;
 };
 
 }  // namespace rift::pd

@@ -103,10 +103,11 @@ Plan check_dim(const scene::Scene& s, std::ostream& out) {
   if (s.in_situ.enabled) {
     const auto& in_situ = s.in_situ;
     std::snprintf(line, sizeof line,
-                  "in-situ      sigma_H = %g MPa along %c, sigma_h = %g MPa, sigma_v = %g MPa%s, %s: equilibrium first, no bond breaks\n",
+                  "in-situ      sigma_H = %g MPa along %c, sigma_h = %g MPa, sigma_v = %g MPa%s, %s: equilibrium first%s, no bond breaks\n",
                   in_situ.sigma_H / 1e6, "xy"[in_situ.sigma_H_axis], in_situ.sigma_h / 1e6, in_situ.sigma_v / 1e6,
                   D == 2 ? " (out of plane)" : "",
-                  in_situ.faces == scene::InSituStress::Faces::platens ? "through rigid platens (low faces held)" : "as tractions on the faces");
+                  in_situ.faces == scene::InSituStress::Faces::platens ? "through rigid platens (low faces held)" : "as tractions on the faces",
+                  in_situ.start == scene::InSituStress::Start::uniform_strain ? " (from their uniform strain)" : "");
     out << line;
   }
   std::string fields;
@@ -273,7 +274,24 @@ Result run_dim(const scene::Scene& s, const Options& o) {
   }
   pd::record_outcomes(outcomes, pd::classify_interfaces<D>(m));
   outcomes_at_breakthrough = outcomes;
+  auto failed_bonds = [&] {  // directed
+    return static_cast<std::int64_t>(std::count_if(m.bonds.intact.begin(), m.bonds.intact.end(), [](std::uint8_t b) { return b != pd::bond_intact; }));
+  };
+  const std::int64_t failed_before_start = s.in_situ.enabled ? failed_bonds() : 0;
   p.start();
+  if (s.in_situ.enabled) {
+    // the in-situ stage holds every bond; those its equilibrium strains past their limit break now
+    const std::int64_t broken = (failed_bonds() - failed_before_start) / 2;
+    if (broken > 0) {
+      const double percent = 100.0 * double(2 * broken) / double(std::max<std::int64_t>(1, m.bonds.size()));
+      res.notes.push_back(fmt::format("in-situ stage: {} bonds ({:.3g}%) past their limit at its equilibrium broke at the start", broken, percent));
+      if (!o.quiet)
+        std::fprintf(stderr,
+                     "rift: warning: %lld bonds (%.3g%%) are past their limit at the in-situ equilibrium and broke at the start: the "
+                     "in-situ stresses are more than the material holds ([in_situ_stress] of %s)\n",
+                     static_cast<long long>(broken), percent, s.file.c_str());
+    }
+  }
   const auto loop_start = std::chrono::steady_clock::now();
   Progress progress(p.steps, s.solver.end_time, o.quiet);
   if (s.solver.kind == scene::SolverKind::explicit_dynamics) {

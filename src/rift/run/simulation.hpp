@@ -5,6 +5,7 @@
 #include "rift/pd/contact.hpp"
 #include "rift/pd/discretize.hpp"
 #include "rift/pd/dynamic_relaxation.hpp"
+#include "rift/pd/in_situ_strain.hpp"
 #include "rift/pd/forces.hpp"
 #include "rift/pd/velocity_verlet.hpp"
 #include "rift/run/time_step.hpp"
@@ -38,6 +39,10 @@ struct Simulation {
     pd::HeldBreaking<D> held(model);
     const auto initial_velocity = model.velocity;
     pd::DynamicRelaxation<D> dr(model);
+    if (in_situ.start == scene::InSituStress::Start::uniform_strain) {
+      pd::apply_in_situ_strain<D>(model, in_situ);
+      dr.measure_damping_from_start(true);
+    }
     auto r = dr.relax(model, loads, contact_ptr(), 0.0, in_situ.max_iterations, in_situ.tolerance);
     model.velocity = initial_velocity;
     return r;

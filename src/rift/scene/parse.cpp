@@ -451,7 +451,9 @@ void parse_in_situ_stress(R& root, Scene& s) {
     v.max_iterations = static_cast<int>(*n);
   }
   if (auto tol = r.number("tolerance")) v.tolerance = r.positive("tolerance", *tol);
-  r.finish({"sigma_H", "sigma_h", "sigma_v", "sigma_H_axis", "faces", "max_iterations", "tolerance"});
+  if (auto start = r.choice("start", {"reference", "uniform_strain"}))
+    v.start = *start == "uniform_strain" ? InSituStress::Start::uniform_strain : InSituStress::Start::reference;
+  r.finish({"sigma_H", "sigma_h", "sigma_v", "sigma_H_axis", "faces", "max_iterations", "tolerance", "start"});
 }
 
 void parse_initial_velocity(R& root, Scene& s) {

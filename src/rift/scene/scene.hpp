@@ -146,6 +146,9 @@ struct InSituStress {
   enum class Faces { tractions, platens } faces = Faces::tractions;
   int max_iterations = 50000;
   double tolerance = 1e-6;
+  // where the relaxation starts: the reference lattice, or the uniform strain of the far-field
+  // stresses (pd/in_situ_strain.hpp), which saves it the interior's share of the iterations
+  enum class Start { reference, uniform_strain } start = Start::reference;
   /// Stress tensor component along axis k (principal axes = coordinate axes).
   double principal(int k) const { return k == 2 ? sigma_v : (k == sigma_H_axis ? sigma_H : sigma_h); }
 };
