@@ -14,6 +14,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <cstring>
+#include <utility>
 #include <vector>
 
 #include "rift/pd/bond_slabs.hpp"
@@ -98,6 +99,55 @@ inline std::int64_t run_bond(const Bonds& b, const BondRun& run, std::size_t t) 
   return std::lower_bound(first, last, static_cast<std::int32_t>(run.j + static_cast<std::int32_t>(t))) - b.neighbor.begin();
 }
 
+/// Whether the run has a row that is not whole (`whole` from whole_rows); then alive[t] is 1 for
+/// its intact bonds and 0 for the others, for the kernels' Masked form.
+inline bool mask_run(const Bonds& b, const BondRun& run, const std::uint8_t* whole, double* alive) {
+  if (whole_run(whole + run.i, run.length)) return false;
+  for (std::size_t t = 0; t < run.length; ++t) alive[t] = b.intact[static_cast<std::size_t>(run_bond(b, run, t))] == bond_intact ? 1.0 : 0.0;
+  return true;
+}
+
+/// Bond t of a run as a row takes it: its ends i and j, its index k in i's row and its deformed
+/// vector y_j - y_i from the per-component positions x (positions_by_component).
+template <int D>
+struct RunBond {
+  std::size_t i, j;
+  std::int64_t k;
+  Vec<D> eta;
+};
+template <int D>
+RunBond<D> run_bond_at(const Bonds& b, const BondRun& run, std::size_t t, const std::array<double*, 3>& x) {
+  RunBond<D> bond{static_cast<std::size_t>(run.i) + t, static_cast<std::size_t>(run.j) + t, run_bond(b, run, t), {}};
+  for (int q = 0; q < D; ++q) bond.eta[q] = x[static_cast<std::size_t>(q)][bond.j] - x[static_cast<std::size_t>(q)][bond.i];
+  return bond;
+}
+
+/// The deformed vector (ex, ey, ez; ez = 0 in 2D) of bond t of a run from its ends' per-component
+/// positions (the lower ends' at a, the upper ends' at b); returns its squared length.
+template <int D>
+[[gnu::always_inline]] inline double run_bond_vector(const double* __restrict xa, const double* __restrict ya, const double* __restrict za,
+                                                     const double* __restrict xb, const double* __restrict yb, const double* __restrict zb,
+                                                     std::size_t t, double& ex, double& ey, double& ez) {
+  ex = xb[t] - xa[t], ey = yb[t] - ya[t], ez = 0.0;
+  double r2 = ex * ex + ey * ey;
+  if constexpr (D == 3) {
+    ez = zb[t] - za[t];
+    r2 += ez * ez;
+  }
+  return r2;
+}
+
+/// Notes bond k of row i broken by a pass: the bonds a pass breaks (i, k), and those across a crack
+/// (`crossed`), for what the pass does after its loop.
+inline void note_broken_bond(std::vector<std::pair<std::size_t, std::int64_t>>& broken,
+                             std::vector<std::pair<std::size_t, std::int64_t>>& crossing, std::size_t i, std::int64_t k, bool crossed) {
+#pragma omp critical(rift_broken_bonds)
+  {
+    broken.emplace_back(i, k);
+    if (crossed) crossing.emplace_back(i, k);
+  }
+}
+
 /// The particles' positions one array per component (the runs read them contiguously): the calling
 /// thread's buffers (pass_scratch slots 2 to 4), which the team reads through the pointers.
 template <int D>
@@ -149,6 +199,18 @@ void for_each_run_by_slabs(const BodyInfo& body, Run&& run) {
 }
 [[gnu::always_inline]] inline void lower_to_run_stretches(double* __restrict smallest, const double* __restrict s, std::size_t length) {
   for (std::size_t t = 0; t < length; ++t) smallest[t] = s[t] < smallest[t] ? s[t] : smallest[t];
+}
+
+/// What a run's pair forces g (per component) add to its ends: +g to the lower ends' forces, -g to
+/// the upper ends' (the fxa ... fzb of a kernel's arguments `a`).
+template <int D, class RunArguments>
+[[gnu::always_inline]] inline void add_pair_forces_to_run_ends(const RunArguments& a, const double (&g)[3][max_run_length]) {
+  add_to_run_ends(a.fxa, g[0], a.length);
+  add_to_run_ends(a.fya, g[1], a.length);
+  if constexpr (D == 3) add_to_run_ends(a.fza, g[2], a.length);
+  subtract_from_run_ends(a.fxb, g[0], a.length);
+  subtract_from_run_ends(a.fyb, g[1], a.length);
+  if constexpr (D == 3) subtract_from_run_ends(a.fzb, g[2], a.length);
 }
 
 }  // namespace rift::pd

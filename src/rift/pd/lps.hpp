@@ -82,11 +82,8 @@ void dilatation_runs(Model<D>& m, const BodyInfo& body, double* coupling, double
   const VectorIsa isa = vector_isa();
   // bond t of a run, as a row takes it
   auto settle = [&]<bool Wet>(const BondRun& run, std::size_t t) {
-    const std::size_t i = static_cast<std::size_t>(run.i) + t, j = static_cast<std::size_t>(run.j) + t;
-    const std::int64_t k = run_bond(b, run, t);
+    const auto [i, j, k, eta] = run_bond_at<D>(b, run, t, x);
     if (v.intact[k] != bond_intact) return;
-    Vec<D> eta;
-    for (int q = 0; q < D; ++q) eta[q] = x[q][j] - x[q][i];
     const FamilyOffset& family = v.families[run.family];
     const double xi = family.length;
     const double e = norm<D>(eta) - xi;
@@ -96,11 +93,7 @@ void dilatation_runs(Model<D>& m, const BodyInfo& body, double* coupling, double
     if constexpr (Wet) past = c.breakable && breaks_in_wet_rock<D>(wet, c.alpha, i, j, value, limit, crossed);
     if (c.breakable && past) {
       v.intact[k] = bond_broken;
-#pragma omp critical(rift_lps_broken)
-      {
-        broken.emplace_back(i, k);
-        if (crossed) crossing.emplace_back(i, k);
-      }
+      note_broken_bond(broken, crossing, i, k, crossed);
       return;
     }
     smallest[i] = std::min(smallest[i], value);
@@ -134,9 +127,7 @@ void dilatation_runs(Model<D>& m, const BodyInfo& body, double* coupling, double
     const FamilyOffset& family = v.families[run.family];
     alignas(64) double alive[max_run_length], weight_a[max_run_length], weight_b[max_run_length], correction_a[max_run_length],
         correction_b[max_run_length];
-    const bool masked = !whole_run(whole + i, length);
-    if (masked)
-      for (std::size_t t = 0; t < length; ++t) alive[t] = v.intact[run_bond(b, run, t)] == bond_intact ? 1.0 : 0.0;
+    const bool masked = mask_run(b, run, whole, alive);
     if constexpr (Corrected)
       for (std::size_t t = 0; t < length; ++t) {
         const BondFactors& own = v.factors[v.factor_row[i + t] + run.family];
@@ -218,11 +209,7 @@ void dilatation_pass(Model<D>& m, const BodyInfo& body, double* coupling, double
       if constexpr (Wet) past = c.breakable && breaks_in_wet_rock<D>(wet, c.alpha, i, j, value, limit, crossed);
       if (c.breakable && past) {
         b.intact[k] = bond_broken;
-#pragma omp critical(rift_lps_broken)
-        {
-          broken.emplace_back(i, k);
-          if (crossed) crossing.emplace_back(i, k);
-        }
+        note_broken_bond(broken, crossing, i, k, crossed);
         continue;
       }
       const double s = e * family.inverse_length;
@@ -321,11 +308,8 @@ void state_based_forces(Model<D>& m, const BodyInfo& body) {
   const VectorIsa isa = vector_isa();
   // bond t of a run, as a row takes it
   auto settle = [&](const BondRun& run, std::size_t t) {
-    const std::size_t i = static_cast<std::size_t>(run.i) + t, j = static_cast<std::size_t>(run.j) + t;
-    const std::int64_t k = run_bond(b, run, t);
+    const auto [i, j, k, eta] = run_bond_at<D>(b, run, t, x);
     if (b.intact[static_cast<std::size_t>(k)] != bond_intact) return;
-    Vec<D> eta;
-    for (int q = 0; q < D; ++q) eta[q] = x[q][j] - x[q][i];
     const double r = norm<D>(eta);
     const FamilyOffset& family = b.families[run.family];
     const double xi = family.length;
@@ -364,10 +348,7 @@ void state_based_forces(Model<D>& m, const BodyInfo& body) {
     const FamilyOffset& family = b.families[run.family];
     alignas(64) double alive[max_run_length], weight_a[max_run_length], weight_b[max_run_length], correction_a[max_run_length],
         correction_b[max_run_length];
-    const bool masked = !whole_run(whole + i, length);
-    if (masked)
-      for (std::size_t t = 0; t < length; ++t)
-        alive[t] = b.intact[static_cast<std::size_t>(run_bond(b, run, t))] == bond_intact ? 1.0 : 0.0;
+    const bool masked = mask_run(b, run, whole, alive);
     if constexpr (Corrected)
       for (std::size_t t = 0; t < length; ++t) {
         const BondFactors& own = b.factors[static_cast<std::size_t>(b.factor_row[i + t] + run.family)];

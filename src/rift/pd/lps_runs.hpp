@@ -44,12 +44,8 @@ template <int D, bool Corrected, bool Coupling, bool Shifted, bool Masked>
     double* __restrict stretch, double* __restrict past) {
   constexpr double none = std::numeric_limits<double>::max();
   for (std::size_t t = 0; t < length; ++t) {
-    const double ex = xb[t] - xa[t], ey = yb[t] - ya[t];
-    double r2 = ex * ex + ey * ey;
-    if constexpr (D == 3) {
-      const double ez = zb[t] - za[t];
-      r2 += ez * ez;
-    }
+    double ex, ey, ez;
+    const double r2 = run_bond_vector<D>(xa, ya, za, xb, yb, zb, t, ex, ey, ez);
     const double e = std::sqrt(r2) - bond_length;
     const double s = e * inverse_length;
     const double limit = limit_b[t] < limit_a[t] ? limit_b[t] : limit_a[t];
@@ -126,12 +122,8 @@ template <int D, bool Corrected, bool Viscous, bool Masked>
   const double omega_length = omega * bond_length;
   const double length_over_d = bond_length / D;  // e_d = e - theta |xi| / d, without a division per bond
   for (std::size_t t = 0; t < length; ++t) {
-    const double ex = xb[t] - xa[t], ey = yb[t] - ya[t];
-    double ez = 0.0, r2 = ex * ex + ey * ey;
-    if constexpr (D == 3) {
-      ez = zb[t] - za[t];
-      r2 += ez * ez;
-    }
+    double ex, ey, ez;
+    const double r2 = run_bond_vector<D>(xa, ya, za, xb, yb, zb, t, ex, ey, ez);
     const double r = std::sqrt(r2);
     const double e = r - bond_length;
     double dev_a = e - theta_a[t] * length_over_d, dev_b = e - theta_b[t] * length_over_d;
@@ -163,12 +155,7 @@ struct StateForceRunKernel {
                                                          a.coefficient_a, a.coefficient_b, a.theta_a, a.theta_b, a.alive, a.weight_a,
                                                          a.weight_b, a.correction_a, a.correction_b, a.back_a, a.back_b, a.lambda,
                                                          a.bond_length, a.omega, a.volume, g[0], g[1], g[2]);
-    add_to_run_ends(a.fxa, g[0], a.length);
-    add_to_run_ends(a.fya, g[1], a.length);
-    if constexpr (D == 3) add_to_run_ends(a.fza, g[2], a.length);
-    subtract_from_run_ends(a.fxb, g[0], a.length);
-    subtract_from_run_ends(a.fyb, g[1], a.length);
-    if constexpr (D == 3) subtract_from_run_ends(a.fzb, g[2], a.length);
+    add_pair_forces_to_run_ends<D>(a, g);
     return false;
   }
 };
@@ -199,12 +186,8 @@ template <int D, bool Corrected, bool Advance, bool Masked>
     double* __restrict qa, double* __restrict qb) {
   const double length_over_d = bond_length / D;  // e_d = e - theta |xi| / d, without a division per bond
   for (std::size_t t = 0; t < length; ++t) {
-    const double ex = xb[t] - xa[t], ey = yb[t] - ya[t];
-    double r2 = ex * ex + ey * ey;
-    if constexpr (D == 3) {
-      const double ez = zb[t] - za[t];
-      r2 += ez * ez;
-    }
+    double ex, ey, ez;
+    const double r2 = run_bond_vector<D>(xa, ya, za, xb, yb, zb, t, ex, ey, ez);
     const double e = std::sqrt(r2) - bond_length;
     const double ed_a = e - theta_a[t] * length_over_d, ed_b = e - theta_b[t] * length_over_d;
     const bool on = Masked ? alive[t] != 0.0 : true;

@@ -47,12 +47,8 @@ template <int D, bool Corrected, bool Shifted, bool Masked>
                                 double* __restrict past) {
   constexpr double none = std::numeric_limits<double>::max();
   for (std::size_t t = 0; t < length; ++t) {
-    const double ex = xb[t] - xa[t], ey = yb[t] - ya[t];
-    double ez = 0.0, r2 = ex * ex + ey * ey;
-    if constexpr (D == 3) {
-      ez = zb[t] - za[t];
-      r2 += ez * ez;
-    }
+    double ex, ey, ez;
+    const double r2 = run_bond_vector<D>(xa, ya, za, xb, yb, zb, t, ex, ey, ez);
     const double r = std::sqrt(r2);
     const double s = (r - bond_length) * inverse_length;
     double limit = limit_b[t] < limit_a[t] ? limit_b[t] : limit_a[t];
@@ -93,12 +89,7 @@ struct PmbRunKernel {
         a.length, a.xa, a.ya, a.za, a.xb, a.yb, a.zb, a.limit_a, a.limit_b, a.pore_a, a.pore_b, a.shift_scale, a.alive, a.factor,
         a.bond_length, a.inverse_length, a.coefficient, a.volume, g[0], g[1], g[2], stretch, past);
     if (a.breakable && may_break) return true;
-    add_to_run_ends(a.fxa, g[0], a.length);
-    add_to_run_ends(a.fya, g[1], a.length);
-    if constexpr (D == 3) add_to_run_ends(a.fza, g[2], a.length);
-    subtract_from_run_ends(a.fxb, g[0], a.length);
-    subtract_from_run_ends(a.fyb, g[1], a.length);
-    if constexpr (D == 3) subtract_from_run_ends(a.fzb, g[2], a.length);
+    add_pair_forces_to_run_ends<D>(a, g);
     lower_to_run_stretches(a.smallest_a, stretch, a.length);
     lower_to_run_stretches(a.smallest_b, stretch, a.length);
     return false;
@@ -137,11 +128,8 @@ void pmb_forces(Model<D>& m, const BodyInfo& body) {
   const VectorIsa isa = vector_isa();
   // bond t of a run, one at a time, as a row would take it: for a run that may break a bond
   auto settle = [&]<bool Wet, bool Corrected>(const BondRun& run, std::size_t t) {
-    const std::size_t i = static_cast<std::size_t>(run.i) + t, j = static_cast<std::size_t>(run.j) + t;
-    const std::int64_t k = run_bond(b, run, t);
+    const auto [i, j, k, eta] = run_bond_at<D>(b, run, t, x);
     if (v.intact[k] != bond_intact) return;
-    Vec<D> eta;
-    for (int q = 0; q < D; ++q) eta[q] = x[q][j] - x[q][i];
     const double r = norm<D>(eta);
     const FamilyOffset& family = v.families[run.family];
     const double s = (r - family.length) * family.inverse_length;
@@ -150,11 +138,7 @@ void pmb_forces(Model<D>& m, const BodyInfo& body) {
     if constexpr (Wet) past = breakable && breaks_in_wet_rock<D>(wet, c.alpha, i, j, s, limit, crossed);
     if (breakable && past) {
       v.intact[k] = bond_broken;
-#pragma omp critical(rift_pmb_broken)
-      {
-        broken.emplace_back(i, k);
-        if (crossed) crossing.emplace_back(i, k);
-      }
+      note_broken_bond(broken, crossing, i, k, crossed);
       return;
     }
     smallest[i] = std::min(smallest[i], s);
@@ -183,9 +167,7 @@ void pmb_forces(Model<D>& m, const BodyInfo& body) {
     const FamilyOffset& family = v.families[run.family];
     alignas(64) double alive[max_run_length], factor[max_run_length];
     // the bonds' states (in their lower ends' rows) only where a row is not whole (bond_runs.hpp)
-    const bool masked = !whole_run(whole + i, length);
-    if (masked)
-      for (std::size_t t = 0; t < length; ++t) alive[t] = v.intact[run_bond(b, run, t)] == bond_intact ? 1.0 : 0.0;
+    const bool masked = mask_run(b, run, whole, alive);
     if constexpr (Corrected)
       for (std::size_t t = 0; t < length; ++t)
         factor[t] = 0.5f * (v.factors[v.factor_row[i + t] + run.family].correction +

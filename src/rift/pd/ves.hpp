@@ -71,8 +71,7 @@ void ves_dilatation(Model<D>& m, const BodyInfo& body, double dt) {
   const VectorIsa isa = vector_isa();
   // bond t of a run, as a row takes it
   auto settle = [&](const BondRun& run, std::size_t t) {
-    const std::size_t i = static_cast<std::size_t>(run.i) + t, j = static_cast<std::size_t>(run.j) + t;
-    const std::int64_t k = run_bond(b, run, t);
+    const auto [i, j, k, eta] = run_bond_at<D>(b, run, t, x);
     if (b.intact[static_cast<std::size_t>(k)] != bond_intact) return;
     // advances the history in slot h with deviatoric extension ed (in double, stored in single
     // precision) and returns its back extension
@@ -84,8 +83,6 @@ void ves_dilatation(Model<D>& m, const BodyInfo& body, double dt) {
       }
       return b.back_extension[h];
     };
-    Vec<D> eta;
-    for (int q = 0; q < D; ++q) eta[q] = x[q][j] - x[q][i];
     const FamilyOffset& family = b.families[run.family];
     const double xi = family.length;
     const double e = norm<D>(eta) - xi;
@@ -104,10 +101,7 @@ void ves_dilatation(Model<D>& m, const BodyInfo& body, double dt) {
     }
     const FamilyOffset& family = b.families[run.family];
     alignas(64) double alive[max_run_length], correction_a[max_run_length], correction_b[max_run_length];
-    const bool masked = !whole_run(whole + i, length);
-    if (masked)
-      for (std::size_t t = 0; t < length; ++t)
-        alive[t] = b.intact[static_cast<std::size_t>(run_bond(b, run, t))] == bond_intact ? 1.0 : 0.0;
+    const bool masked = mask_run(b, run, whole, alive);
     if constexpr (Corrected)
       for (std::size_t t = 0; t < length; ++t) {
         correction_a[t] = b.factors[static_cast<std::size_t>(b.factor_row[i + t] + run.family)].correction;
