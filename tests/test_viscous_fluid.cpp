@@ -89,6 +89,27 @@ TEST(ViscousFluid, FreelyFlowingFluidIsTheLumpedFluid) {
   EXPECT_NEAR(free_flowing.held / expected, 1.0, 1e-9);
 }
 
+// The injection system's fluid (injection_system_volume = V_s, here 1.5e-8 m^3, about the cavity's
+// own volume) at the borehole's pressure stores V_s p / K_f of what was pumped, in both fluids: the
+// viscous fluid flowing freely is still the lumped one (1e-4), its nodes hold (V0 + V_s) + Q t (1e-9),
+// and the lumped pressure falls as the mass balance says, K_f (V0 + V_s + Q t) / (V + V_s) - K_f with
+// V the cavity of the run (1e-9 of p), below the pressure without the system.
+TEST(ViscousFluid, InjectionSystemVolumeStoresItsShareInBothFluids) {
+  const double system = 1.5e-8, K_f = 2e8, Q_t = 2e-10;
+  const std::string key = "injection_system_volume = 1.5e-8\n";
+  const Injected lumped = inject(key), free_flowing = inject(key + "fluid_viscosity = 1e-9"), without = inject("");
+  auto scene = rift::scene::parse_string(borehole_with_pre_crack(key), "viscous.toml");
+  rift::run::Simulation<2> sim(scene);
+  const double V0 = sim.model.fluid_network.reference_volume[1];
+  std::printf("V0 = %.4g m^3; with V_s = %.3g m^3: lumped p = %.5g MPa, free-flowing %.5g MPa; without: %.5g MPa\n", V0, system,
+              lumped.pressure / 1e6, free_flowing.pressure / 1e6, without.pressure / 1e6);
+  EXPECT_NEAR(free_flowing.pressure / lumped.pressure, 1.0, 1e-4);
+  EXPECT_NEAR(free_flowing.held / (V0 + system + Q_t), 1.0, 1e-9);
+  const double expected = K_f * ((V0 + system + Q_t) / (lumped.volume + system) - 1.0);
+  EXPECT_NEAR(lumped.pressure / expected, 1.0, 1e-9);
+  EXPECT_LT(lumped.pressure, 0.8 * without.pressure);
+}
+
 // A node whose bonds have all shut (no volume) gives what it held to its open neighbour of largest
 // volume, or to the borehole's node (0) where none is open; the fluid held in all is unchanged.
 TEST(ViscousFluid, AShutNodeSqueezesItsFluidIntoItsOpenNeighbour) {

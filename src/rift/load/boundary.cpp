@@ -41,9 +41,10 @@ Boundaries<D>::Boundaries(const scene::Scene& s, pd::Model<D>& m) {
     applied_.push_back(std::move(a));
   }
   if (s.in_situ.enabled) add_in_situ_tractions(s.in_situ, m);
-  for (const auto& c : s.cracks) pressure_sources_.push_back({c.pressure, c.pressure_time, false, 0.0, 0.0});
+  for (const auto& c : s.cracks) pressure_sources_.push_back({c.pressure, c.pressure_time, false, 0.0, 0.0, 0.0});
   for (const auto& b : s.boreholes)
-    pressure_sources_.push_back({b.pressure, b.pressure_time, b.injection_rate.has_value(), b.injection_rate.value_or(0.0), b.fluid_bulk_modulus});
+    pressure_sources_.push_back({b.pressure, b.pressure_time, b.injection_rate.has_value(), b.injection_rate.value_or(0.0), b.fluid_bulk_modulus,
+                                 b.injection_system_volume});
   // a viscous injected fluid keeps its nodes' fluid on the model (pd/viscous_fluid.hpp)
   m.fluid_network.viscous.assign(pressure_sources_.size(), {});
   for (std::size_t h = 0; h < s.boreholes.size(); ++h)
@@ -127,18 +128,18 @@ void Boundaries<D>::apply_body_forces(pd::Model<D>& m, double t) const {
       continue;
     }
     if (fluid.flows(c)) {  // flow along the cracks by the cubic law
-      fluid.pressure[c] = pd::viscous_fluid_pressure<D>(m, c, t, src.injection_rate, src.fluid_bulk_modulus, src.pressure);
+      fluid.pressure[c] = pd::viscous_fluid_pressure<D>(m, c, t, src.injection_rate, src.fluid_bulk_modulus, src.pressure, src.system_volume);
       continue;
     }
-    // mass balance of a lumped compressible fluid: the fluid's volume at zero pressure, V0 (1 + p0 / K_f)
-    // + Q t, less what escaped, fills the cavity V at p = K_f (V_fluid / V - 1); no tension (the fluid
-    // cavitates). Open to the outer surface, the cavity keeps the fluid it holds at zero pressure and
-    // the rest escapes.
-    const double reference = fluid.reference_volume[c];
+    // mass balance of a lumped compressible fluid: the fluid's volume at zero pressure, (V0 + V_s) (1 +
+    // p0 / K_f) + Q t, less what escaped, fills the cavity V and the injection system's V_s at p = K_f
+    // (V_fluid / (V + V_s) - 1); no tension (the fluid cavitates). Open to the outer surface, the
+    // cavity keeps the fluid it holds at zero pressure and the rest escapes.
+    const double reference = fluid.reference_volume[c] + src.system_volume;
     const double volume = reference + pd::cavity_volume_change<D>(m, static_cast<int>(c));
     const double injected = reference * (1.0 + src.pressure / src.fluid_bulk_modulus) + src.injection_rate * t;
     if (c < fluid.vented.size() && fluid.vented[c]) fluid.escaped_volume[c] = std::max(fluid.escaped_volume[c], injected - volume);
-    fluid.cavity_volume[c] = volume;
+    fluid.cavity_volume[c] = volume - src.system_volume;
     fluid.pressure[c] = std::max(0.0, src.fluid_bulk_modulus * ((injected - fluid.escaped_volume[c]) / volume - 1.0));
   }
   pd::add_crack_pressure<D>(m, fluid.pressure);

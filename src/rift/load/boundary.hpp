@@ -47,6 +47,7 @@ class Boundaries {
     scene::TimeFunction time;
     bool injected = false;
     double injection_rate = 0.0, fluid_bulk_modulus = 0.0;
+    double system_volume = 0.0;  // the injection system's fluid at the source's pressure, m^3
   };
   std::vector<PressureSource> pressure_sources_;  // cracks, then boreholes
   std::vector<std::string> reaction_names_;

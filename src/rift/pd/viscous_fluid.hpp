@@ -6,7 +6,8 @@
 // sites) and the faces of a dry pre-crack that starts in it (a notch), which share its pressure,
 // and every other particle the fluid reaches. A node holds half the crack volume of each flow bond
 // it ends (network_flow.hpp: w per unit crack area), the borehole's node also the borehole's own
-// volume (cavity_volume_change, wall_only). The bonds' volumes are scaled so that together they are
+// volume (cavity_volume_change, wall_only) and the injection system's (a fixed volume at its
+// pressure). The bonds' volumes are scaled so that together they are
 // the work conjugate of the fluid's load on the network (the lumped fluid's cavity volume less the
 // borehole's): the openings say where the fluid is, the conjugate how much room there is. With it
 // the fluid's work p dV is the work of its load on the rock, so rock and fluid relax together as one
@@ -63,14 +64,15 @@ inline void squeeze_out_closed_nodes(const std::vector<FlowBond>& bonds, const s
 /// node holds to its trial state, and returns the pressure in the borehole. A call at a later time
 /// than the last first stores the last call's state as the end of the previous load step.
 template <int D>
-double viscous_fluid_pressure(Model<D>& m, std::size_t s, double t, double injection_rate, double bulk_modulus, double initial_pressure) {
+double viscous_fluid_pressure(Model<D>& m, std::size_t s, double t, double injection_rate, double bulk_modulus, double initial_pressure,
+                              double system_volume = 0.0) {
   FluidNetwork& f = m.fluid_network;
   ViscousFluid& v = f.viscous[s];
   const std::size_t n = m.size();
-  if (!v.started) {  // the borehole holds V0 (1 + p0 / K_f) at t = 0
+  if (!v.started) {  // the borehole and the injection system hold (V0 + V_s) (1 + p0 / K_f) at t = 0
     v.started = true;
     v.stored_time = v.trial_time = 0.0;
-    v.stored_inlet = v.trial_inlet = f.reference_volume[s] * (1.0 + initial_pressure / bulk_modulus);
+    v.stored_inlet = v.trial_inlet = (f.reference_volume[s] + system_volume) * (1.0 + initial_pressure / bulk_modulus);
   }
   if (v.stored.size() != n) v.stored.assign(n, 0.0), v.trial.assign(n, 0.0);
   if (t > v.trial_time) {  // a new load step: the last state is the previous one's end
@@ -117,7 +119,7 @@ double viscous_fluid_pressure(Model<D>& m, std::size_t s, double t, double injec
       [&](std::size_t, std::int64_t k, std::size_t j) { return node[j] >= 0 && f.dry[w.source[static_cast<std::size_t>(k)]]; });
   std::vector<double> volume(nodes, 0.0);
   const double borehole_change = cavity_volume_change<D>(m, static_cast<int>(s), true);
-  volume[0] = f.reference_volume[s] + borehole_change;
+  volume[0] = f.reference_volume[s] + system_volume + borehole_change;
   // the bonds' volumes, scaled to the work conjugate of the network's load (see the top)
   double opened = 0.0;
   for (const auto& b : bonds) opened += b.volume;
@@ -191,7 +193,7 @@ double viscous_fluid_pressure(Model<D>& m, std::size_t s, double t, double injec
   if (s < f.cavity_volume.size()) {
     double total = 0.0;
     for (double x : volume) total += x;
-    f.cavity_volume[s] = total;
+    f.cavity_volume[s] = total - system_volume;
   }
   return p[0];
 }

@@ -386,13 +386,14 @@ void parse_boreholes(R& root, Scene& s) {
       b.injection_rate = r.non_negative("injection_rate", *q);
       b.fluid_bulk_modulus = r.positive("fluid_bulk_modulus", r.required_number("fluid_bulk_modulus", "bulk modulus of the injected fluid, Pa"));
       b.fluid_viscosity = r.non_negative("fluid_viscosity", r.number("fluid_viscosity", 0.0));
+      b.injection_system_volume = r.non_negative("injection_system_volume", r.number("injection_system_volume", 0.0));
       if (r.has("time"))
         r.fail("time", "with injection_rate the pressure follows from the injected volume; `pressure` is its value at t = 0 and takes no time function");
     } else {
-      for (const char* key : {"fluid_bulk_modulus", "fluid_viscosity"})
+      for (const char* key : {"fluid_bulk_modulus", "fluid_viscosity", "injection_system_volume"})
         if (r.has(key)) r.fail(key, "only with injection_rate (the pressure is prescribed otherwise)");
     }
-    r.finish({"region", "pressure", "time", "injection_rate", "fluid_bulk_modulus", "fluid_viscosity"});
+    r.finish({"region", "pressure", "time", "injection_rate", "fluid_bulk_modulus", "fluid_viscosity", "injection_system_volume"});
     s.boreholes.push_back(b);
   });
 }

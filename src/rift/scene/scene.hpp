@@ -128,6 +128,10 @@ struct Borehole {
   /// borehole and every crack joined to it); above 0 the fluid flows along the cracks by the cubic
   /// law (pd/viscous_fluid.hpp).
   double fluid_viscosity = 0.0;
+  /// Fluid in the injection system (pump, line) at the borehole's pressure, m^3 (2D: its share of
+  /// the modelled thickness): its compliance V_s / K_f stores fluid as the pressure rises and gives
+  /// it back as the pressure falls (a laboratory test's breakdown runs on it).
+  double injection_system_volume = 0.0;
 };
 
 /// Peridynamics: the far-field principal stresses of the rock (Pa, compression negative), applied
