@@ -23,6 +23,9 @@ class DynamicRelaxation {
   /// Relax to equilibrium for the loads at time t (positions of displacement BCs set first).
   RelaxationResult relax(Model<D>& m, const load::Boundaries<D>& loads, Contact<D>* contact, double t,
                          int max_iterations, double tolerance);
+  /// Damping from Rayleigh's quotient of the displacement since the start of each relax call
+  /// instead of since the reference state (in_situ_strain.hpp: a start already near equilibrium).
+  void measure_damping_from_start(bool on) { damping_from_start_ = on; }
   /// Quasi-static growth: relax with every bond held, break the bonds past their limits at that
   /// equilibrium, and relax again, until an equilibrium breaks nothing (or max_passes equilibria;
   /// then converged is false).
@@ -30,9 +33,6 @@ class DynamicRelaxation {
   /// pressure, say) have not yet found the deformation they belong to. The passes stop once an
   /// injected fluid breaks through to the outer surface: a laboratory test ends there, its pressure
   /// lost, and the bonds keep the crack it had then (what a cut block shows).
-  /// Damping from Rayleigh's quotient of the displacement since the start of each relax call
-  /// instead of since the reference state (in_situ_strain.hpp: a start already near equilibrium).
-  void measure_damping_from_start(bool on) { damping_from_start_ = on; }
   RelaxationResult relax_breaking_at_equilibrium(Model<D>& m, const load::Boundaries<D>& loads, Contact<D>* contact, double t,
                                                  int max_iterations, double tolerance, int max_passes);
 
