@@ -59,10 +59,7 @@ Boundaries<D>::Boundaries(const scene::Scene& s, pd::Model<D>& m) {
 
 template <int D>
 void Boundaries<D>::add_in_situ_tractions(const scene::InSituStress& in_situ, pd::Model<D>& m) {
-  Vec<D> lo, hi;
-  for (int k = 0; k < D; ++k) lo[k] = 1e300, hi[k] = -1e300;
-  for (const auto& x : m.reference_position)
-    for (int k = 0; k < D; ++k) lo[k] = std::min(lo[k], x[k]), hi[k] = std::max(hi[k], x[k]);
+  const auto [lo, hi] = m.reference_bounds();
   // the outermost row of particles on each face carries sigma . n over its depth (one spacing);
   // between platens (pd/platens.hpp) the low face's row is held along the axis and the high face's
   // row moves as one plate under the same load

@@ -174,16 +174,6 @@ RelaxationResult DynamicRelaxation<D>::relax(Model<D>& m, const load::Boundaries
 }
 
 namespace {
-// bonds and interface bonds no longer intact
-template <int D>
-std::size_t failed_bonds(const Model<D>& m) {
-  std::size_t failed = 0;
-  const auto& intact = m.bonds.intact;
-#pragma omp parallel for if(rift::parallel::worth_a_team(intact.size())) schedule(static) reduction(+ : failed)
-  for (std::size_t k = 0; k < intact.size(); ++k) failed += intact[k] != bond_intact;
-  return failed;
-}
-
 // fluid sources that have reached the outer surface so far
 template <int D>
 std::size_t broken_through_sources(const Model<D>& m) {

@@ -116,11 +116,21 @@ double stable_time_step(const Model<D>& m) {
   return dt;
 }
 
+template <int D>
+std::size_t failed_bonds(const Model<D>& m) {
+  std::size_t failed = 0;
+  const auto& intact = m.bonds.intact;
+#pragma omp parallel for if(rift::parallel::worth_a_team(intact.size())) schedule(static) reduction(+ : failed)
+  for (std::size_t k = 0; k < intact.size(); ++k) failed += intact[k] != bond_intact;
+  return failed;
+}
+
 #define RIFT_INSTANTIATE(D)                                               \
   template void compute_forces<D>(Model<D>&, Contact<D>*, double);        \
   template void update_damage<D>(Model<D>&);                              \
   template double strain_energy_density<D>(const Model<D>&, std::size_t); \
   template EnergySummary summarize<D>(const Model<D>&, bool);             \
+  template std::size_t failed_bonds<D>(const Model<D>&);                  \
   template double stable_time_step<D>(const Model<D>&);
 RIFT_INSTANTIATE(2)
 RIFT_INSTANTIATE(3)

@@ -42,6 +42,10 @@ struct EnergySummary {
 template <int D>
 EnergySummary summarize(const Model<D>& m, bool strain_energy = true);
 
+/// Directed bonds no longer intact (broken, and failed interface bonds).
+template <int D>
+std::size_t failed_bonds(const Model<D>& m);
+
 /// Stable time step (Silling and Askari 2005, eq. 29): dt < sqrt(2 rho / sum_j V_j C_ij),
 /// C_ij = c / |xi| of the PMB body with the same P-wave modulus; minimum over particles.
 template <int D>

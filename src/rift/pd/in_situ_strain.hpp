@@ -7,9 +7,6 @@
 // Displacements count from the lowest lattice coordinate on each axis, which a platen holds
 // (platens.hpp); a component that a boundary condition constrains keeps its position.
 #pragma once
-#include <algorithm>
-#include <limits>
-
 #include "rift/pd/model.hpp"
 #include "rift/scene/scene.hpp"
 
@@ -29,10 +26,7 @@ Vec<D> in_situ_strain(const MaterialConstants& c, const scene::InSituStress& s) 
 /// Moves every particle to the uniform in-situ strain of its body.
 template <int D>
 void apply_in_situ_strain(Model<D>& m, const scene::InSituStress& s) {
-  Vec<D> low;
-  for (int k = 0; k < D; ++k) low[k] = std::numeric_limits<double>::max();
-  for (const auto& x : m.reference_position)
-    for (int k = 0; k < D; ++k) low[k] = std::min(low[k], x[k]);
+  const Vec<D> low = m.reference_bounds()[0];
   for (const auto& body : m.bodies) {
     if (!(body.constants.shear_modulus > 0.0)) continue;
     const Vec<D> eps = in_situ_strain<D>(body.constants, s);

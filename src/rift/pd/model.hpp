@@ -2,6 +2,8 @@
 // constants per body. Bodies occupy contiguous particle ranges, so kernels dispatch on the model
 // once per body and run tight loops inside.
 #pragma once
+#include <algorithm>
+#include <array>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -58,6 +60,14 @@ struct Model {
   std::size_t size() const { return position.size(); }
   const MaterialConstants& constants_of(std::size_t i) const { return bodies[body[i]].constants; }
   Vec<D> displacement(std::size_t i) const { return position[i] - reference_position[i]; }
+  /// The lowest and highest reference coordinate on each axis (the block's faces).
+  std::array<Vec<D>, 2> reference_bounds() const {
+    std::array<Vec<D>, 2> b;
+    for (int k = 0; k < D; ++k) b[0][k] = 1e300, b[1][k] = -1e300;
+    for (const auto& x : reference_position)
+      for (int k = 0; k < D; ++k) b[0][k] = std::min(b[0][k], x[k]), b[1][k] = std::max(b[1][k], x[k]);
+    return b;
+  }
   static constexpr std::size_t bytes_per_particle() {
     return sizeof(Vec<D>) * 5 + sizeof(double) * 7 + sizeof(std::uint32_t) + sizeof(std::uint8_t);  // the fields above
   }

@@ -274,14 +274,11 @@ Result run_dim(const scene::Scene& s, const Options& o) {
   }
   pd::record_outcomes(outcomes, pd::classify_interfaces<D>(m));
   outcomes_at_breakthrough = outcomes;
-  auto failed_bonds = [&] {  // directed
-    return static_cast<std::int64_t>(std::count_if(m.bonds.intact.begin(), m.bonds.intact.end(), [](std::uint8_t b) { return b != pd::bond_intact; }));
-  };
-  const std::int64_t failed_before_start = s.in_situ.enabled ? failed_bonds() : 0;
+  const std::size_t failed_before_start = s.in_situ.enabled ? pd::failed_bonds<D>(m) : 0;
   p.start();
   if (s.in_situ.enabled) {
     // the in-situ stage holds every bond; those its equilibrium strains past their limit break now
-    const std::int64_t broken = (failed_bonds() - failed_before_start) / 2;
+    const auto broken = static_cast<std::int64_t>((pd::failed_bonds<D>(m) - failed_before_start) / 2);
     if (broken > 0) {
       const double percent = 100.0 * double(2 * broken) / double(std::max<std::int64_t>(1, m.bonds.size()));
       res.notes.push_back(fmt::format("in-situ stage: {} bonds ({:.3g}%) past their limit at its equilibrium broke at the start", broken, percent));
