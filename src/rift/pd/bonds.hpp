@@ -80,6 +80,12 @@ struct Bonds {
   // neighbour is missing: 2% of the slots at the thesis' size, 8% on the 41^3 bench cube).
   static constexpr std::size_t history_block = 256;
   std::vector<float> deviatoric_extension, back_extension;
+  // VES only, per particle i: over the intact bonds of its row, the sums of g omega |xi| V times i's
+  // stored deviatoric and back extensions, and of g omega |xi|^2 V (g the surface correction), and
+  // how many bonds they were taken over (-1: not yet). P_i of the next step follows from them
+  // without a pass over the history (ves.hpp viscous_coupling).
+  std::vector<double> deviatoric_sum, back_sum, intact_weighted_volume;
+  std::vector<std::int32_t> summed_bonds;
 
   std::int64_t size() const { return static_cast<std::int64_t>(neighbor.size()); }
   BondView view() {
@@ -103,7 +109,9 @@ struct Bonds {
     if (neighbor.empty()) return 0.0;
     const double per_bond = sizeof(std::int32_t) + sizeof(std::uint16_t) + sizeof(std::uint8_t);
     const double tables = double(factors.size() * sizeof(BondFactors) + families.size() * sizeof(FamilyOffset) +
-                                 (back_extension.size() + deviatoric_extension.size()) * sizeof(float));
+                                 (back_extension.size() + deviatoric_extension.size()) * sizeof(float) +
+                                 (deviatoric_sum.size() + back_sum.size() + intact_weighted_volume.size()) * sizeof(double) +
+                                 summed_bonds.size() * sizeof(std::int32_t));
     return per_bond + tables / double(neighbor.size());
   }
 };

@@ -40,8 +40,8 @@ void compute_forces(Model<D>& m, Contact<D>* contact, double history_dt) {
       if (c.influence == I::constant) state_based_forces<D, I::constant, false>(m, body);
       else state_based_forces<D, I::inverse_distance, false>(m, body);
     } else if (c.model == scene::ModelKind::ves) {
-      if (c.influence == I::constant) state_based_forces<D, I::constant, true>(m, body);
-      else state_based_forces<D, I::inverse_distance, true>(m, body);
+      if (c.influence == I::constant) state_based_forces<D, I::constant, true>(m, body, history_dt);
+      else state_based_forces<D, I::inverse_distance, true>(m, body, history_dt);
     }
   }
   add_interface_contact<D>(m, history_dt > 0.0);  // failed bonds across pre-existing fractures

@@ -25,6 +25,7 @@
 #include "rift/pd/lps_runs.hpp"
 #include "rift/pd/model.hpp"
 #include "rift/pd/normal_stress_failure.hpp"
+#include "rift/pd/viscous_step.hpp"
 #include "rift/parallel/team.hpp"
 
 namespace rift::pd {
@@ -270,22 +271,24 @@ void lps_dilatation(Model<D>& m, const BodyInfo& body) {
 }
 
 /// Second pass of the LPS and of its viscoelastic variant (ves.hpp, Viscous: the deviatoric
-/// extension of each end less lambda times its back extension), each bond once (bond_slabs.hpp):
-/// the pair force density (t_i<j> + t_j<i>) V along the deformed bond, on i and, opposite, on j.
+/// extension of each end less lambda times its back extension, which first advances over
+/// history_dt, viscous_step.hpp; 0 holds it), each bond once (bond_slabs.hpp): the pair force
+/// density (t_i<j> + t_j<i>) V along the deformed bond, on i and, opposite, on j.
 template <int D, scene::Influence Omega, bool Viscous, bool Corrected>
-void state_based_forces(Model<D>& m, const BodyInfo& body);
+void state_based_forces(Model<D>& m, const BodyInfo& body, double history_dt);
 
 template <int D, scene::Influence Omega, bool Viscous>
-void state_based_forces(Model<D>& m, const BodyInfo& body) {
-  if (body.constants.surface_correction) state_based_forces<D, Omega, Viscous, true>(m, body);
-  else state_based_forces<D, Omega, Viscous, false>(m, body);
+void state_based_forces(Model<D>& m, const BodyInfo& body, double history_dt = 0.0) {
+  if (body.constants.surface_correction) state_based_forces<D, Omega, Viscous, true>(m, body, history_dt);
+  else state_based_forces<D, Omega, Viscous, false>(m, body, history_dt);
 }
 
 template <int D, scene::Influence Omega, bool Viscous, bool Corrected>
-void state_based_forces(Model<D>& m, const BodyInfo& body) {
+void state_based_forces(Model<D>& m, const BodyInfo& body, double history_dt) {
   const auto& c = body.constants;
-  const Bonds& b = m.bonds;
+  Bonds& b = m.bonds;
   const double horizon = c.horizon, kappa = c.kappa, a_dev = c.lps_deviatoric_coefficient(), lambda = c.viscous_fraction;
+  const ViscousStep step = Viscous ? ViscousStep(history_dt, c.relaxation_time) : ViscousStep();
   // bonds join particles of one body (bodies meet through contact only). Per particle, one array per
   // quantity (the runs read them contiguously; bond_runs.hpp): the calling thread's buffers, which
   // the team reads and writes through these pointers
@@ -317,9 +320,15 @@ void state_based_forces(Model<D>& m, const BodyInfo& body) {
     const double omega = influence(Omega, xi, horizon);
     double dev_i = e - theta[i] * (xi / D), dev_j = e - theta[j] * (xi / D);  // as the runs (lps_runs.hpp)
     if constexpr (Viscous) {
-      const std::size_t h = history_index(body, i, run.family, 0);
-      dev_i -= lambda * b.back_extension[h];
-      dev_j -= lambda * b.back_extension[mirror_history_slot(h)];
+      const std::size_t h_i = history_index(body, i, run.family, 0), h_j = mirror_history_slot(h_i);
+      if (step.advance)
+        for (const auto& [h, dev] : {std::pair{h_i, dev_i}, std::pair{h_j, dev_j}}) {
+          b.back_extension[h] = next_back_extension(b.deviatoric_extension[h], b.back_extension[h], dev, step.one_minus_decay,
+                                                    step.decay, step.beta);
+          b.deviatoric_extension[h] = static_cast<float>(dev);
+        }
+      dev_i -= lambda * b.back_extension[h_i];
+      dev_j -= lambda * b.back_extension[h_j];
     }
     double t_i, t_j;
     if constexpr (Corrected) {
@@ -367,13 +376,20 @@ void state_based_forces(Model<D>& m, const BodyInfo& body) {
     a.weight_a = weight_a, a.weight_b = weight_b, a.correction_a = correction_a, a.correction_b = correction_b;
     if constexpr (Viscous) {
       const std::size_t h = history_index(body, i, run.family, 0);  // both directions contiguous (bonds.hpp)
+      a.deviatoric_a = b.deviatoric_extension.data() + h, a.deviatoric_b = b.deviatoric_extension.data() + mirror_history_slot(h);
       a.back_a = b.back_extension.data() + h, a.back_b = b.back_extension.data() + mirror_history_slot(h), a.lambda = lambda;
+      a.one_minus_decay = step.one_minus_decay, a.decay = step.decay, a.beta = step.beta;
     }
     a.bond_length = family.length, a.omega = influence(Omega, family.length, horizon), a.volume = family.volume;
-    if (masked)
-      vector_clone<StateForceRunKernel<D, Corrected, Viscous, true>, StateForceRun>(isa)(a);
-    else
-      vector_clone<StateForceRunKernel<D, Corrected, Viscous, false>, StateForceRun>(isa)(a);
+    auto kernel = [&]<bool Advance>() {
+      if (masked)
+        vector_clone<StateForceRunKernel<D, Corrected, Viscous, Advance, true>, StateForceRun>(isa)(a);
+      else
+        vector_clone<StateForceRunKernel<D, Corrected, Viscous, Advance, false>, StateForceRun>(isa)(a);
+    };
+    if constexpr (Viscous)
+      if (step.advance) return kernel.template operator()<true>();
+    kernel.template operator()<false>();
   });
 #pragma omp parallel for if(rift::parallel::worth_a_team(body.last - body.first)) schedule(static)
   for (std::size_t j = body.first; j < body.last; ++j)

@@ -11,6 +11,7 @@
 
 #include "rift/core/vector_isa.hpp"
 #include "rift/pd/bond_runs.hpp"
+#include "rift/pd/viscous_step.hpp"
 
 namespace rift::pd {
 
@@ -96,29 +97,34 @@ struct DilatationRunKernel {
 
 /// One run of the force pass: the lower ends' arrays start at a, the upper ends' at b (positions,
 /// pressure factors p, a = A_dev / m, dilatations theta); `alive` (Masked); Corrected: b_ij, b_ji, g_i,
-/// g_j; Viscous: the back extensions of both directions (ves.hpp) and lambda.
+/// g_j; Viscous: the histories of both directions (ves.hpp; bonds.hpp), lambda and the step's
+/// coefficients (viscous_step.hpp).
 struct StateForceRun {
   std::size_t length = 0;
   const double *xa = nullptr, *ya = nullptr, *za = nullptr, *xb = nullptr, *yb = nullptr, *zb = nullptr;
   const double *pressure_a = nullptr, *pressure_b = nullptr, *coefficient_a = nullptr, *coefficient_b = nullptr;
   const double *theta_a = nullptr, *theta_b = nullptr, *alive = nullptr;
   const double *weight_a = nullptr, *weight_b = nullptr, *correction_a = nullptr, *correction_b = nullptr;
-  const float *back_a = nullptr, *back_b = nullptr;
+  float *deviatoric_a = nullptr, *deviatoric_b = nullptr, *back_a = nullptr, *back_b = nullptr;
   double bond_length = 0.0, omega = 0.0, volume = 0.0, lambda = 0.0;
+  double one_minus_decay = 0.0, decay = 1.0, beta = 0.0;
   double *fxa = nullptr, *fya = nullptr, *fza = nullptr, *fxb = nullptr, *fyb = nullptr, *fzb = nullptr;
 };
 
 /// The pair force densities (t_i<j> + t_j<i>) V / |y| times the deformed bond, per component, of a
-/// run's bonds (lps.hpp state_based_forces).
-template <int D, bool Corrected, bool Viscous, bool Masked>
+/// run's bonds (lps.hpp state_based_forces). Viscous and Advance: the back extension of both
+/// directions of every intact bond advances over the step first (viscous_step.hpp; a bond that is
+/// not intact keeps its history), and the force takes the new one as stored.
+template <int D, bool Corrected, bool Viscous, bool Advance, bool Masked>
 [[gnu::always_inline]] inline void state_force_run_terms(
     std::size_t length, const double* __restrict xa, const double* __restrict ya, const double* __restrict za,
     const double* __restrict xb, const double* __restrict yb, const double* __restrict zb, const double* __restrict pressure_a,
     const double* __restrict pressure_b, const double* __restrict coefficient_a, const double* __restrict coefficient_b,
     const double* __restrict theta_a, const double* __restrict theta_b, const double* __restrict alive,
     const double* __restrict weight_a, const double* __restrict weight_b, const double* __restrict correction_a,
-    const double* __restrict correction_b, const float* __restrict back_a, const float* __restrict back_b, double lambda,
-    double bond_length, double omega, double volume, double* __restrict gx, double* __restrict gy, double* __restrict gz) {
+    const double* __restrict correction_b, float* __restrict deviatoric_a, float* __restrict deviatoric_b, float* __restrict back_a,
+    float* __restrict back_b, double lambda, double one_minus_decay, double decay, double beta, double bond_length, double omega,
+    double volume, double* __restrict gx, double* __restrict gy, double* __restrict gz) {
   const double omega_length = omega * bond_length;
   const double length_over_d = bond_length / D;  // e_d = e - theta |xi| / d, without a division per bond
   for (std::size_t t = 0; t < length; ++t) {
@@ -128,8 +134,20 @@ template <int D, bool Corrected, bool Viscous, bool Masked>
     const double e = r - bond_length;
     double dev_a = e - theta_a[t] * length_over_d, dev_b = e - theta_b[t] * length_over_d;
     if constexpr (Viscous) {
-      dev_a -= lambda * back_a[t];
-      dev_b -= lambda * back_b[t];
+      float eb_a = back_a[t], eb_b = back_b[t];
+      if constexpr (Advance) {
+        const bool on = Masked ? alive[t] != 0.0 : true;
+        const float new_a = next_back_extension(deviatoric_a[t], eb_a, dev_a, one_minus_decay, decay, beta);
+        const float new_b = next_back_extension(deviatoric_b[t], eb_b, dev_b, one_minus_decay, decay, beta);
+        eb_a = on ? new_a : eb_a;
+        eb_b = on ? new_b : eb_b;
+        back_a[t] = eb_a;
+        back_b[t] = eb_b;
+        deviatoric_a[t] = on ? static_cast<float>(dev_a) : deviatoric_a[t];
+        deviatoric_b[t] = on ? static_cast<float>(dev_b) : deviatoric_b[t];
+      }
+      dev_a -= lambda * eb_a;
+      dev_b -= lambda * eb_b;
     }
     double t_a, t_b;  // force_state (lps.hpp)
     if constexpr (Corrected) {
@@ -147,79 +165,15 @@ template <int D, bool Corrected, bool Viscous, bool Masked>
   }
 }
 
-template <int D, bool Corrected, bool Viscous, bool Masked>
+template <int D, bool Corrected, bool Viscous, bool Advance, bool Masked>
 struct StateForceRunKernel {
   [[gnu::always_inline]] static bool run(const StateForceRun& a) {
     alignas(64) double g[3][max_run_length];
-    state_force_run_terms<D, Corrected, Viscous, Masked>(a.length, a.xa, a.ya, a.za, a.xb, a.yb, a.zb, a.pressure_a, a.pressure_b,
-                                                         a.coefficient_a, a.coefficient_b, a.theta_a, a.theta_b, a.alive, a.weight_a,
-                                                         a.weight_b, a.correction_a, a.correction_b, a.back_a, a.back_b, a.lambda,
-                                                         a.bond_length, a.omega, a.volume, g[0], g[1], g[2]);
+    state_force_run_terms<D, Corrected, Viscous, Advance, Masked>(
+        a.length, a.xa, a.ya, a.za, a.xb, a.yb, a.zb, a.pressure_a, a.pressure_b, a.coefficient_a, a.coefficient_b, a.theta_a, a.theta_b,
+        a.alive, a.weight_a, a.weight_b, a.correction_a, a.correction_b, a.deviatoric_a, a.deviatoric_b, a.back_a, a.back_b, a.lambda,
+        a.one_minus_decay, a.decay, a.beta, a.bond_length, a.omega, a.volume, g[0], g[1], g[2]);
     add_pair_forces_to_run_ends<D>(a, g);
-    return false;
-  }
-};
-
-/// One run of the VES history pass (ves.hpp): the lower ends' arrays start at a, the upper ends'
-/// at b; the histories of the two directions (bonds.hpp); Corrected: g_i, g_j.
-struct HistoryRun {
-  std::size_t length = 0;
-  const double *xa = nullptr, *ya = nullptr, *za = nullptr, *xb = nullptr, *yb = nullptr, *zb = nullptr;
-  const double *theta_a = nullptr, *theta_b = nullptr, *alive = nullptr, *correction_a = nullptr, *correction_b = nullptr;
-  float *deviatoric_a = nullptr, *deviatoric_b = nullptr, *back_a = nullptr, *back_b = nullptr;
-  double bond_length = 0.0, weight = 0.0, lambda = 0.0;  // weight: omega |xi| V
-  double one_minus_decay = 0.0, decay = 1.0, beta = 0.0;
-  double *coupling_a = nullptr, *coupling_b = nullptr;
-};
-
-/// Advances (Advance) the back extension of both directions of a run's bonds over the step (ves.hpp:
-/// e_b(n+1) = e_d(n) (1 - decay) + e_b(n) decay + beta (e_d(n+1) - e_d(n)), in double, stored in
-/// single precision) and returns their terms of P, g omega |xi| V (e_d - lambda e_b), in qa and qb.
-/// A bond that is not intact keeps its history and adds nothing.
-template <int D, bool Corrected, bool Advance, bool Masked>
-[[gnu::always_inline]] inline void history_run_terms(
-    std::size_t length, const double* __restrict xa, const double* __restrict ya, const double* __restrict za,
-    const double* __restrict xb, const double* __restrict yb, const double* __restrict zb, const double* __restrict theta_a,
-    const double* __restrict theta_b, const double* __restrict alive, const double* __restrict correction_a,
-    const double* __restrict correction_b, float* __restrict deviatoric_a, float* __restrict deviatoric_b, float* __restrict back_a,
-    float* __restrict back_b, double bond_length, double weight, double lambda, double one_minus_decay, double decay, double beta,
-    double* __restrict qa, double* __restrict qb) {
-  const double length_over_d = bond_length / D;  // e_d = e - theta |xi| / d, without a division per bond
-  for (std::size_t t = 0; t < length; ++t) {
-    double ex, ey, ez;
-    const double r2 = run_bond_vector<D>(xa, ya, za, xb, yb, zb, t, ex, ey, ez);
-    const double e = std::sqrt(r2) - bond_length;
-    const double ed_a = e - theta_a[t] * length_over_d, ed_b = e - theta_b[t] * length_over_d;
-    const bool on = Masked ? alive[t] != 0.0 : true;
-    if constexpr (Advance) {
-      const double old_a = deviatoric_a[t], old_b = deviatoric_b[t];
-      const float new_a = static_cast<float>(old_a * one_minus_decay + back_a[t] * decay + beta * (ed_a - old_a));
-      const float new_b = static_cast<float>(old_b * one_minus_decay + back_b[t] * decay + beta * (ed_b - old_b));
-      back_a[t] = on ? new_a : back_a[t];
-      back_b[t] = on ? new_b : back_b[t];
-      deviatoric_a[t] = on ? static_cast<float>(ed_a) : deviatoric_a[t];
-      deviatoric_b[t] = on ? static_cast<float>(ed_b) : deviatoric_b[t];
-    }
-    const double eb_a = back_a[t], eb_b = back_b[t];
-    double term_a = weight * (ed_a - lambda * eb_a), term_b = weight * (ed_b - lambda * eb_b);
-    if constexpr (Corrected) {
-      term_a = correction_a[t] * weight * (ed_a - lambda * eb_a);
-      term_b = correction_b[t] * weight * (ed_b - lambda * eb_b);
-    }
-    qa[t] = on ? term_a : 0.0;
-    qb[t] = on ? term_b : 0.0;
-  }
-}
-
-template <int D, bool Corrected, bool Advance, bool Masked>
-struct HistoryRunKernel {
-  [[gnu::always_inline]] static bool run(const HistoryRun& a) {
-    alignas(64) double qa[max_run_length], qb[max_run_length];
-    history_run_terms<D, Corrected, Advance, Masked>(a.length, a.xa, a.ya, a.za, a.xb, a.yb, a.zb, a.theta_a, a.theta_b, a.alive,
-                                                     a.correction_a, a.correction_b, a.deviatoric_a, a.deviatoric_b, a.back_a, a.back_b,
-                                                     a.bond_length, a.weight, a.lambda, a.one_minus_decay, a.decay, a.beta, qa, qb);
-    add_to_run_ends(a.coupling_a, qa, a.length);
-    add_to_run_ends(a.coupling_b, qb, a.length);
     return false;
   }
 };

@@ -3,9 +3,7 @@
 // and a viscous share lambda acting on e_d - e_b, where the back extension e_b of every bond relaxes
 // toward the deviatoric extension e_d = e - theta |xi| / d with the relaxation time tau:
 //   d e_b / dt = (e_d - e_b) / tau.
-// Over a step dt with e_d linear in time this integrates exactly to (Mitchell 2011, sec. 3):
-//   e_b(n+1) = e_d(n) (1 - decay) + e_b(n) decay + beta (e_d(n+1) - e_d(n)),
-//   decay = exp(-dt / tau),  beta = 1 - tau (1 - decay) / dt.
+// Over a step dt with e_d linear in time this integrates exactly (viscous_step.hpp).
 // With e_b held fixed over the step, the free energy and its derivative, the force state, are
 //   W_i = kappa/2 theta_i^2 + a_i/2 sum_j sigma_ij [(1 - lambda) e_d^2 + lambda (e_d - e_b)^2] V_j,
 //   t_i<j> = b_ij (kappa theta_i - a_i P_i / d) + a_i sigma_ij (e_d - lambda e_b),
@@ -26,12 +24,14 @@
 #include "rift/pd/lps.hpp"
 #include "rift/pd/lps_runs.hpp"
 #include "rift/pd/model.hpp"
+#include "rift/pd/viscous_step.hpp"
 #include "rift/parallel/team.hpp"
 
 namespace rift::pd {
 
 /// Zero history for the VES bodies, laid out by lattice offset (bonds.hpp, bond_slabs.hpp
-/// history_index): per block of Bonds::history_block particles, two directions of every forward offset.
+/// history_index): per block of Bonds::history_block particles, two directions of every forward
+/// offset; the per-particle sums of viscous_coupling to be taken on the first evaluation.
 template <int D>
 void prepare_viscous_history(Model<D>& m) {
   std::size_t slots = 0;
@@ -44,92 +44,68 @@ void prepare_viscous_history(Model<D>& m) {
   if (slots == 0) return;
   m.bonds.deviatoric_extension.assign(slots, 0.0f);
   m.bonds.back_extension.assign(slots, 0.0f);
+  m.bonds.deviatoric_sum.assign(m.size(), 0.0);
+  m.bonds.back_sum.assign(m.size(), 0.0);
+  m.bonds.intact_weighted_volume.assign(m.size(), 0.0);
+  m.bonds.summed_bonds.assign(m.size(), -1);
 }
 
-/// First pass: dilatation and bond breaking (as the LPS), then the back extension of every intact
-/// bond advanced over dt (dt = 0: held) and P_i. The second pass and W_i are the LPS ones with the
-/// back extensions (state_based_forces, state_based_energy_density in lps.hpp).
+/// The sums of particle i's row over its intact bonds (bonds.hpp deviatoric_sum, back_sum,
+/// intact_weighted_volume, summed_bonds), from the stored history.
+template <int D, scene::Influence Omega>
+void sum_viscous_history(Model<D>& m, const BodyInfo& body, std::size_t i, std::int32_t intact_bonds) {
+  Bonds& b = m.bonds;
+  double deviatoric = 0.0, back = 0.0, weighted_volume = 0.0;
+  for (auto k = b.offset[i]; k < b.offset[i + 1]; ++k) {
+    if (b.intact[static_cast<std::size_t>(k)] != bond_intact) continue;
+    const double xi = b.length(k);
+    const double w = b.correction(i, k) * influence(Omega, xi, body.constants.horizon) * xi * b.volume(k);  // g omega |xi| V
+    const std::size_t h = history_slot(b, body, i, k);
+    deviatoric += w * b.deviatoric_extension[h];
+    back += w * b.back_extension[h];
+    weighted_volume += w * xi;
+  }
+  b.deviatoric_sum[i] = deviatoric, b.back_sum[i] = back, b.intact_weighted_volume[i] = weighted_volume;
+  b.summed_bonds[i] = intact_bonds;
+}
+
+/// First pass: dilatation and bond breaking (as the LPS), then P_i = sum_j g omega |xi| V (e_d -
+/// lambda e_b) of the new step per particle, without a pass over the bonds' history: the update of
+/// e_b is linear, so over the bonds intact now
+///   sum g omega |xi| V e_b(n+1) = (1 - decay - beta) S_d + decay S_b + beta C,
+///   C = sum g omega |xi| V e_d(n+1) = q_i - theta_i m'_i / d,
+/// S_d, S_b the sums of the stored e_d(n), e_b(n) (taken again, row by row, for a particle whose
+/// intact bonds changed since), q_i = sum g omega |xi| e V (theta_i m_i / d without the surface
+/// correction) and m'_i = sum g omega |xi|^2 V over the intact bonds. C and the new sum are the
+/// next step's S_d and S_b. The bonds' own histories advance in the force pass (lps.hpp
+/// state_based_forces, Viscous), which needs P_i of both ends before it: two passes over the bonds
+/// instead of three. P differs from the sum over the stored single-precision histories by their
+/// rounding (tests/test_viscoelastic.cpp).
 template <int D, scene::Influence Omega>
 void ves_dilatation(Model<D>& m, const BodyInfo& body, double dt) {
   const auto& c = body.constants;
   Bonds& b = m.bonds;
-  const double horizon = c.horizon, lambda = c.viscous_fraction;
-  const bool advance = dt > 0.0;
-  const double ratio = advance ? dt / c.relaxation_time : 0.0;  // dt / tau
-  const double one_minus_decay = -std::expm1(-ratio), decay = 1.0 - one_minus_decay;
-  const double beta = advance ? 1.0 - one_minus_decay / ratio : 0.0;
+  const double lambda = c.viscous_fraction;
+  const ViscousStep step(dt, c.relaxation_time);
   double* const smallest = pass_scratch(m.size(), 1);
-  dilatation_pass<D, Omega, false>(m, body, nullptr, smallest);
+  double* const q = pass_scratch(m.size(), 0);  // with the surface correction: q_i
+  const bool corrected = c.surface_correction;
+  if (corrected) dilatation_pass<D, Omega, true>(m, body, q, smallest);
+  else dilatation_pass<D, Omega, false>(m, body, nullptr, smallest);
+  const std::uint8_t* const state = b.intact.data();
 #pragma omp parallel for if(rift::parallel::worth_a_team(body.last - body.first)) schedule(static)
-  for (std::size_t i = body.first; i < body.last; ++i) m.dilatation_coupling[i] = 0.0;
-  // each bond once, in runs (bond_runs.hpp, lps_runs.hpp): the back extensions of both directions,
-  // and P of both ends
-  const auto x = positions_by_component<D>(m.position, body);
-  const double* const theta = m.dilatation.data();
-  double* const coupling = m.dilatation_coupling.data();
-  const std::uint8_t* const whole = whole_rows(b, body);
-  const VectorIsa isa = vector_isa();
-  // bond t of a run, as a row takes it
-  auto settle = [&](const BondRun& run, std::size_t t) {
-    const auto [i, j, k, eta] = run_bond_at<D>(b, run, t, x);
-    if (b.intact[static_cast<std::size_t>(k)] != bond_intact) return;
-    // advances the history in slot h with deviatoric extension ed (in double, stored in single
-    // precision) and returns its back extension
-    auto back_extension = [&](std::size_t h, double ed) -> double {
-      if (advance) {
-        const double ed_old = b.deviatoric_extension[h];
-        b.back_extension[h] = static_cast<float>(ed_old * one_minus_decay + b.back_extension[h] * decay + beta * (ed - ed_old));
-        b.deviatoric_extension[h] = static_cast<float>(ed);
-      }
-      return b.back_extension[h];
-    };
-    const FamilyOffset& family = b.families[run.family];
-    const double xi = family.length;
-    const double e = norm<D>(eta) - xi;
-    const double ed_i = e - theta[i] * (xi / D), ed_j = e - theta[j] * (xi / D);  // as the runs (lps_runs.hpp)
-    const std::size_t h = history_index(body, i, run.family, 0);
-    const double eb_i = back_extension(h, ed_i), eb_j = back_extension(mirror_history_slot(h), ed_j);
-    const double w = influence(Omega, xi, horizon) * xi * family.volume;
-    coupling[i] += b.factors[static_cast<std::size_t>(b.factor_row[i] + run.family)].correction * w * (ed_i - lambda * eb_i);
-    coupling[j] += b.factors[static_cast<std::size_t>(b.factor_row[j] + family.mirror)].correction * w * (ed_j - lambda * eb_j);
-  };
-  auto run_history = [&]<bool Corrected>(const BondRun& run) {
-    const std::size_t length = run.length, i = static_cast<std::size_t>(run.i), j = static_cast<std::size_t>(run.j);
-    if (length < short_run) {
-      for (std::size_t t = 0; t < length; ++t) settle(run, t);
-      return;
-    }
-    const FamilyOffset& family = b.families[run.family];
-    alignas(64) double alive[max_run_length], correction_a[max_run_length], correction_b[max_run_length];
-    const bool masked = mask_run(b, run, whole, alive);
-    if constexpr (Corrected)
-      for (std::size_t t = 0; t < length; ++t) {
-        correction_a[t] = b.factors[static_cast<std::size_t>(b.factor_row[i + t] + run.family)].correction;
-        correction_b[t] = b.factors[static_cast<std::size_t>(b.factor_row[j + t] + family.mirror)].correction;
-      }
-    const std::size_t h = history_index(body, i, run.family, 0);  // both directions contiguous (bonds.hpp)
-    HistoryRun a;
-    a.length = length;
-    a.xa = x[0] + i, a.ya = x[1] + i, a.xb = x[0] + j, a.yb = x[1] + j;
-    if constexpr (D == 3) a.za = x[2] + i, a.zb = x[2] + j;
-    a.theta_a = theta + i, a.theta_b = theta + j;
-    a.alive = alive, a.correction_a = correction_a, a.correction_b = correction_b;
-    a.deviatoric_a = b.deviatoric_extension.data() + h, a.deviatoric_b = b.deviatoric_extension.data() + mirror_history_slot(h);
-    a.back_a = b.back_extension.data() + h, a.back_b = b.back_extension.data() + mirror_history_slot(h);
-    a.bond_length = family.length, a.weight = influence(Omega, family.length, horizon) * family.length * family.volume;
-    a.lambda = lambda, a.one_minus_decay = one_minus_decay, a.decay = decay, a.beta = beta;
-    a.coupling_a = coupling + i, a.coupling_b = coupling + j;
-    auto kernel = [&]<bool Advance>() {
-      if (masked) vector_clone<HistoryRunKernel<D, Corrected, Advance, true>, HistoryRun>(isa)(a);
-      else vector_clone<HistoryRunKernel<D, Corrected, Advance, false>, HistoryRun>(isa)(a);
-    };
-    if (advance) kernel.template operator()<true>();
-    else kernel.template operator()<false>();
-  };
-  if (c.surface_correction)
-    for_each_run_by_slabs(body, [&](const BondRun& r) { run_history.template operator()<true>(r); });
-  else
-    for_each_run_by_slabs(body, [&](const BondRun& r) { run_history.template operator()<false>(r); });
+  for (std::size_t i = body.first; i < body.last; ++i) {
+    std::int32_t intact_bonds = 0;
+    for (auto k = b.offset[i]; k < b.offset[i + 1]; ++k) intact_bonds += state[k] == bond_intact;
+    if (intact_bonds != b.summed_bonds[i]) sum_viscous_history<D, Omega>(m, body, i, intact_bonds);
+    const double theta = m.dilatation[i], m_intact = b.intact_weighted_volume[i];
+    const double deviatoric = corrected ? q[i] - theta * m_intact / D : theta * (m.weighted_volume[i] - m_intact) / D;  // C
+    const double back = step.advance ? (step.one_minus_decay - step.beta) * b.deviatoric_sum[i] + step.decay * b.back_sum[i] +
+                                           step.beta * deviatoric
+                                     : b.back_sum[i];
+    m.dilatation_coupling[i] = deviatoric - lambda * back;
+    if (step.advance) b.deviatoric_sum[i] = deviatoric, b.back_sum[i] = back;
+  }
   next_stretch_limits<D>(m, body, smallest);
 }
 
