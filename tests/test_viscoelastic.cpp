@@ -126,8 +126,9 @@ TEST(Viscoelastic, ForcesMatchAnIndependentEvaluationOverSteps) {
 // pass over them: over five steps of a changing deformation, on the surface-corrected lattice and on
 // LAMMPS's, with bonds broken between the steps (both directions, as the passes break them) and
 // bonds the pass itself breaks, it equals the sum over every intact bond of g omega |xi| V (e_d -
-// lambda e_b) with the histories as stored. Tolerance 1e-6 of the sum of the terms' magnitudes
-// per particle: the stored histories are rounded to single precision (6e-8 each), the sums are not.
+// lambda e_b) with e_d at the step's positions and the back extensions as stored. Tolerance 1e-6 of
+// the sum of the terms' magnitudes per particle: the back extensions are stored in single precision
+// (6e-8 each), the sums are not.
 TEST(Viscoelastic, CouplingFromSumsEqualsTheSumOverTheHistories) {
   for (const bool lammps_lattice : {false, true}) {
     auto text = ves_scene(9, 0.4, 2e-7, lammps_lattice);
@@ -161,8 +162,12 @@ TEST(Viscoelastic, CouplingFromSumsEqualsTheSumOverTheHistories) {
           const double xi = b.length(k);
           const double w = b.correction(i, k) * rift::pd::influence(body.constants.influence, xi, body.constants.horizon) * xi * b.volume(k);
           const auto h = rift::pd::history_slot(b, body, i, k);
-          sum += w * (b.deviatoric_extension[h] - 0.4 * b.back_extension[h]);
-          size += std::abs(w) * (std::abs(b.deviatoric_extension[h]) + 0.4 * std::abs(b.back_extension[h]));
+          const auto j = static_cast<std::size_t>(b.neighbor[static_cast<std::size_t>(k)]);
+          const double e = std::sqrt(std::pow(m.position[j][0] - m.position[i][0], 2) + std::pow(m.position[j][1] - m.position[i][1], 2) +
+                                     std::pow(m.position[j][2] - m.position[i][2], 2)) - xi;
+          const double e_d = e - m.dilatation[i] * xi / 3.0;
+          sum += w * (e_d - 0.4 * b.back_extension[h]);
+          size += std::abs(w) * (std::abs(e_d) + 0.4 * std::abs(b.back_extension[h]));
         }
         ASSERT_GT(size, 0.0);
         worst = std::max(worst, std::abs(m.dilatation_coupling[i] - sum) / size);

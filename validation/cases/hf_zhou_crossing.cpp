@@ -69,6 +69,23 @@
 // 17.8 mm at t = 3.8 s, under its 18.1 mm threshold): the rule cannot tell them apart, as the
 // thresholds say (2-8 slips above 0.79 MPa of net pressure at the junction, 2-4 above 1.85, and
 // both arrive with about 1.9 at the borehole).
+// Re-run at 3 mm after the passes went to runs of bonds (2026-11-25/26), one thread each: every row
+// as before. 2-1 crossed 36 mm, 2-2 39 mm, 2-4 19.7 mm (was 20.8), 2-6 33.5 mm, S-1 crossed (the fluid
+// broke through at t = 1.4 s, 89 mm past), 2-5 dilated (51 mm), 2-3 dilated (44.3 mm), 2-7 arrested
+// (2.6 mm; open along 18.8 mm), S-2 dilated (42.4 mm; broken rock 10.6 mm past), 2-8 crossed (25.6 mm).
+// Tried for 2-8 on 2026-11-26 (not kept): the interface law on the strain of each end's bonds within
+// half a horizon (1.5 spacings) instead of its whole family, to read more of the tip's field: 2-8
+// crossed still (11.9 mm past at t = 3.4 s, its interface never failed) and 2-4 crossed further
+// (24.5 mm). The linear-elastic reading of the table (Renshaw and Pollard 1995, Gu and Weng 2010:
+// the tip at the interface, its field at r_c of amplitude sigma_h + T0, where the far side's rock
+// fails, on top of the far field; crossing where the interface does not slip there, friction 0.89):
+// the 90-degree rows cross and the 30- and 45-degree rows slip for every T0; at 60 degrees 2-8
+// (sigma_h = 5 MPa) slips for T0 >= 0.5 MPa but 2-4 (sigma_h = 3) only for T0 >= 1.6 (2-6 2.3, S-1
+// never), so the table's crossings follow for 0.5 <= T0 <= 1.5 MPa (0.9 to 2.0 with the pressurized
+// fracture's T-stress, -2 MPa along its path). It separates 2-8 from 2-4 by sigma_h alone, with a
+// far-side strength a third to a half of the T = 3 MPa the rock needs elsewhere (with 3 MPa it
+// stops 2-4 and 2-6 too): a model that crosses 2-8 reads less of the tip's field at the interface
+// than that, and one that reads all of it stops 2-4 unless its far side breaks at about 1 MPa.
 // What the table itself suggests (2026-11-25, not yet tried): every row's outcome follows from the
 // fluid reaching the interface at about the borehole's breakdown pressure, p_b = 3 sigma_h - sigma_H
 // + T (Hubbert and Willis; no less than sigma_h), read against the thesis' EQ 4.7 (dilated where p_b

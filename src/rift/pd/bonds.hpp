@@ -71,19 +71,24 @@ struct Bonds {
   // row per body; the others own one.
   std::vector<std::int64_t> factor_row;
   std::vector<BondFactors> factors;
-  // VES only (empty otherwise), per directed bond i-j: i's deviatoric extension and back extension
-  // after the last step (Mitchell 2011; stored in single precision, 6e-8 relative rounding), by
+  // VES only (empty otherwise), per directed bond i-j: i's back extension after the last step
+  // (Mitchell 2011; stored in single precision, 6e-8 relative rounding), by
   // lattice offset (bond_slabs.hpp history_slot): per block of history_block particles of a body,
   // per forward family offset, the lower ends' directions of the block's particles, then the upper
   // ends'. A run of bonds (bond_runs.hpp) then finds both directions' histories in two contiguous
   // stretches, and the slots need no index of their own (a slot is kept for an offset whose
   // neighbour is missing: 2% of the slots at the thesis' size, 8% on the 41^3 bench cube).
   static constexpr std::size_t history_block = 256;
-  std::vector<float> deviatoric_extension, back_extension;
-  // VES only, per particle i: over the intact bonds of its row, the sums of g omega |xi| V times i's
-  // stored deviatoric and back extensions, and of g omega |xi|^2 V (g the surface correction), and
-  // how many bonds they were taken over (-1: not yet). P_i of the next step follows from them
-  // without a pass over the history (ves.hpp viscous_coupling).
+  std::vector<float> back_extension;
+  // VES only, per particle: its position (by component) and dilatation when the history last
+  // advanced, from which a bond's deviatoric extension then, e_d(n), is taken again
+  // (viscous_step.hpp last_deviatoric_extension): no copy of it per bond.
+  std::array<std::vector<double>, 3> history_position;
+  std::vector<double> history_dilatation;
+  // VES only, per particle i: over the intact bonds of its row, the sums of g omega |xi| V times
+  // e_d(n) and i's back extension, and of g omega |xi|^2 V (g the surface correction), and how many
+  // bonds they were taken over (-1: not yet). P_i of the next step follows from them without a pass
+  // over the history (ves.hpp ves_dilatation).
   std::vector<double> deviatoric_sum, back_sum, intact_weighted_volume;
   std::vector<std::int32_t> summed_bonds;
 
@@ -103,14 +108,16 @@ struct Bonds {
   }
   float correction(std::size_t i, std::int64_t k) const { return factors_of(i, k).correction; }
   float mirror_correction(std::size_t j, std::int64_t k) const { return mirror_factors_of(j, k).correction; }
-  /// Bytes held per directed bond: the arrays above with one entry per bond, and the factor rows
-  /// and family offsets spread over the bonds.
+  /// Bytes held per directed bond: the arrays above with one entry per bond, and the factor rows,
+  /// family offsets and the VES history's per-particle arrays spread over the bonds.
   double bytes_per_directed_bond() const {
     if (neighbor.empty()) return 0.0;
     const double per_bond = sizeof(std::int32_t) + sizeof(std::uint16_t) + sizeof(std::uint8_t);
     const double tables = double(factors.size() * sizeof(BondFactors) + families.size() * sizeof(FamilyOffset) +
-                                 (back_extension.size() + deviatoric_extension.size()) * sizeof(float) +
-                                 (deviatoric_sum.size() + back_sum.size() + intact_weighted_volume.size()) * sizeof(double) +
+                                 back_extension.size() * sizeof(float) +
+                                 (history_position[0].size() + history_position[1].size() + history_position[2].size() +
+                                  history_dilatation.size() + deviatoric_sum.size() + back_sum.size() + intact_weighted_volume.size()) *
+                                     sizeof(double) +
                                  summed_bonds.size() * sizeof(std::int32_t));
     return per_bond + tables / double(neighbor.size());
   }

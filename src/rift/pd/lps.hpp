@@ -321,12 +321,11 @@ void state_based_forces(Model<D>& m, const BodyInfo& body, double history_dt) {
     double dev_i = e - theta[i] * (xi / D), dev_j = e - theta[j] * (xi / D);  // as the runs (lps_runs.hpp)
     if constexpr (Viscous) {
       const std::size_t h_i = history_index(body, i, run.family, 0), h_j = mirror_history_slot(h_i);
-      if (step.advance)
-        for (const auto& [h, dev] : {std::pair{h_i, dev_i}, std::pair{h_j, dev_j}}) {
-          b.back_extension[h] = next_back_extension(b.deviatoric_extension[h], b.back_extension[h], dev, step.one_minus_decay,
-                                                    step.decay, step.beta);
-          b.deviatoric_extension[h] = static_cast<float>(dev);
-        }
+      if (step.advance) {
+        const double last_i = last_deviatoric_extension<D>(b, i, j, xi), last_j = last_deviatoric_extension<D>(b, j, i, xi);
+        b.back_extension[h_i] = next_back_extension(last_i, b.back_extension[h_i], dev_i, step.one_minus_decay, step.decay, step.beta);
+        b.back_extension[h_j] = next_back_extension(last_j, b.back_extension[h_j], dev_j, step.one_minus_decay, step.decay, step.beta);
+      }
       dev_i -= lambda * b.back_extension[h_i];
       dev_j -= lambda * b.back_extension[h_j];
     }
@@ -376,7 +375,10 @@ void state_based_forces(Model<D>& m, const BodyInfo& body, double history_dt) {
     a.weight_a = weight_a, a.weight_b = weight_b, a.correction_a = correction_a, a.correction_b = correction_b;
     if constexpr (Viscous) {
       const std::size_t h = history_index(body, i, run.family, 0);  // both directions contiguous (bonds.hpp)
-      a.deviatoric_a = b.deviatoric_extension.data() + h, a.deviatoric_b = b.deviatoric_extension.data() + mirror_history_slot(h);
+      const auto& last = b.history_position;
+      a.last_xa = last[0].data() + i, a.last_ya = last[1].data() + i, a.last_xb = last[0].data() + j, a.last_yb = last[1].data() + j;
+      if constexpr (D == 3) a.last_za = last[2].data() + i, a.last_zb = last[2].data() + j;
+      a.last_theta_a = b.history_dilatation.data() + i, a.last_theta_b = b.history_dilatation.data() + j;
       a.back_a = b.back_extension.data() + h, a.back_b = b.back_extension.data() + mirror_history_slot(h), a.lambda = lambda;
       a.one_minus_decay = step.one_minus_decay, a.decay = step.decay, a.beta = step.beta;
     }

@@ -97,7 +97,8 @@ struct DilatationRunKernel {
 
 /// One run of the force pass: the lower ends' arrays start at a, the upper ends' at b (positions,
 /// pressure factors p, a = A_dev / m, dilatations theta); `alive` (Masked); Corrected: b_ij, b_ji, g_i,
-/// g_j; Viscous: the histories of both directions (ves.hpp; bonds.hpp), lambda and the step's
+/// g_j; Viscous: the back extensions of both directions (ves.hpp; bonds.hpp), the ends' positions
+/// and dilatations of the step before (bonds.hpp history_position), lambda and the step's
 /// coefficients (viscous_step.hpp).
 struct StateForceRun {
   std::size_t length = 0;
@@ -105,7 +106,9 @@ struct StateForceRun {
   const double *pressure_a = nullptr, *pressure_b = nullptr, *coefficient_a = nullptr, *coefficient_b = nullptr;
   const double *theta_a = nullptr, *theta_b = nullptr, *alive = nullptr;
   const double *weight_a = nullptr, *weight_b = nullptr, *correction_a = nullptr, *correction_b = nullptr;
-  float *deviatoric_a = nullptr, *deviatoric_b = nullptr, *back_a = nullptr, *back_b = nullptr;
+  const double *last_xa = nullptr, *last_ya = nullptr, *last_za = nullptr, *last_xb = nullptr, *last_yb = nullptr, *last_zb = nullptr;
+  const double *last_theta_a = nullptr, *last_theta_b = nullptr;
+  float *back_a = nullptr, *back_b = nullptr;
   double bond_length = 0.0, omega = 0.0, volume = 0.0, lambda = 0.0;
   double one_minus_decay = 0.0, decay = 1.0, beta = 0.0;
   double *fxa = nullptr, *fya = nullptr, *fza = nullptr, *fxb = nullptr, *fyb = nullptr, *fzb = nullptr;
@@ -113,8 +116,9 @@ struct StateForceRun {
 
 /// The pair force densities (t_i<j> + t_j<i>) V / |y| times the deformed bond, per component, of a
 /// run's bonds (lps.hpp state_based_forces). Viscous and Advance: the back extension of both
-/// directions of every intact bond advances over the step first (viscous_step.hpp; a bond that is
-/// not intact keeps its history), and the force takes the new one as stored.
+/// directions of every intact bond advances over the step first (viscous_step.hpp, with e_d(n) from
+/// the last positions as last_deviatoric_extension takes it; a bond that is not intact keeps its
+/// history), and the force takes the new one as stored.
 template <int D, bool Corrected, bool Viscous, bool Advance, bool Masked>
 [[gnu::always_inline]] inline void state_force_run_terms(
     std::size_t length, const double* __restrict xa, const double* __restrict ya, const double* __restrict za,
@@ -122,8 +126,10 @@ template <int D, bool Corrected, bool Viscous, bool Advance, bool Masked>
     const double* __restrict pressure_b, const double* __restrict coefficient_a, const double* __restrict coefficient_b,
     const double* __restrict theta_a, const double* __restrict theta_b, const double* __restrict alive,
     const double* __restrict weight_a, const double* __restrict weight_b, const double* __restrict correction_a,
-    const double* __restrict correction_b, float* __restrict deviatoric_a, float* __restrict deviatoric_b, float* __restrict back_a,
-    float* __restrict back_b, double lambda, double one_minus_decay, double decay, double beta, double bond_length, double omega,
+    const double* __restrict correction_b, const double* __restrict last_xa, const double* __restrict last_ya,
+    const double* __restrict last_za, const double* __restrict last_xb, const double* __restrict last_yb, const double* __restrict last_zb,
+    const double* __restrict last_theta_a, const double* __restrict last_theta_b, float* __restrict back_a, float* __restrict back_b,
+    double lambda, double one_minus_decay, double decay, double beta, double bond_length, double omega,
     double volume, double* __restrict gx, double* __restrict gy, double* __restrict gz) {
   const double omega_length = omega * bond_length;
   const double length_over_d = bond_length / D;  // e_d = e - theta |xi| / d, without a division per bond
@@ -137,14 +143,15 @@ template <int D, bool Corrected, bool Viscous, bool Advance, bool Masked>
       float eb_a = back_a[t], eb_b = back_b[t];
       if constexpr (Advance) {
         const bool on = Masked ? alive[t] != 0.0 : true;
-        const float new_a = next_back_extension(deviatoric_a[t], eb_a, dev_a, one_minus_decay, decay, beta);
-        const float new_b = next_back_extension(deviatoric_b[t], eb_b, dev_b, one_minus_decay, decay, beta);
+        double lx, ly, lz;
+        const double e_last = std::sqrt(run_bond_vector<D>(last_xa, last_ya, last_za, last_xb, last_yb, last_zb, t, lx, ly, lz)) - bond_length;
+        const double last_a = e_last - last_theta_a[t] * length_over_d, last_b = e_last - last_theta_b[t] * length_over_d;
+        const float new_a = next_back_extension(last_a, eb_a, dev_a, one_minus_decay, decay, beta);
+        const float new_b = next_back_extension(last_b, eb_b, dev_b, one_minus_decay, decay, beta);
         eb_a = on ? new_a : eb_a;
         eb_b = on ? new_b : eb_b;
         back_a[t] = eb_a;
         back_b[t] = eb_b;
-        deviatoric_a[t] = on ? static_cast<float>(dev_a) : deviatoric_a[t];
-        deviatoric_b[t] = on ? static_cast<float>(dev_b) : deviatoric_b[t];
       }
       dev_a -= lambda * eb_a;
       dev_b -= lambda * eb_b;
@@ -171,7 +178,8 @@ struct StateForceRunKernel {
     alignas(64) double g[3][max_run_length];
     state_force_run_terms<D, Corrected, Viscous, Advance, Masked>(
         a.length, a.xa, a.ya, a.za, a.xb, a.yb, a.zb, a.pressure_a, a.pressure_b, a.coefficient_a, a.coefficient_b, a.theta_a, a.theta_b,
-        a.alive, a.weight_a, a.weight_b, a.correction_a, a.correction_b, a.deviatoric_a, a.deviatoric_b, a.back_a, a.back_b, a.lambda,
+        a.alive, a.weight_a, a.weight_b, a.correction_a, a.correction_b, a.last_xa, a.last_ya, a.last_za, a.last_xb, a.last_yb, a.last_zb,
+        a.last_theta_a, a.last_theta_b, a.back_a, a.back_b, a.lambda,
         a.one_minus_decay, a.decay, a.beta, a.bond_length, a.omega, a.volume, g[0], g[1], g[2]);
     add_pair_forces_to_run_ends<D>(a, g);
     return false;

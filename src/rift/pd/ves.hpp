@@ -15,6 +15,7 @@
 // dilatation varies), and the P term of the surface correction (zero without it, as in LAMMPS, up to
 // the history of broken bonds).
 #pragma once
+#include <array>
 #include <cmath>
 
 #include "rift/core/vector_isa.hpp"
@@ -31,7 +32,8 @@ namespace rift::pd {
 
 /// Zero history for the VES bodies, laid out by lattice offset (bonds.hpp, bond_slabs.hpp
 /// history_index): per block of Bonds::history_block particles, two directions of every forward
-/// offset; the per-particle sums of viscous_coupling to be taken on the first evaluation.
+/// offset; e_d(0) = 0 at the reference positions; the per-particle sums of ves_dilatation to be
+/// taken on the first evaluation.
 template <int D>
 void prepare_viscous_history(Model<D>& m) {
   std::size_t slots = 0;
@@ -42,16 +44,33 @@ void prepare_viscous_history(Model<D>& m) {
     slots += (body.last - body.first + block - 1) / block * (body.family_count / 2) * 2 * block;
   }
   if (slots == 0) return;
-  m.bonds.deviatoric_extension.assign(slots, 0.0f);
   m.bonds.back_extension.assign(slots, 0.0f);
+  for (int q = 0; q < D; ++q) {
+    auto& x = m.bonds.history_position[static_cast<std::size_t>(q)];
+    x.resize(m.size());
+    for (std::size_t i = 0; i < m.size(); ++i) x[i] = m.reference_position[i][q];
+  }
+  m.bonds.history_dilatation.assign(m.size(), 0.0);
   m.bonds.deviatoric_sum.assign(m.size(), 0.0);
   m.bonds.back_sum.assign(m.size(), 0.0);
   m.bonds.intact_weighted_volume.assign(m.size(), 0.0);
   m.bonds.summed_bonds.assign(m.size(), -1);
 }
 
+/// After the force pass advanced the history (every body's: it reads both ends of each bond): the
+/// positions and dilatations it advanced to.
+template <int D>
+void keep_history_state(Model<D>& m, const BodyInfo& body) {
+  Bonds& b = m.bonds;
+#pragma omp parallel for if(rift::parallel::worth_a_team(body.last - body.first)) schedule(static)
+  for (std::size_t i = body.first; i < body.last; ++i) {
+    for (std::size_t q = 0; q < D; ++q) b.history_position[q][i] = m.position[i][static_cast<int>(q)];
+    b.history_dilatation[i] = m.dilatation[i];
+  }
+}
+
 /// The sums of particle i's row over its intact bonds (bonds.hpp deviatoric_sum, back_sum,
-/// intact_weighted_volume, summed_bonds), from the stored history.
+/// intact_weighted_volume, summed_bonds), from the history.
 template <int D, scene::Influence Omega>
 void sum_viscous_history(Model<D>& m, const BodyInfo& body, std::size_t i, std::int32_t intact_bonds) {
   Bonds& b = m.bonds;
@@ -60,9 +79,8 @@ void sum_viscous_history(Model<D>& m, const BodyInfo& body, std::size_t i, std::
     if (b.intact[static_cast<std::size_t>(k)] != bond_intact) continue;
     const double xi = b.length(k);
     const double w = b.correction(i, k) * influence(Omega, xi, body.constants.horizon) * xi * b.volume(k);  // g omega |xi| V
-    const std::size_t h = history_slot(b, body, i, k);
-    deviatoric += w * b.deviatoric_extension[h];
-    back += w * b.back_extension[h];
+    deviatoric += w * last_deviatoric_extension<D>(b, i, static_cast<std::size_t>(b.neighbor[static_cast<std::size_t>(k)]), xi);
+    back += w * b.back_extension[history_slot(b, body, i, k)];
     weighted_volume += w * xi;
   }
   b.deviatoric_sum[i] = deviatoric, b.back_sum[i] = back, b.intact_weighted_volume[i] = weighted_volume;
@@ -74,13 +92,13 @@ void sum_viscous_history(Model<D>& m, const BodyInfo& body, std::size_t i, std::
 /// e_b is linear, so over the bonds intact now
 ///   sum g omega |xi| V e_b(n+1) = (1 - decay - beta) S_d + decay S_b + beta C,
 ///   C = sum g omega |xi| V e_d(n+1) = q_i - theta_i m'_i / d,
-/// S_d, S_b the sums of the stored e_d(n), e_b(n) (taken again, row by row, for a particle whose
+/// S_d, S_b the sums of e_d(n) and the stored e_b(n) (taken again, row by row, for a particle whose
 /// intact bonds changed since), q_i = sum g omega |xi| e V (theta_i m_i / d without the surface
 /// correction) and m'_i = sum g omega |xi|^2 V over the intact bonds. C and the new sum are the
 /// next step's S_d and S_b. The bonds' own histories advance in the force pass (lps.hpp
 /// state_based_forces, Viscous), which needs P_i of both ends before it: two passes over the bonds
-/// instead of three. P differs from the sum over the stored single-precision histories by their
-/// rounding (tests/test_viscoelastic.cpp).
+/// instead of three. P differs from the sum over the stored single-precision back extensions by
+/// their rounding (tests/test_viscoelastic.cpp).
 template <int D, scene::Influence Omega>
 void ves_dilatation(Model<D>& m, const BodyInfo& body, double dt) {
   const auto& c = body.constants;
