@@ -123,8 +123,10 @@
 // there, 2026-11-25), 2-5 dilated (its interface open and wet from t = 1.6 s with the borehole at
 // 7.00 MPa, along 46.5 mm at t = 4 s; broken rock 2.0 mm past the plane; 30 min), 2-3 dilated (from
 // t = 1.6 s, p = 7.00 MPa; open and wet along 39.3 mm at t = 4 s, broken rock 3.3 mm past; 27 min;
-// 2026-11-25): 8 of 9 as the experiment, as at 3 mm. Not yet run with the platens at 2 mm: S-2 (no
-// experiment). With traction faces: 2-1 crossed
+// 2026-11-25): 8 of 9 as the experiment, as at 3 mm. S-2 (no experiment; 2026-11-26) crossed+dilated:
+// its interface open and wet from t = 2.2 s (35 mm at t = 3.3 s), and broken rock 12.7 mm past the
+// plane at t = 3.3 s, where crossing counts from 12.1 mm (at 3 mm it read dilated, 10.6 mm past at t =
+// 4 s under that spacing's 18.1): the one row whose two horizons disagree. With traction faces: 2-1 crossed
 // (35 mm past the plane at t = 4 s) and 2-2 crossed (25 mm past at t = 3.4 s); before the fix of
 // the junction 2-4 crossed (30.1 mm) and S-1 crossed (25.7 mm at t = 0.6 s).
 // Before the guar (the lumped fluid, 2026-11-23 and before): 5 of 9, 2-6 arrested as its free wing
