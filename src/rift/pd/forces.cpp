@@ -44,10 +44,6 @@ void compute_forces(Model<D>& m, Contact<D>* contact, double history_dt) {
       else state_based_forces<D, I::inverse_distance, true>(m, body, history_dt);
     }
   }
-  // the viscoelastic history advanced to this step: its e_d(n) for the next (viscous_step.hpp)
-  if (history_dt > 0.0)
-    for (const auto& body : m.bodies)
-      if (body.constants.model == scene::ModelKind::ves) keep_history_state<D>(m, body);
   add_interface_contact<D>(m, history_dt > 0.0);  // failed bonds across pre-existing fractures
   if (contact) contact->add_forces(m);
 }

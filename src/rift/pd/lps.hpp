@@ -393,9 +393,17 @@ void state_based_forces(Model<D>& m, const BodyInfo& body, double history_dt) {
       if (step.advance) return kernel.template operator()<true>();
     kernel.template operator()<false>();
   });
+  // Viscous: the positions and dilatations the history advanced to, for e_d(n) of the next step
+  // (viscous_step.hpp last_deviatoric_extension)
+  const bool keep_history_state = Viscous && step.advance;
 #pragma omp parallel for if(rift::parallel::worth_a_team(body.last - body.first)) schedule(static)
-  for (std::size_t j = body.first; j < body.last; ++j)
+  for (std::size_t j = body.first; j < body.last; ++j) {
     for (int q = 0; q < D; ++q) m.force[j][q] = f[q][j];
+    if (keep_history_state) {
+      for (std::size_t q = 0; q < D; ++q) b.history_position[q][j] = x[q][j];
+      b.history_dilatation[j] = theta[j];
+    }
+  }
 }
 
 /// W_i (uses the current dilatation; Viscous: and back extensions, ves.hpp).

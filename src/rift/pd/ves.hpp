@@ -15,15 +15,11 @@
 // dilatation varies), and the P term of the surface correction (zero without it, as in LAMMPS, up to
 // the history of broken bonds).
 #pragma once
-#include <array>
 #include <cmath>
 
-#include "rift/core/vector_isa.hpp"
-#include "rift/pd/bond_runs.hpp"
 #include "rift/pd/bond_slabs.hpp"
 #include "rift/pd/influence.hpp"
 #include "rift/pd/lps.hpp"
-#include "rift/pd/lps_runs.hpp"
 #include "rift/pd/model.hpp"
 #include "rift/pd/viscous_step.hpp"
 #include "rift/parallel/team.hpp"
@@ -55,18 +51,6 @@ void prepare_viscous_history(Model<D>& m) {
   m.bonds.back_sum.assign(m.size(), 0.0);
   m.bonds.intact_weighted_volume.assign(m.size(), 0.0);
   m.bonds.summed_bonds.assign(m.size(), -1);
-}
-
-/// After the force pass advanced the history (every body's: it reads both ends of each bond): the
-/// positions and dilatations it advanced to.
-template <int D>
-void keep_history_state(Model<D>& m, const BodyInfo& body) {
-  Bonds& b = m.bonds;
-#pragma omp parallel for if(rift::parallel::worth_a_team(body.last - body.first)) schedule(static)
-  for (std::size_t i = body.first; i < body.last; ++i) {
-    for (std::size_t q = 0; q < D; ++q) b.history_position[q][i] = m.position[i][static_cast<int>(q)];
-    b.history_dilatation[i] = m.dilatation[i];
-  }
 }
 
 /// The sums of particle i's row over its intact bonds (bonds.hpp deviatoric_sum, back_sum,
