@@ -57,6 +57,13 @@ inline std::size_t history_slot(const Bonds& b, const BodyInfo& body, std::size_
 /// The history slot of the other direction of slot h's pair.
 inline std::size_t mirror_history_slot(std::size_t h) { return h ^ Bonds::history_block; }
 
+/// The pair's slot (Bonds::last_extension) of a history slot h of either direction: the same layout
+/// with one direction per block (every body's history_base is a whole number of pairs of blocks).
+inline std::size_t pair_slot(std::size_t h) {
+  constexpr std::size_t block = Bonds::history_block;
+  return h / (2 * block) * block + h % block;
+}
+
 /// Marks broken the reverse of bond k = i-j, which a pass broke from i's side.
 inline void break_mirror_bond(Bonds& b, const BodyInfo& body, std::size_t i, std::int64_t k) {
   b.intact[static_cast<std::size_t>(reverse_bond(b, body, i, k))] = bond_broken;

@@ -80,10 +80,12 @@ struct Bonds {
   // neighbour is missing: 2% of the slots at the thesis' size, 8% on the 41^3 bench cube).
   static constexpr std::size_t history_block = 256;
   std::vector<float> back_extension;
-  // VES only, per particle: its position (by component) and dilatation when the history last
-  // advanced, from which a bond's deviatoric extension then, e_d(n), is taken again
-  // (viscous_step.hpp last_deviatoric_extension): no copy of it per bond.
-  std::array<std::vector<double>, 3> history_position;
+  // VES only: the extension e = |y| - |xi| of every pair when the history last advanced, once per
+  // pair (both directions share it; single precision), at pair_slot of its direction-0 slot
+  // (bond_slabs.hpp), and every particle's dilatation then: a bond's deviatoric extension then,
+  // e_d(n) = e(n) - theta_i(n) |xi| / d, is taken from them (viscous_step.hpp
+  // last_deviatoric_extension) without a copy per directed bond.
+  std::vector<float> last_extension;
   std::vector<double> history_dilatation;
   // VES only, per particle i: over the intact bonds of its row, the sums of g omega |xi| V times
   // e_d(n) and i's back extension, and of g omega |xi|^2 V (g the surface correction), and how many
@@ -114,9 +116,8 @@ struct Bonds {
     if (neighbor.empty()) return 0.0;
     const double per_bond = sizeof(std::int32_t) + sizeof(std::uint16_t) + sizeof(std::uint8_t);
     const double tables = double(factors.size() * sizeof(BondFactors) + families.size() * sizeof(FamilyOffset) +
-                                 back_extension.size() * sizeof(float) +
-                                 (history_position[0].size() + history_position[1].size() + history_position[2].size() +
-                                  history_dilatation.size() + deviatoric_sum.size() + back_sum.size() + intact_weighted_volume.size()) *
+                                 (back_extension.size() + last_extension.size()) * sizeof(float) +
+                                 (history_dilatation.size() + deviatoric_sum.size() + back_sum.size() + intact_weighted_volume.size()) *
                                      sizeof(double) +
                                  summed_bonds.size() * sizeof(std::int32_t));
     return per_bond + tables / double(neighbor.size());

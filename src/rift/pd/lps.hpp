@@ -322,9 +322,10 @@ void state_based_forces(Model<D>& m, const BodyInfo& body, double history_dt) {
     if constexpr (Viscous) {
       const std::size_t h_i = history_index(body, i, run.family, 0), h_j = mirror_history_slot(h_i);
       if (step.advance) {
-        const double last_i = last_deviatoric_extension<D>(b, i, j, xi), last_j = last_deviatoric_extension<D>(b, j, i, xi);
+        const double last_i = last_deviatoric_extension<D>(b, h_i, i, xi), last_j = last_deviatoric_extension<D>(b, h_i, j, xi);
         b.back_extension[h_i] = next_back_extension(last_i, b.back_extension[h_i], dev_i, step.one_minus_decay, step.decay, step.beta);
         b.back_extension[h_j] = next_back_extension(last_j, b.back_extension[h_j], dev_j, step.one_minus_decay, step.decay, step.beta);
+        b.last_extension[pair_slot(h_i)] = static_cast<float>(e);
       }
       dev_i -= lambda * b.back_extension[h_i];
       dev_j -= lambda * b.back_extension[h_j];
@@ -375,9 +376,7 @@ void state_based_forces(Model<D>& m, const BodyInfo& body, double history_dt) {
     a.weight_a = weight_a, a.weight_b = weight_b, a.correction_a = correction_a, a.correction_b = correction_b;
     if constexpr (Viscous) {
       const std::size_t h = history_index(body, i, run.family, 0);  // both directions contiguous (bonds.hpp)
-      const auto& last = b.history_position;
-      a.last_xa = last[0].data() + i, a.last_ya = last[1].data() + i, a.last_xb = last[0].data() + j, a.last_yb = last[1].data() + j;
-      if constexpr (D == 3) a.last_za = last[2].data() + i, a.last_zb = last[2].data() + j;
+      a.last_extension = b.last_extension.data() + pair_slot(h);
       a.last_theta_a = b.history_dilatation.data() + i, a.last_theta_b = b.history_dilatation.data() + j;
       a.back_a = b.back_extension.data() + h, a.back_b = b.back_extension.data() + mirror_history_slot(h), a.lambda = lambda;
       a.one_minus_decay = step.one_minus_decay, a.decay = step.decay, a.beta = step.beta;
@@ -393,16 +392,13 @@ void state_based_forces(Model<D>& m, const BodyInfo& body, double history_dt) {
       if (step.advance) return kernel.template operator()<true>();
     kernel.template operator()<false>();
   });
-  // Viscous: the positions and dilatations the history advanced to, for e_d(n) of the next step
-  // (viscous_step.hpp last_deviatoric_extension)
+  // Viscous: the dilatations the history advanced to, for e_d(n) of the next step (viscous_step.hpp
+  // last_deviatoric_extension; the pairs' extensions are kept by the loop above)
   const bool keep_history_state = Viscous && step.advance;
 #pragma omp parallel for if(rift::parallel::worth_a_team(body.last - body.first)) schedule(static)
   for (std::size_t j = body.first; j < body.last; ++j) {
     for (int q = 0; q < D; ++q) m.force[j][q] = f[q][j];
-    if (keep_history_state) {
-      for (std::size_t q = 0; q < D; ++q) b.history_position[q][j] = x[q][j];
-      b.history_dilatation[j] = theta[j];
-    }
+    if (keep_history_state) b.history_dilatation[j] = theta[j];
   }
 }
 

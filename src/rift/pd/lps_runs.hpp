@@ -7,6 +7,7 @@
 #pragma once
 #include <cmath>
 #include <cstddef>
+#include <cstdint>
 #include <limits>
 
 #include "rift/core/vector_isa.hpp"
@@ -97,28 +98,35 @@ struct DilatationRunKernel {
 
 /// One run of the force pass: the lower ends' arrays start at a, the upper ends' at b (positions,
 /// pressure factors p, a = A_dev / m, dilatations theta); `alive` (Masked); Corrected: b_ij, b_ji, g_i,
-/// g_j; Viscous: the back extensions of both directions (ves.hpp; bonds.hpp), the ends' positions
-/// and dilatations of the step before (bonds.hpp history_position), lambda and the step's
-/// coefficients (viscous_step.hpp).
+/// g_j; Viscous: the back extensions of both directions (ves.hpp; bonds.hpp), the pairs' extensions
+/// and the ends' dilatations of the step before (bonds.hpp last_extension, history_dilatation),
+/// lambda and the step's coefficients (viscous_step.hpp).
 struct StateForceRun {
   std::size_t length = 0;
   const double *xa = nullptr, *ya = nullptr, *za = nullptr, *xb = nullptr, *yb = nullptr, *zb = nullptr;
   const double *pressure_a = nullptr, *pressure_b = nullptr, *coefficient_a = nullptr, *coefficient_b = nullptr;
   const double *theta_a = nullptr, *theta_b = nullptr, *alive = nullptr;
   const double *weight_a = nullptr, *weight_b = nullptr, *correction_a = nullptr, *correction_b = nullptr;
-  const double *last_xa = nullptr, *last_ya = nullptr, *last_za = nullptr, *last_xb = nullptr, *last_yb = nullptr, *last_zb = nullptr;
   const double *last_theta_a = nullptr, *last_theta_b = nullptr;
-  float *back_a = nullptr, *back_b = nullptr;
+  float *back_a = nullptr, *back_b = nullptr, *last_extension = nullptr;
   double bond_length = 0.0, omega = 0.0, volume = 0.0, lambda = 0.0;
   double one_minus_decay = 0.0, decay = 1.0, beta = 0.0;
   double *fxa = nullptr, *fya = nullptr, *fza = nullptr, *fxb = nullptr, *fyb = nullptr, *fzb = nullptr;
 };
 
+/// Asks the cache for the `length` history values from `start` (for writing). The addresses may lie
+/// past the history's end: a prefetch never faults.
+[[gnu::always_inline]] inline void prefetch_history(const float* start, std::size_t length) {
+  constexpr std::size_t line = 64;
+  const auto first = reinterpret_cast<std::uintptr_t>(start), last = first + length * sizeof(float);
+  for (std::uintptr_t p = first; p < last; p += line) __builtin_prefetch(reinterpret_cast<const void*>(p), 1, 3);
+}
+
 /// The pair force densities (t_i<j> + t_j<i>) V / |y| times the deformed bond, per component, of a
 /// run's bonds (lps.hpp state_based_forces). Viscous and Advance: the back extension of both
 /// directions of every intact bond advances over the step first (viscous_step.hpp, with e_d(n) from
-/// the last positions as last_deviatoric_extension takes it; a bond that is not intact keeps its
-/// history), and the force takes the new one as stored.
+/// the pair's last extension as last_deviatoric_extension takes it, which then becomes e(n+1); a bond
+/// that is not intact keeps its history), and the force takes the new one as stored.
 template <int D, bool Corrected, bool Viscous, bool Advance, bool Masked>
 [[gnu::always_inline]] inline void state_force_run_terms(
     std::size_t length, const double* __restrict xa, const double* __restrict ya, const double* __restrict za,
@@ -126,10 +134,8 @@ template <int D, bool Corrected, bool Viscous, bool Advance, bool Masked>
     const double* __restrict pressure_b, const double* __restrict coefficient_a, const double* __restrict coefficient_b,
     const double* __restrict theta_a, const double* __restrict theta_b, const double* __restrict alive,
     const double* __restrict weight_a, const double* __restrict weight_b, const double* __restrict correction_a,
-    const double* __restrict correction_b, const double* __restrict last_xa, const double* __restrict last_ya,
-    const double* __restrict last_za, const double* __restrict last_xb, const double* __restrict last_yb, const double* __restrict last_zb,
-    const double* __restrict last_theta_a, const double* __restrict last_theta_b, float* __restrict back_a, float* __restrict back_b,
-    double lambda, double one_minus_decay, double decay, double beta, double bond_length, double omega,
+    const double* __restrict correction_b, const double* __restrict last_theta_a, const double* __restrict last_theta_b,
+    float* __restrict back_a, float* __restrict back_b, float* __restrict last_extension, double lambda, double one_minus_decay, double decay, double beta, double bond_length, double omega,
     double volume, double* __restrict gx, double* __restrict gy, double* __restrict gz) {
   const double omega_length = omega * bond_length;
   const double length_over_d = bond_length / D;  // e_d = e - theta |xi| / d, without a division per bond
@@ -143,8 +149,7 @@ template <int D, bool Corrected, bool Viscous, bool Advance, bool Masked>
       float eb_a = back_a[t], eb_b = back_b[t];
       if constexpr (Advance) {
         const bool on = Masked ? alive[t] != 0.0 : true;
-        double lx, ly, lz;
-        const double e_last = std::sqrt(run_bond_vector<D>(last_xa, last_ya, last_za, last_xb, last_yb, last_zb, t, lx, ly, lz)) - bond_length;
+        const float e_last = last_extension[t];
         const double last_a = e_last - last_theta_a[t] * length_over_d, last_b = e_last - last_theta_b[t] * length_over_d;
         const float new_a = next_back_extension(last_a, eb_a, dev_a, one_minus_decay, decay, beta);
         const float new_b = next_back_extension(last_b, eb_b, dev_b, one_minus_decay, decay, beta);
@@ -152,6 +157,7 @@ template <int D, bool Corrected, bool Viscous, bool Advance, bool Masked>
         eb_b = on ? new_b : eb_b;
         back_a[t] = eb_a;
         back_b[t] = eb_b;
+        last_extension[t] = on ? static_cast<float>(e) : e_last;
       }
       dev_a -= lambda * eb_a;
       dev_b -= lambda * eb_b;
@@ -176,11 +182,17 @@ template <int D, bool Corrected, bool Viscous, bool Advance, bool Masked>
 struct StateForceRunKernel {
   [[gnu::always_inline]] static bool run(const StateForceRun& a) {
     alignas(64) double g[3][max_run_length];
+    if constexpr (Viscous && Advance) {
+      // the history of the runs one family offset on (bonds.hpp: the next history_block pairs of
+      // either stream): hardware prefetching loses the streams between runs of a few cache lines
+      prefetch_history(a.back_a + 2 * Bonds::history_block, a.length);
+      prefetch_history(a.back_b + 2 * Bonds::history_block, a.length);
+      prefetch_history(a.last_extension + Bonds::history_block, a.length);
+    }
     state_force_run_terms<D, Corrected, Viscous, Advance, Masked>(
         a.length, a.xa, a.ya, a.za, a.xb, a.yb, a.zb, a.pressure_a, a.pressure_b, a.coefficient_a, a.coefficient_b, a.theta_a, a.theta_b,
-        a.alive, a.weight_a, a.weight_b, a.correction_a, a.correction_b, a.last_xa, a.last_ya, a.last_za, a.last_xb, a.last_yb, a.last_zb,
-        a.last_theta_a, a.last_theta_b, a.back_a, a.back_b, a.lambda,
-        a.one_minus_decay, a.decay, a.beta, a.bond_length, a.omega, a.volume, g[0], g[1], g[2]);
+        a.alive, a.weight_a, a.weight_b, a.correction_a, a.correction_b, a.last_theta_a, a.last_theta_b, a.back_a, a.back_b,
+        a.last_extension, a.lambda, a.one_minus_decay, a.decay, a.beta, a.bond_length, a.omega, a.volume, g[0], g[1], g[2]);
     add_pair_forces_to_run_ends<D>(a, g);
     return false;
   }

@@ -28,8 +28,8 @@ namespace rift::pd {
 
 /// Zero history for the VES bodies, laid out by lattice offset (bonds.hpp, bond_slabs.hpp
 /// history_index): per block of Bonds::history_block particles, two directions of every forward
-/// offset; e_d(0) = 0 at the reference positions; the per-particle sums of ves_dilatation to be
-/// taken on the first evaluation.
+/// offset; e(0) = 0 and theta(0) = 0 at the reference positions; the per-particle sums of
+/// ves_dilatation to be taken on the first evaluation.
 template <int D>
 void prepare_viscous_history(Model<D>& m) {
   std::size_t slots = 0;
@@ -41,11 +41,7 @@ void prepare_viscous_history(Model<D>& m) {
   }
   if (slots == 0) return;
   m.bonds.back_extension.assign(slots, 0.0f);
-  for (int q = 0; q < D; ++q) {
-    auto& x = m.bonds.history_position[static_cast<std::size_t>(q)];
-    x.resize(m.size());
-    for (std::size_t i = 0; i < m.size(); ++i) x[i] = m.reference_position[i][q];
-  }
+  m.bonds.last_extension.assign(slots / 2, 0.0f);
   m.bonds.history_dilatation.assign(m.size(), 0.0);
   m.bonds.deviatoric_sum.assign(m.size(), 0.0);
   m.bonds.back_sum.assign(m.size(), 0.0);
@@ -63,8 +59,9 @@ void sum_viscous_history(Model<D>& m, const BodyInfo& body, std::size_t i, std::
     if (b.intact[static_cast<std::size_t>(k)] != bond_intact) continue;
     const double xi = b.length(k);
     const double w = b.correction(i, k) * influence(Omega, xi, body.constants.horizon) * xi * b.volume(k);  // g omega |xi| V
-    deviatoric += w * last_deviatoric_extension<D>(b, i, static_cast<std::size_t>(b.neighbor[static_cast<std::size_t>(k)]), xi);
-    back += w * b.back_extension[history_slot(b, body, i, k)];
+    const std::size_t h = history_slot(b, body, i, k);
+    deviatoric += w * last_deviatoric_extension<D>(b, h, i, xi);
+    back += w * b.back_extension[h];
     weighted_volume += w * xi;
   }
   b.deviatoric_sum[i] = deviatoric, b.back_sum[i] = back, b.intact_weighted_volume[i] = weighted_volume;

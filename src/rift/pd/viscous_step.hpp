@@ -2,13 +2,14 @@
 // extension e_d linear in time over the step dt, d e_b / dt = (e_d - e_b) / tau integrates exactly to
 //   e_b(n+1) = e_d(n) (1 - decay) + e_b(n) decay + beta (e_d(n+1) - e_d(n)),
 //   decay = exp(-dt / tau),  beta = 1 - tau (1 - decay) / dt.
-// e_d(n) is not stored per bond: it is taken again from the positions and dilatations of the step
-// before (bonds.hpp history_position), 24 + 8 bytes a particle instead of 4 a directed bond, and a
-// stream of the force pass fewer.
+// e_d(n) is not stored per directed bond: it is taken again from the pair's extension and the
+// particle's dilatation of the step before (bonds.hpp last_extension, history_dilatation), 2 bytes a
+// directed bond and 8 a particle instead of 4 a directed bond.
 #pragma once
 #include <cmath>
 #include <cstddef>
 
+#include "rift/pd/bond_slabs.hpp"
 #include "rift/pd/bonds.hpp"
 
 namespace rift::pd {
@@ -33,16 +34,11 @@ struct ViscousStep {
   return static_cast<float>(deviatoric_old * one_minus_decay + back_old * decay + beta * (deviatoric - deviatoric_old));
 }
 
-/// e_d(n) of bond i-j seen from i, at the positions and dilatation of the history's last advance
-/// (bonds.hpp history_position): |y| - |xi| - theta_i |xi| / d then.
+/// e_d(n) of the bond with history slot h (either direction) seen from its end i, at the history's
+/// last advance (bonds.hpp last_extension, history_dilatation): e(n) - theta_i(n) |xi| / d.
 template <int D>
-double last_deviatoric_extension(const Bonds& b, std::size_t i, std::size_t j, double xi) {
-  double r2 = 0.0;
-  for (std::size_t q = 0; q < D; ++q) {
-    const double d = b.history_position[q][j] - b.history_position[q][i];
-    r2 += d * d;
-  }
-  return std::sqrt(r2) - xi - b.history_dilatation[i] * (xi / D);
+double last_deviatoric_extension(const Bonds& b, std::size_t h, std::size_t i, double xi) {
+  return b.last_extension[pair_slot(h)] - b.history_dilatation[i] * (xi / D);
 }
 
 }  // namespace rift::pd
