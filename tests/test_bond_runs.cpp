@@ -8,7 +8,10 @@
 //     made in another order; measured about 1e-16);
 // (3) the same for the LPS passes (dilatation and forces) against Silling et al. (2007);
 // (4) the SSE2, AVX2 and AVX-512 clones of the run kernels give the same bits (core/vector_isa.hpp),
-//     PMB, LPS and VES (its history too).
+//     PMB, LPS and VES (its history too);
+// (5) the strain energy densities in runs (pd/energy_runs.hpp) equal the row forms, and under a
+//     uniform dilatation eps the state-based W of a particle whose family is whole is the continuum's
+//     K (3 eps)^2 / 2.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -274,6 +277,63 @@ TEST(BondRuns, VectorClonesGiveTheSameBits) {
   for (const char* model : {"pmb", "lps", "ves"}) {
     check_same_bits<3>(false, model);
     check_same_bits<2>(true, model);
+  }
+}
+
+// The energy densities in runs against the rows (pmb.hpp, lps.hpp energy_density): PMB, LPS and VES
+// (two steps of history), 3D without the surface correction and 2D with it, bonds broken
+// beforehand and by the passes. The sums are made in another order: 1e-12 of the largest W.
+template <int D>
+void check_energy_runs_against_rows(bool surface_correction, const char* model) {
+  auto m = block<D>(surface_correction, model);
+  deform_and_break(m);
+  rift::pd::compute_forces<D>(m, nullptr, 1e-7);
+  for (std::size_t i = 0; i < m.size(); ++i) m.position[i][0] += 1e-6 * m.reference_position[i][1];
+  rift::pd::compute_forces<D>(m, nullptr, 1e-7);
+  std::vector<double> runs(m.size());
+  rift::pd::strain_energy_densities<D>(m, runs.data());
+  double largest = 0.0, worst = 0.0;
+  for (std::size_t i = 0; i < m.size(); ++i) largest = std::max(largest, std::abs(rift::pd::strain_energy_density<D>(m, i)));
+  for (std::size_t i = 0; i < m.size(); ++i) worst = std::max(worst, std::abs(runs[i] - rift::pd::strain_energy_density<D>(m, i)) / largest);
+  std::printf("%s %dD: energy densities in runs against the rows, largest difference %.1e of the largest\n", model, D, worst);
+  ASSERT_GT(largest, 0.0);
+  EXPECT_LT(worst, 1e-12) << model << " " << D << "D";
+}
+
+TEST(BondRuns, StrainEnergyDensitiesEqualRowByRowFormulas) {
+  for (const char* model : {"pmb", "lps", "ves"}) {
+    check_energy_runs_against_rows<3>(false, model);
+    check_energy_runs_against_rows<2>(true, model);
+  }
+}
+
+// Uniform dilatation eps of the LPS and VES (Silling et al. 2007 eq. 88: theta = 3 eps and no
+// deviatoric extension where the family is whole): W = K (3 eps)^2 / 2, the continuum's, to 1e-9.
+TEST(BondRuns, StrainEnergyDensityOfAUniformDilatationIsTheContinuums) {
+  for (const char* model : {"lps", "ves"}) {
+    std::string scene = block_scene(3, false, model);  // the block without its hole
+    scene.replace(scene.find("of = [\"block\", \"hole\"]"), std::string("of = [\"block\", \"hole\"]").size(), "of = [\"block\"]");
+    scene.replace(scene.find("\"difference\""), std::string("\"difference\"").size(), "\"union\"");
+    auto m = rift::pd::discretize<3>(rift::scene::parse_string(scene, "block.toml"));
+    const double eps = 1e-4;
+    for (std::size_t i = 0; i < m.size(); ++i)
+      for (int q = 0; q < 3; ++q) m.position[i][q] = (1.0 + eps) * m.reference_position[i][q];
+    rift::pd::compute_forces<3>(m, nullptr, 1e-7);
+    std::vector<double> w(m.size());
+    rift::pd::strain_energy_densities<3>(m, w.data());
+    const auto& b = m.bonds;
+    const auto& body = m.bodies[0];
+    const double expected = 0.5 * body.constants.kappa * 9.0 * eps * eps;
+    std::size_t whole = 0;
+    double worst = 0.0;
+    for (std::size_t i = 0; i < m.size(); ++i) {
+      if (static_cast<std::size_t>(b.offset[i + 1] - b.offset[i]) != body.family_count) continue;
+      ++whole;
+      worst = std::max(worst, std::abs(w[i] - expected) / expected);
+    }
+    std::printf("%s: W of a uniform dilatation against K (3 eps)^2 / 2 over %zu whole families: %.1e\n", model, whole, worst);
+    ASSERT_GT(whole, 50u);
+    EXPECT_LT(worst, 1e-9) << model;
   }
 }
 

@@ -4,6 +4,7 @@
 #include <limits>
 
 #include "rift/parallel/ordered_sum.hpp"
+#include "rift/pd/energy_runs.hpp"
 #include "rift/pd/interface_contact.hpp"
 #include "rift/pd/interface_law.hpp"
 #include "rift/pd/lps.hpp"
@@ -75,11 +76,16 @@ double strain_energy_density(const Model<D>& m, std::size_t i) {
 
 template <int D>
 EnergySummary summarize(const Model<D>& m, bool strain_energy) {
+  // W_i of every particle first, its bonds in runs (energy_runs.hpp)
+  static thread_local std::vector<double> densities;  // the calling thread's; the team reads it through the pointer
+  densities.resize(strain_energy ? m.size() : 0);
+  double* const density = densities.data();
+  if (strain_energy) strain_energy_densities<D>(m, density);
   auto sums = parallel::ordered_sums<3>(m.size(), [&](std::size_t i, std::array<double, 3>& acc) {
     const double rho = m.constants_of(i).density;
     acc[0] += 0.5 * rho * dot<D>(m.velocity[i], m.velocity[i]) * m.volume[i];
     if (strain_energy) {
-      acc[1] += strain_energy_density<D>(m, i) * m.volume[i];
+      acc[1] += density[i] * m.volume[i];
     } else {
       for (int k = 0; k < D; ++k)
         if (!std::isfinite(m.position[i][k])) acc[1] = std::numeric_limits<double>::quiet_NaN();
@@ -129,6 +135,7 @@ std::size_t failed_bonds(const Model<D>& m) {
   template void compute_forces<D>(Model<D>&, Contact<D>*, double);        \
   template void update_damage<D>(Model<D>&);                              \
   template double strain_energy_density<D>(const Model<D>&, std::size_t); \
+  template void strain_energy_densities<D>(const Model<D>&, double*);     \
   template EnergySummary summarize<D>(const Model<D>&, bool);             \
   template std::size_t failed_bonds<D>(const Model<D>&);                  \
   template double stable_time_step<D>(const Model<D>&);

@@ -26,17 +26,22 @@ void advance_stretch_limits(Model<D>& m) {
 template <int D>
 void update_damage(Model<D>& m);
 
-/// Strain energy density of particle i (uses the current dilatation for LPS).
+/// Strain energy density of particle i (uses the current dilatation for LPS), its row's bonds one by
+/// one.
 template <int D>
 double strain_energy_density(const Model<D>& m, std::size_t i);
+
+/// The same of every particle into w (size m.size()), the bonds in runs (energy_runs.hpp).
+template <int D>
+void strain_energy_densities(const Model<D>& m, double* w);
 
 struct EnergySummary {
   double kinetic = 0.0, strain = 0.0;
   std::int64_t broken_bonds = 0;  // bonds broken (each bond counted once)
   double broken_fraction = 0.0;
 };
-/// Kinetic and strain energy and the broken bonds. The strain energy visits every bond again
-/// (state-based: each from both ends); with `strain_energy` false it is left 0 unless a position is
+/// Kinetic and strain energy and the broken bonds. The strain energy visits every pair of bonds
+/// again (strain_energy_densities); with `strain_energy` false it is left 0 unless a position is
 /// not finite, which it then carries as NaN (runner's check_finite), and the sum costs one pass
 /// over the particles and their bond states.
 template <int D>

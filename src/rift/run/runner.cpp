@@ -168,7 +168,7 @@ void write_snapshot(io::FieldWriter& w, pd::Model<D>& m, const scene::Scene& s) 
       w.write(f, b, 1);
     } else if (f == "strain_energy_density") {
       std::vector<double> e(m.size());
-      for (std::size_t i = 0; i < m.size(); ++i) e[i] = pd::strain_energy_density<D>(m, i);
+      pd::strain_energy_densities<D>(m, e.data());
       w.write(f, e, 1);
     }
   }
