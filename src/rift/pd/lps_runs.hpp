@@ -182,12 +182,12 @@ template <int D, bool Corrected, bool Viscous, bool Advance, bool Masked>
 struct StateForceRunKernel {
   [[gnu::always_inline]] static bool run(const StateForceRun& a) {
     alignas(64) double g[3][max_run_length];
-    if constexpr (Viscous && Advance) {
+    if constexpr (Viscous) {
       // the history of the runs one family offset on (bonds.hpp: the next history_block pairs of
       // either stream): hardware prefetching loses the streams between runs of a few cache lines
       prefetch_history(a.back_a + 2 * Bonds::history_block, a.length);
       prefetch_history(a.back_b + 2 * Bonds::history_block, a.length);
-      prefetch_history(a.last_extension + Bonds::history_block, a.length);
+      if constexpr (Advance) prefetch_history(a.last_extension + Bonds::history_block, a.length);
     }
     state_force_run_terms<D, Corrected, Viscous, Advance, Masked>(
         a.length, a.xa, a.ya, a.za, a.xb, a.yb, a.zb, a.pressure_a, a.pressure_b, a.coefficient_a, a.coefficient_b, a.theta_a, a.theta_b,
