@@ -104,7 +104,7 @@ void strain_energy_densities(const Model<D>& m, const BodyInfo& body, double* w)
         correction_a[t] = b.factors[static_cast<std::size_t>(b.factor_row[i + t] + run.family)].correction;
         correction_b[t] = b.factors[static_cast<std::size_t>(b.factor_row[j + t] + family.mirror)].correction;
       }
-    EnergyRun a;
+    static thread_local EnergyRun a;  // the thread's: every run sets what its form reads (not zeroed each run)
     a.length = length;
     a.xa = x[0] + i, a.ya = x[1] + i, a.xb = x[0] + j, a.yb = x[1] + j;
     if constexpr (D == 3) a.za = x[2] + i, a.zb = x[2] + j;

@@ -137,7 +137,7 @@ void dilatation_runs(Model<D>& m, const BodyInfo& body, double* coupling, double
         correction_a[t] = own.correction, correction_b[t] = other.correction;
       }
     const double* const pore = Wet ? wet.pore_stretch : nullptr;
-    DilatationRun a;
+    static thread_local DilatationRun a;  // the thread's: every run sets what its form reads (not zeroed each run)
     a.length = length;
     a.xa = x[0] + i, a.ya = x[1] + i, a.xb = x[0] + j, a.yb = x[1] + j;
     if constexpr (D == 3) a.za = x[2] + i, a.zb = x[2] + j;
@@ -365,7 +365,7 @@ void state_based_forces(Model<D>& m, const BodyInfo& body, double history_dt) {
         weight_a[t] = own.dilatation_weight, weight_b[t] = other.dilatation_weight;
         correction_a[t] = own.correction, correction_b[t] = other.correction;
       }
-    StateForceRun a;
+    static thread_local StateForceRun a;  // the thread's: every run sets what its form reads (not zeroed each run)
     a.length = length;
     a.xa = x[0] + i, a.ya = x[1] + i, a.xb = x[0] + j, a.yb = x[1] + j;
     a.fxa = f[0] + i, a.fya = f[1] + i, a.fxb = f[0] + j, a.fyb = f[1] + j;

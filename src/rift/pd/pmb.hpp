@@ -173,7 +173,7 @@ void pmb_forces(Model<D>& m, const BodyInfo& body) {
         factor[t] = 0.5f * (v.factors[v.factor_row[i + t] + run.family].correction +
                             v.factors[v.factor_row[j + t] + family.mirror].correction);
     const double* const pore = Wet ? wet.pore_stretch : nullptr;
-    PmbRun a;
+    static thread_local PmbRun a;  // the thread's: every run sets what its form reads (not zeroed each run)
     a.length = length;
     a.xa = x[0] + i, a.ya = x[1] + i, a.xb = x[0] + j, a.yb = x[1] + j;
     a.fxa = f[0] + i, a.fya = f[1] + i, a.fxb = f[0] + j, a.fyb = f[1] + j;
