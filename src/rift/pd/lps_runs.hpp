@@ -114,11 +114,11 @@ struct StateForceRun {
   double *fxa = nullptr, *fya = nullptr, *fza = nullptr, *fxb = nullptr, *fyb = nullptr, *fzb = nullptr;
 };
 
-/// Asks the cache for the `length` history values from `start` (for writing). The addresses may lie
-/// past the history's end: a prefetch never faults.
-[[gnu::always_inline]] inline void prefetch_history(const float* start, std::size_t length) {
+/// Asks the cache for the `length` history values `ahead` slots on from `start` (for writing). The
+/// addresses may lie past the history's end (taken as integers, not pointers): a prefetch never faults.
+[[gnu::always_inline]] inline void prefetch_history(const float* start, std::size_t ahead, std::size_t length) {
   constexpr std::size_t line = 64;
-  const auto first = reinterpret_cast<std::uintptr_t>(start), last = first + length * sizeof(float);
+  const auto first = reinterpret_cast<std::uintptr_t>(start) + ahead * sizeof(float), last = first + length * sizeof(float);
   for (std::uintptr_t p = first; p < last; p += line) __builtin_prefetch(reinterpret_cast<const void*>(p), 1, 3);
 }
 
@@ -185,9 +185,9 @@ struct StateForceRunKernel {
     if constexpr (Viscous) {
       // the history of the runs one family offset on (bonds.hpp: the next history_block pairs of
       // either stream): hardware prefetching loses the streams between runs of a few cache lines
-      prefetch_history(a.back_a + 2 * Bonds::history_block, a.length);
-      prefetch_history(a.back_b + 2 * Bonds::history_block, a.length);
-      if constexpr (Advance) prefetch_history(a.last_extension + Bonds::history_block, a.length);
+      prefetch_history(a.back_a, 2 * Bonds::history_block, a.length);
+      prefetch_history(a.back_b, 2 * Bonds::history_block, a.length);
+      if constexpr (Advance) prefetch_history(a.last_extension, Bonds::history_block, a.length);
     }
     state_force_run_terms<D, Corrected, Viscous, Advance, Masked>(
         a.length, a.xa, a.ya, a.za, a.xb, a.yb, a.zb, a.pressure_a, a.pressure_b, a.coefficient_a, a.coefficient_b, a.theta_a, a.theta_b,
