@@ -121,6 +121,8 @@ const Case cases[] = {
      "boreholes[0].time", "time = { function"},
     {"viscosity of a prescribed-pressure fluid", "", "\n[regions.well]\nshape = \"cylinder\"\ncenter = [0.005, 0.005]\nradius = 0.002\n[[boreholes]]\nregion = \"well\"\npressure = 1e6\nfluid_viscosity = 0.1\n",
      "boreholes[0].fluid_viscosity", "fluid_viscosity = 0.1"},
+    {"negative breakdown pressure", "", "\n[regions.well]\nshape = \"cylinder\"\ncenter = [0.005, 0.005]\nradius = 0.002\n[[boreholes]]\nregion = \"well\"\ninjection_rate = 1e-9\nfluid_bulk_modulus = 2e9\nbreakdown_pressure = -1e6\n",
+     "boreholes[0].breakdown_pressure", "breakdown_pressure = -1e6"},
     {"negative fluid viscosity", "", "\n[regions.well]\nshape = \"cylinder\"\ncenter = [0.005, 0.005]\nradius = 0.002\n[[boreholes]]\nregion = \"well\"\ninjection_rate = 1e-9\nfluid_bulk_modulus = 2e9\nfluid_viscosity = -1.0\n",
      "boreholes[0].fluid_viscosity", "fluid_viscosity = -1.0"},
     {"borehole that touches no material", "", "\n[regions.far]\nshape = \"box\"\nmin = [1.0, 1.0]\nmax = [1.1, 1.1]\n[[boreholes]]\nregion = \"far\"\npressure = 1e6\n",

@@ -110,6 +110,52 @@ TEST(ViscousFluid, InjectionSystemVolumeStoresItsShareInBothFluids) {
   EXPECT_LT(lumped.pressure, 0.8 * without.pressure);
 }
 
+// A borehole with a breakdown pressure keeps its fluid out of the dry pre-crack through it until
+// its pressure first reaches that (FluidNetwork::sealed, pd/fluid_network.hpp). Sealed (a breakdown
+// pressure never reached): the cavity is the borehole's own, the pre-crack's faces take none of the
+// fluid (its volume equals the wall's alone to round-off, 1e-12), and the lumped fluid's pressure
+// follows the closed mass balance K_f (V0 + Q t) / V - K_f with V that cavity (1e-9), above the
+// unsealed run's. Broken down at the second load step (a breakdown pressure between the sealed
+// run's pressures at t = 0.25 and 0.5 s): the fluid then fills the pre-crack, and since the lumped
+// fluid's mass balance and the elastic rock keep no memory of the path, the state at t = 1 s is the
+// unsealed run's to the relaxation's tolerance (1e-4 of p).
+TEST(ViscousFluid, BreakdownPressureKeepsThePreCrackDryUntilReached) {
+  const double K_f = 2e8, Q_t = 2e-10;
+  auto run = [&](const std::string& key, std::vector<double>* pressures = nullptr) {
+    auto scene = rift::scene::parse_string(borehole_with_pre_crack(key), "viscous.toml");
+    rift::run::Simulation<2> sim(scene);
+    auto& m = sim.model;
+    rift::pd::DynamicRelaxation<2> dr(m);
+    for (double t : {0.25, 0.5, 0.75, 1.0}) {
+      const auto r = dr.relax(m, sim.loads, sim.contact_ptr(), t, 50000, 1e-7);
+      EXPECT_TRUE(r.converged) << "t = " << t << ": residual " << r.residual;
+      if (pressures) pressures->push_back(m.fluid_network.pressure[1]);
+    }
+    sim.loads.apply_body_forces(m, 1.0);
+    const auto& f = m.fluid_network;
+    struct Out {
+      double pressure, volume, wall_volume, reference;
+      bool sealed;
+    };
+    return Out{f.pressure[1], f.cavity_volume[1], f.reference_volume[1] + rift::pd::cavity_volume_change<2>(m, 1, true), f.reference_volume[1],
+               f.sealed[1] != 0};
+  };
+  std::vector<double> sealed_pressures;
+  const auto open = run(""), sealed = run("breakdown_pressure = 1e9\n", &sealed_pressures);
+  char key[80];
+  std::snprintf(key, sizeof key, "breakdown_pressure = %.17g\n", 0.5 * (sealed_pressures[0] + sealed_pressures[1]));
+  const auto broken_down = run(key);
+  std::printf("unsealed p = %.5g MPa; sealed p = %.5g MPa (cavity %.6g, wall %.6g m^3); broken down at %.4g MPa: p = %.5g MPa\n",
+              open.pressure / 1e6, sealed.pressure / 1e6, sealed.volume, sealed.wall_volume, 0.5 * (sealed_pressures[0] + sealed_pressures[1]) / 1e6,
+              broken_down.pressure / 1e6);
+  EXPECT_TRUE(sealed.sealed);
+  EXPECT_NEAR(sealed.volume / sealed.wall_volume, 1.0, 1e-12);
+  EXPECT_NEAR(sealed.pressure / (K_f * ((sealed.reference + Q_t) / sealed.volume - 1.0)), 1.0, 1e-9);
+  EXPECT_GT(sealed.pressure, 1.05 * open.pressure);
+  EXPECT_FALSE(broken_down.sealed);
+  EXPECT_NEAR(broken_down.pressure / open.pressure, 1.0, 1e-4);
+}
+
 // A node whose bonds have all shut (no volume) gives what it held to its open neighbour of largest
 // volume, or to the borehole's node (0) where none is open; the fluid held in all is unchanged.
 TEST(ViscousFluid, AShutNodeSqueezesItsFluidIntoItsOpenNeighbour) {

@@ -98,6 +98,20 @@
 // the pre-crack (the in-situ stage keeps the wall whole; S-1's wall is in 15 MPa of hoop tension
 // there) and the injection system's compliance (a lumped volume of fluid at the borehole's pressure),
 // one value for every row, with the breakdown case (hf_breakdown) as its check.
+// Tried on 2026-11-26 (3 mm, rift run on the row's scene, not kept): that lead, as the borehole's
+// `breakdown_pressure` (the pre-crack shut to the fluid until the borehole reaches Hubbert and
+// Willis' p_b with T = 3 MPa) and `injection_system_volume` V_s = 1e-5 m^3 (over 20 s, 200 load steps:
+// the pump fills V_s at 3e-9 m^3/s). 2-8 (p_b = 10 MPa): the wall broke down at t = 15.2 s, the
+// fracture ran to the interface in that load step (43 breaking passes, p 10 -> 8.47 MPa), and the
+// interface dilated at t = 15.3 s (p = 7.91 > sigma_n = 7.25 MPa, open along 38.9 mm; for the
+// first time in this row), but the far side's rock, broken 2.6 mm past the plane as the tip arrived,
+// grew on with the fluid: crossed from t = 15.6 s (18.2 mm past, p = 7.17 MPa), 31 mm at t = 15.9 s.
+// Crossed+dilated, the thesis' outcome, not the experiment's. With V_s = 3e-5 m^3 (50 s, 500 load
+// steps) the same sooner: dilated at once (47 mm open), 40 mm past the plane a load step later.
+// 2-1 (p_b = 8 MPa) crossed as before (39 mm past at t = 14.7 s, its interface never wet). So the
+// breakdown pressure lets the fluid reach the interface above sigma_n, but the tip that reaches it
+// breaks the far side in the same breaking passes before the interface takes the fluid: the
+// junction itself (which side of the interface breaks first under the arriving tip) still decides.
 // With traction faces instead (the same scenes, faces = "tractions"): 7 of 9. 2-6 arrested (13.7 mm
 // past the plane at t = 4 s; both wings turned toward +y some 80 mm out, as in 2-4, under the 13 /
 // 3 MPa that should keep them straight: the free faces let the block bend), 2-8 crossed (22.3 mm);

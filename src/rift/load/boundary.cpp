@@ -41,10 +41,10 @@ Boundaries<D>::Boundaries(const scene::Scene& s, pd::Model<D>& m) {
     applied_.push_back(std::move(a));
   }
   if (s.in_situ.enabled) add_in_situ_tractions(s.in_situ, m);
-  for (const auto& c : s.cracks) pressure_sources_.push_back({c.pressure, c.pressure_time, false, 0.0, 0.0, 0.0});
+  for (const auto& c : s.cracks) pressure_sources_.push_back({c.pressure, c.pressure_time, false, 0.0, 0.0, 0.0, {}});
   for (const auto& b : s.boreholes)
     pressure_sources_.push_back({b.pressure, b.pressure_time, b.injection_rate.has_value(), b.injection_rate.value_or(0.0), b.fluid_bulk_modulus,
-                                 b.injection_system_volume});
+                                 b.injection_system_volume, b.breakdown_pressure});
   // a viscous injected fluid keeps its nodes' fluid on the model (pd/viscous_fluid.hpp)
   m.fluid_network.viscous.assign(pressure_sources_.size(), {});
   for (std::size_t h = 0; h < s.boreholes.size(); ++h)
@@ -139,6 +139,13 @@ void Boundaries<D>::apply_body_forces(pd::Model<D>& m, double t) const {
     fluid.cavity_volume[c] = volume - src.system_volume;
     fluid.pressure[c] = std::max(0.0, src.fluid_bulk_modulus * ((injected - fluid.escaped_volume[c]) / volume - 1.0));
   }
+  // a wall breaks down once its fluid's pressure first reaches the breakdown pressure: from the next
+  // evaluation on, its fluid enters the dry pre-cracks that start in it (the network is made again)
+  for (std::size_t c = 0; c < pressure_sources_.size() && c < fluid.sealed.size(); ++c)
+    if (fluid.sealed[c] && pressure_sources_[c].breakdown_pressure && fluid.pressure[c] >= *pressure_sources_[c].breakdown_pressure) {
+      fluid.sealed[c] = 0;
+      fluid.broken_bonds = -1;
+    }
   pd::add_crack_pressure<D>(m, fluid.pressure);
   pd::add_network_pressure<D>(m, fluid.pressure);
 }

@@ -2,6 +2,7 @@
 // traction (converted to a body-force density over the loaded particle layer: b = T / depth),
 // body force; each scaled by its time function; the in-situ stress as tractions on the faces. Also the reaction force on tagged regions.
 #pragma once
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -48,6 +49,7 @@ class Boundaries {
     bool injected = false;
     double injection_rate = 0.0, fluid_bulk_modulus = 0.0;
     double system_volume = 0.0;  // the injection system's fluid at the source's pressure, m^3
+    std::optional<double> breakdown_pressure;  // the wall's, Pa (FluidNetwork::sealed)
   };
   std::vector<PressureSource> pressure_sources_;  // cracks, then boreholes
   std::vector<std::string> reaction_names_;

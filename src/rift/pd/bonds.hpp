@@ -202,9 +202,11 @@ struct FluidNetwork {
   std::vector<std::vector<std::int64_t>> surface_bonds;  // network_bonds when crack_surface was made
   std::vector<std::int64_t> crossing_broken;  // broken bonds (both entries) that crossed the crack or its extension when they broke, ascending
   std::vector<std::vector<std::int64_t>> loaded_bonds;   // network_bonds when network_load was made
+  std::vector<std::uint64_t> loaded_signature;  // per particle, when network_load was made: its intact and broken bonds counted (network_load.hpp)
   std::vector<std::vector<double>> network_load;         // per source: the force density on each particle per unit pressure (n x d, 1/m); empty: none (network_load.hpp)
   // per pressure source (the scene's cracks, then its boreholes)
   std::vector<std::uint8_t> dry;         // a crack without pressure of its own: its cut bonds carry a fluid that reaches them
+  std::vector<std::uint8_t> sealed;      // a borehole whose wall has not broken down yet: the dry pre-cracks stay shut to its fluid
   std::vector<double> reference_volume;  // the cavity's volume in the reference state (a borehole's lattice sites)
   std::vector<double> pressure;          // the last pressure applied, Pa
   std::vector<double> pore_pressure;     // the pressure of the last equilibrium (or time step), which the wet rock feels, Pa (effective_stretch.hpp)
@@ -219,6 +221,8 @@ struct FluidNetwork {
 
   /// Whether source s's fluid flows along its cracks by the cubic law (viscous_fluid.hpp).
   bool flows(std::size_t s) const { return s < viscous.size() && viscous[s].viscosity > 0.0; }
+  /// Whether source s's fluid enters the dry pre-cracks it meets (its wall broke down, or has no breakdown pressure).
+  bool enters_dry_cracks(int s) const { return s >= 0 && (static_cast<std::size_t>(s) >= sealed.size() || !sealed[static_cast<std::size_t>(s)]); }
 };
 
 }  // namespace rift::pd

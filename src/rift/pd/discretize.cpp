@@ -119,6 +119,8 @@ void build_bonds(const scene::Scene& s, Model<D>& m, const std::vector<std::arra
   for (const auto& c : s.cracks) any_fluid = any_fluid || c.pressure > 0.0;
   m.fluid_network.dry.assign(s.cracks.size() + s.boreholes.size(), 0);
   for (std::size_t c = 0; c < s.cracks.size(); ++c) m.fluid_network.dry[c] = s.cracks[c].pressure > 0.0 ? 0 : 1;
+  m.fluid_network.sealed.assign(s.cracks.size() + s.boreholes.size(), 0);
+  for (std::size_t h = 0; h < s.boreholes.size(); ++h) m.fluid_network.sealed[s.cracks.size() + h] = s.boreholes[h].breakdown_pressure ? 1 : 0;
   std::vector<geometry::PreCrack> cracks;
   std::vector<std::uint16_t> crack_of;  // scene crack of each segment / polygon
   for (std::size_t ci = 0; ci < s.cracks.size(); ++ci) {

@@ -7,7 +7,9 @@
 // the crack grows (the toughness-dominated limit of hydraulic fracture: no pressure drop along the
 // crack). A crack that no fluid reaches stays dry, and
 // so does a pre-crack without pressure of its own until a fluid reaches it across broken bonds or
-// the borehole it starts from: then its cut bonds carry that fluid's pressure.
+// the borehole it starts from: then its cut bonds carry that fluid's pressure. A borehole with a
+// breakdown pressure keeps its fluid out of the dry pre-cracks until its pressure first reaches it
+// (FluidNetwork::sealed): the breakdown of a wall the lattice does not resolve.
 // A network that reaches the body's outer surface is open to the outside (breakthrough): an injected
 // fluid escapes there, and its pressure falls to zero while the crack stays open to the surface.
 #pragma once
@@ -78,7 +80,7 @@ int pressure_bond_source(const Model<D>& m, std::int64_t k, std::size_t i) {
   const int own = w.source[static_cast<std::size_t>(k)];
   if (!f.dry[static_cast<std::size_t>(own)]) return own;
   const auto j = w.neighbor[static_cast<std::size_t>(k)];
-  if (f.source.empty() || f.source[i] < 0 || f.source[static_cast<std::size_t>(j)] != f.source[i]) return -1;
+  if (f.source.empty() || !f.enters_dry_cracks(f.source[i]) || f.source[static_cast<std::size_t>(j)] != f.source[i]) return -1;
   return f.source[i];
 }
 
@@ -203,7 +205,8 @@ void update_fluid_network(Model<D>& m) {
     for (auto k = b.offset[i]; k < b.offset[i + 1]; ++k)
       if (carries_fluid<D>(m, k, i, static_cast<std::size_t>(b.neighbor[k]))) reach(i, static_cast<std::size_t>(b.neighbor[k]));
     for (auto k = w.offset[i]; k < w.offset[i + 1]; ++k)
-      if (f.dry[w.source[static_cast<std::size_t>(k)]] && w.neighbor[k] >= 0) reach(i, static_cast<std::size_t>(w.neighbor[k]));
+      if (f.dry[w.source[static_cast<std::size_t>(k)]] && w.neighbor[k] >= 0 && f.enters_dry_cracks(f.source[i]))
+        reach(i, static_cast<std::size_t>(w.neighbor[k]));
   }
   // breakthrough: a particle on the outer surface that the fluid reached across broken bonds (not
   // the wall of a borehole that itself reaches the surface, whose casing keeps the fluid in). A

@@ -97,7 +97,7 @@ double viscous_fluid_pressure(Model<D>& m, std::size_t s, double t, double injec
   // a dry pre-crack that a wall particle's bonds cross starts in the borehole: a notch, whose faces
   // share its pressure (a pre-crack closed at first carries no flow, and the fluid would never enter)
   for (const std::size_t i : wet)
-    if (wall[i])
+    if (wall[i] && f.enters_dry_cracks(static_cast<int>(s)))
       for (auto k = w.offset[i]; k < w.offset[i + 1]; ++k)
         if (w.neighbor[static_cast<std::size_t>(k)] >= 0 && f.dry[w.source[static_cast<std::size_t>(k)]]) notch[w.source[static_cast<std::size_t>(k)]] = 1;
   std::vector<std::int64_t> node(n, -1);
@@ -116,7 +116,9 @@ double viscous_fluid_pressure(Model<D>& m, std::size_t s, double t, double injec
   const std::size_t nodes = particle_of_node.size();
   const auto bonds = flow_bonds<D>(
       m, v.viscosity, wet, [&](std::size_t i, std::int64_t k, std::size_t j) { return node[j] >= 0 && carries_fluid<D>(m, k, i, j); },
-      [&](std::size_t, std::int64_t k, std::size_t j) { return node[j] >= 0 && f.dry[w.source[static_cast<std::size_t>(k)]]; });
+      [&](std::size_t, std::int64_t k, std::size_t j) {
+        return node[j] >= 0 && f.dry[w.source[static_cast<std::size_t>(k)]] && f.enters_dry_cracks(static_cast<int>(s));
+      });
   std::vector<double> volume(nodes, 0.0);
   const double borehole_change = cavity_volume_change<D>(m, static_cast<int>(s), true);
   volume[0] = f.reference_volume[s] + system_volume + borehole_change;

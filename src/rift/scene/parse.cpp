@@ -382,6 +382,7 @@ void parse_boreholes(R& root, Scene& s) {
     require_region(s, r, "region", b.region);
     b.pressure = r.non_negative("pressure", r.number("pressure", 0.0));
     b.pressure_time = time_function(r, "time");
+    if (auto p = r.number("breakdown_pressure")) b.breakdown_pressure = r.non_negative("breakdown_pressure", *p);
     if (auto q = r.number("injection_rate")) {
       b.injection_rate = r.non_negative("injection_rate", *q);
       b.fluid_bulk_modulus = r.positive("fluid_bulk_modulus", r.required_number("fluid_bulk_modulus", "bulk modulus of the injected fluid, Pa"));
@@ -393,7 +394,8 @@ void parse_boreholes(R& root, Scene& s) {
       for (const char* key : {"fluid_bulk_modulus", "fluid_viscosity", "injection_system_volume"})
         if (r.has(key)) r.fail(key, "only with injection_rate (the pressure is prescribed otherwise)");
     }
-    r.finish({"region", "pressure", "time", "injection_rate", "fluid_bulk_modulus", "fluid_viscosity", "injection_system_volume"});
+    r.finish({"region", "pressure", "time", "injection_rate", "fluid_bulk_modulus", "fluid_viscosity", "injection_system_volume",
+              "breakdown_pressure"});
     s.boreholes.push_back(b);
   });
 }

@@ -132,6 +132,11 @@ struct Borehole {
   /// the modelled thickness): its compliance V_s / K_f stores fluid as the pressure rises and gives
   /// it back as the pressure falls (a laboratory test's breakdown runs on it).
   double injection_system_volume = 0.0;
+  /// The wall's breakdown pressure, Pa: the dry pre-cracks that start in the borehole (notches)
+  /// stay shut to its fluid until its pressure first reaches this (pd/fluid_network.hpp). For a wall
+  /// the lattice does not resolve (a hole a horizon or less across), e.g. Hubbert and Willis' 3
+  /// sigma_h - sigma_H + T, which hf_breakdown checks on a resolved wall. Unset: open from the start.
+  std::optional<double> breakdown_pressure;
 };
 
 /// Peridynamics: the far-field principal stresses of the rock (Pa, compression negative), applied
