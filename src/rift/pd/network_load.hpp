@@ -25,7 +25,9 @@
 // (4 million particles) took two passes over all its 494 million directed bonds whenever a crack grew.
 #pragma once
 #include <algorithm>
+#include <array>
 #include <cstdint>
+#include <iterator>
 #include <vector>
 
 #include "rift/pd/fluid_network.hpp"
@@ -49,115 +51,176 @@ inline void add_neighbours(const Bonds& b, std::vector<std::size_t>& set, std::v
 }
 
 /// The internal force density of the particles `near` (no bond breaking; the VES by its LPS
-/// response) under the uniform expansion y = (1 + eps) X, with the bonds for which alive(k) holds:
-/// the formulas of pmb.hpp and lps.hpp bond by bond. `state` are the particles whose dilatation the
-/// forces read (near and their neighbours); slot maps a particle to its place in `state`.
-template <int D, class Alive>
-std::vector<Vec<D>> expansion_forces(const Model<D>& m, double eps, const std::vector<std::size_t>& near,
-                                     const std::vector<std::size_t>& state, const std::vector<std::int32_t>& slot, Alive alive) {
+/// response) under the uniform expansion y = (1 + eps) X, twice: with the bonds as they are (intact)
+/// and with the network's broken bonds held intact as well (in_network(k)); returns the first less
+/// the second. The formulas of pmb.hpp and lps.hpp bond by bond, both evaluations in one pass over
+/// the bonds (each summed in the order it would be alone). `state` are the particles whose
+/// dilatation the forces read (near and their neighbours); slot maps a particle to its place there.
+template <int D, class InNetwork>
+std::vector<Vec<D>> expansion_force_difference(const Model<D>& m, double eps, const std::vector<std::size_t>& near,
+                                               const std::vector<std::size_t>& state, const std::vector<std::int32_t>& slot,
+                                               InNetwork in_network) {
   const Bonds& b = m.bonds;
   auto bond = [&](std::size_t i, std::int64_t k, Vec<D>& eta) {  // e = |y| - |xi|, eta = y_j - y_i
     const auto j = static_cast<std::size_t>(b.neighbor[k]);
     for (int q = 0; q < D; ++q) eta[q] = (1.0 + eps) * m.reference_position[j][q] - (1.0 + eps) * m.reference_position[i][q];
     return norm<D>(eta) - b.length(k);
   };
+  // alive in the cracked (0) and in the whole (1) evaluation
+  auto alive = [&](std::int64_t k, bool& cracked, bool& whole) {
+    cracked = b.intact[static_cast<std::size_t>(k)] == bond_intact;
+    whole = cracked || in_network(k);
+    return whole;
+  };
   // theta_i and P_i = q_i - theta_i m_i / d (lps.hpp lps_dilatation) of the state-based particles
-  std::vector<double> theta(state.size(), 0.0), coupling(state.size(), 0.0);
+  std::vector<std::array<double, 2>> theta(state.size(), {0.0, 0.0}), coupling(state.size(), {0.0, 0.0});
 #pragma omp parallel for if(rift::parallel::worth_a_team(state.size())) schedule(static)
   for (std::size_t s = 0; s < state.size(); ++s) {
     const std::size_t i = state[s];
     const auto& c = m.constants_of(i);
     if (c.model == scene::ModelKind::pmb) continue;
-    double th = 0.0, q = 0.0;
+    double th[2] = {0.0, 0.0}, q[2] = {0.0, 0.0};
     for (auto k = b.offset[i]; k < b.offset[i + 1]; ++k) {
-      if (!alive(k)) continue;
+      bool in[2];
+      if (!alive(k, in[0], in[1])) continue;
       Vec<D> eta;
       const double xi = b.length(k), ev = bond(i, k, eta) * b.volume(k);
       const double w = influence(c.influence, xi, c.horizon) * xi * ev;
       const BondFactors& g = b.factors_of(i, k);
-      th += c.surface_correction ? g.dilatation_weight * ev : w;
-      q += c.surface_correction ? g.correction * w : w;
+      for (int v = 0; v < 2; ++v)
+        if (in[v]) {
+          th[v] += c.surface_correction ? g.dilatation_weight * ev : w;
+          q[v] += c.surface_correction ? g.correction * w : w;
+        }
     }
-    if (!c.surface_correction) th *= dilatation_scale<D>(m.weighted_volume[i]);
-    theta[s] = th, coupling[s] = q - th * m.weighted_volume[i] / D;
+    for (int v = 0; v < 2; ++v) {
+      if (!c.surface_correction) th[v] *= dilatation_scale<D>(m.weighted_volume[i]);
+      theta[s][static_cast<std::size_t>(v)] = th[v], coupling[s][static_cast<std::size_t>(v)] = q[v] - th[v] * m.weighted_volume[i] / D;
+    }
   }
-  std::vector<Vec<D>> force(near.size(), Vec<D>{});
+  std::vector<Vec<D>> difference(near.size(), Vec<D>{});
 #pragma omp parallel for if(rift::parallel::worth_a_team(near.size())) schedule(static)
   for (std::size_t s = 0; s < near.size(); ++s) {
     const std::size_t i = near[s];
     const auto& c = m.constants_of(i);
     const double a_dev = c.lps_deviatoric_coefficient();
-    // p, a and b of one end (lps.hpp force_state)
-    auto end = [&](std::size_t p, double& pressure, double& a) {
+    // p, a and b of one end (lps.hpp force_state) in evaluation v
+    auto end = [&](std::size_t p, std::size_t v, double& pressure, double& a) {
       const auto t = static_cast<std::size_t>(slot[p]);
       a = m.weighted_volume[p] > 0.0 ? a_dev / m.weighted_volume[p] : 0.0;
-      pressure = pressure_factor<D>(c.kappa, theta[t], a, coupling[t]);
+      pressure = pressure_factor<D>(c.kappa, theta[t][v], a, coupling[t][v]);
     };
+    Vec<D> force[2] = {Vec<D>{}, Vec<D>{}};
     for (auto k = b.offset[i]; k < b.offset[i + 1]; ++k) {
-      if (!alive(k)) continue;
+      bool in[2];
+      if (!alive(k, in[0], in[1])) continue;
       const auto j = static_cast<std::size_t>(b.neighbor[k]);
       Vec<D> eta;
       const double xi = b.length(k), e = bond(i, k, eta), r = e + xi;
       const double omega = influence(c.influence, xi, c.horizon);
-      double pair;
-      if (c.model == scene::ModelKind::pmb) {
-        pair = pmb_bond_force(c.micromodulus, omega, e / xi, b.correction(i, k), b.mirror_correction(j, k));
-      } else {
-        double p_i, a_i, p_j, a_j;
-        end(i, p_i, a_i);
-        end(j, p_j, a_j);
-        const BondFactors &g_i = b.factors_of(i, k), &g_j = b.mirror_factors_of(j, k);
-        const double b_i = c.surface_correction ? double(g_i.dilatation_weight) : omega * xi * dilatation_scale<D>(m.weighted_volume[i]);
-        const double b_j = c.surface_correction ? double(g_j.dilatation_weight) : omega * xi * dilatation_scale<D>(m.weighted_volume[j]);
-        pair = force_state(b_i, p_i, a_i, g_i.correction, omega, e - theta[static_cast<std::size_t>(slot[i])] * (xi / D)) +
-               force_state(b_j, p_j, a_j, g_j.correction, omega, e - theta[static_cast<std::size_t>(slot[j])] * (xi / D));
+      for (std::size_t v = 0; v < 2; ++v) {
+        if (!in[v]) continue;
+        double pair;
+        if (c.model == scene::ModelKind::pmb) {
+          pair = pmb_bond_force(c.micromodulus, omega, e / xi, b.correction(i, k), b.mirror_correction(j, k));
+        } else {
+          double p_i, a_i, p_j, a_j;
+          end(i, v, p_i, a_i);
+          end(j, v, p_j, a_j);
+          const BondFactors &g_i = b.factors_of(i, k), &g_j = b.mirror_factors_of(j, k);
+          const double b_i = c.surface_correction ? double(g_i.dilatation_weight) : omega * xi * dilatation_scale<D>(m.weighted_volume[i]);
+          const double b_j = c.surface_correction ? double(g_j.dilatation_weight) : omega * xi * dilatation_scale<D>(m.weighted_volume[j]);
+          pair = force_state(b_i, p_i, a_i, g_i.correction, omega, e - theta[static_cast<std::size_t>(slot[i])][v] * (xi / D)) +
+                 force_state(b_j, p_j, a_j, g_j.correction, omega, e - theta[static_cast<std::size_t>(slot[j])][v] * (xi / D));
+        }
+        const double scale = pair * b.volume(k) / r;
+        for (int q = 0; q < D; ++q) force[v][q] += scale * eta[q];
       }
-      const double scale = pair * b.volume(k) / r;
-      for (int q = 0; q < D; ++q) force[s][q] += scale * eta[q];
     }
+    for (int q = 0; q < D; ++q) difference[s][q] = force[0][q] - force[1][q];
   }
-  return force;
+  return difference;
 }
 
 }  // namespace detail
 
+/// Per particle: its intact and its broken bonds, counted (bond states never heal, so any change of
+/// state among its bonds changes these).
+inline std::vector<std::uint64_t> bond_state_signatures(const Bonds& b, std::size_t n) {
+  std::vector<std::uint64_t> signature(n);
+#pragma omp parallel for if(rift::parallel::worth_a_team(n)) schedule(static)
+  for (std::size_t i = 0; i < n; ++i) {
+    std::uint64_t intact = 0, broken = 0;
+    for (auto k = b.offset[i]; k < b.offset[i + 1]; ++k) {
+      const auto state = b.intact[static_cast<std::size_t>(k)];
+      intact += state == bond_intact, broken += state == bond_broken;
+    }
+    signature[i] = intact | broken << 32;
+  }
+  return signature;
+}
+
 /// Makes g_s for every source whose network changed since the last call (call after
 /// update_fluid_network). Reads the model, changes nothing of its state.
+/// Incremental: g_i reads the bonds of i and of its neighbours (their dilatations), so it changes
+/// only where a bond of i or of a neighbour changed state or joined or left the network since the
+/// last call; g is evaluated again on those particles alone, with the same formulas in the same
+/// order, so it equals g made from scratch bit for bit (tests/test_network_load.cpp).
 template <int D>
 void update_network_load(Model<D>& m) {
   FluidNetwork& f = m.fluid_network;
   if (f.network_bonds == f.loaded_bonds) return;
-  f.loaded_bonds = f.network_bonds;
-  f.network_load.assign(f.network_bonds.size(), {});
   constexpr double expansion = 1e-6;
   const Bonds& b = m.bonds;
   const std::size_t n = m.size();
+  // the particles whose bonds changed state since the last call (all of them the first time)
+  auto signature = bond_state_signatures(b, n);
+  const bool first = f.loaded_signature.size() != n;
+  std::vector<std::uint8_t> state_changed(n, first ? 1 : 0);
+  if (!first)
+    for (std::size_t i = 0; i < n; ++i) state_changed[i] = signature[i] != f.loaded_signature[i];
+  f.loaded_signature = std::move(signature);
+  f.loaded_bonds.resize(f.network_bonds.size());
+  f.network_load.resize(f.network_bonds.size());
+  auto end_of = [&](std::int64_t k) {  // the particle whose row holds entry k
+    return static_cast<std::size_t>(std::upper_bound(b.offset.begin(), b.offset.end(), k) - b.offset.begin() - 1);
+  };
+  std::vector<std::uint8_t> in(n, 0);
   for (std::size_t s = 0; s < f.network_bonds.size(); ++s) {
     const auto& bonds = f.network_bonds[s];  // both directions of each, ascending
-    if (bonds.empty()) continue;
-    // the network's ends, the particles whose forces change (near) and those whose dilatation they read
-    std::vector<std::uint8_t> in(n, 0);
+    auto& g = f.network_load[s];
+    if (bonds.empty()) {
+      g.clear();
+      f.loaded_bonds[s].clear();
+      continue;
+    }
+    if (g.empty()) g.assign(n * D, 0.0), f.loaded_bonds[s].clear();
+    // the particles whose g may change: the ends of the bonds that joined or left the network, those
+    // whose bonds changed state, and the neighbours of both (near); and those whose dilatation they read
+    std::vector<std::int64_t> joined_or_left;
+    std::set_symmetric_difference(bonds.begin(), bonds.end(), f.loaded_bonds[s].begin(), f.loaded_bonds[s].end(),
+                                  std::back_inserter(joined_or_left));
+    f.loaded_bonds[s] = bonds;
     std::vector<std::size_t> near;
-    for (const std::int64_t k : bonds) {
-      const auto i = static_cast<std::size_t>(std::upper_bound(b.offset.begin(), b.offset.end(), k) - b.offset.begin() - 1);
+    std::fill(in.begin(), in.end(), 0);
+    for (const std::int64_t k : joined_or_left) {
+      const auto i = end_of(k);
       if (!in[i]) in[i] = 1, near.push_back(i);
     }
+    for (std::size_t i = 0; i < n; ++i)
+      if (state_changed[i] && !in[i]) in[i] = 1, near.push_back(i);
+    if (near.empty()) continue;
     detail::add_neighbours(b, near, in);
     std::vector<std::size_t> state = near;
     detail::add_neighbours(b, state, in);
     std::vector<std::int32_t> slot(n, -1);
     for (std::size_t q = 0; q < state.size(); ++q) slot[state[q]] = static_cast<std::int32_t>(q);
-    auto intact = [&](std::int64_t k) { return b.intact[static_cast<std::size_t>(k)] == bond_intact; };
-    const auto cracked = detail::expansion_forces<D>(m, expansion, near, state, slot, intact);
-    const auto whole = detail::expansion_forces<D>(m, expansion, near, state, slot, [&](std::int64_t k) {
-      return intact(k) || std::binary_search(bonds.begin(), bonds.end(), k);
-    });
-    auto& g = f.network_load[s];
-    g.assign(n * D, 0.0);
+    const auto difference = detail::expansion_force_difference<D>(
+        m, expansion, near, state, slot, [&](std::int64_t k) { return std::binary_search(bonds.begin(), bonds.end(), k); });
     for (std::size_t q = 0; q < near.size(); ++q) {
       const std::size_t i = near[q];
       const double scale = 1.0 / (expansion * D * m.constants_of(i).kappa);
-      for (int r = 0; r < D; ++r) g[i * D + static_cast<std::size_t>(r)] = (cracked[q][r] - whole[q][r]) * scale;
+      for (int r = 0; r < D; ++r) g[i * D + static_cast<std::size_t>(r)] = difference[q][r] * scale;
     }
   }
 }
