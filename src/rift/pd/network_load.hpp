@@ -50,15 +50,18 @@ inline void add_neighbours(const Bonds& b, std::vector<std::size_t>& set, std::v
     }
 }
 
-/// The internal force density of the particles `near` (no bond breaking; the VES by its LPS
-/// response) under the uniform expansion y = (1 + eps) X, twice: with the bonds as they are (intact)
-/// and with the network's broken bonds held intact as well (in_network(k)); returns the first less
-/// the second. The formulas of pmb.hpp and lps.hpp bond by bond, both evaluations in one pass over
-/// the bonds (each summed in the order it would be alone). `state` are the particles whose
-/// dilatation the forces read (near and their neighbours); slot maps a particle to its place there.
+/// F_i - F^s_i on the particles `near` (no bond breaking; the VES by its LPS response) under the
+/// uniform expansion y = (1 + eps) X: F with the bonds as they are, F^s with the network's broken
+/// bonds (in_network(i, k): entry k of row i, not intact) held intact as well. The formulas of pmb.hpp and lps.hpp, summed as the
+/// difference itself: a network bond adds -f^s (its pair force in F^s); an intact bond adds the
+/// change of its pair force, which is linear in the changes of its ends' dilatation and P (lps.hpp
+/// force_state, pressure_factor), nonzero only where an end has network bonds (an `end`, slot
+/// end_slot[i] >= 0: its dilatation reads them); every other bond adds nothing and is skipped.
+/// So a particle's sum reads its network bonds and its bonds to ends alone, and F and F^s never
+/// cancel each other's rounding. `ends`: the ends among the near particles' neighbours.
 template <int D, class InNetwork>
 std::vector<Vec<D>> expansion_force_difference(const Model<D>& m, double eps, const std::vector<std::size_t>& near,
-                                               const std::vector<std::size_t>& state, const std::vector<std::int32_t>& slot,
+                                               const std::vector<std::size_t>& ends, const std::vector<std::int32_t>& end_slot,
                                                InNetwork in_network) {
   const Bonds& b = m.bonds;
   auto bond = [&](std::size_t i, std::int64_t k, Vec<D>& eta) {  // e = |y| - |xi|, eta = y_j - y_i
@@ -66,78 +69,68 @@ std::vector<Vec<D>> expansion_force_difference(const Model<D>& m, double eps, co
     for (int q = 0; q < D; ++q) eta[q] = (1.0 + eps) * m.reference_position[j][q] - (1.0 + eps) * m.reference_position[i][q];
     return norm<D>(eta) - b.length(k);
   };
-  // alive in the cracked (0) and in the whole (1) evaluation
-  auto alive = [&](std::int64_t k, bool& cracked, bool& whole) {
-    cracked = b.intact[static_cast<std::size_t>(k)] == bond_intact;
-    whole = cracked || in_network(k);
-    return whole;
+  // per end: theta and P (lps.hpp lps_dilatation) with the network held intact, and the network
+  // bonds' share of each (F^s less F)
+  struct End {
+    double theta = 0.0, coupling = 0.0, d_theta = 0.0, d_coupling = 0.0;
   };
-  // theta_i and P_i = q_i - theta_i m_i / d (lps.hpp lps_dilatation) of the state-based particles
-  std::vector<std::array<double, 2>> theta(state.size(), {0.0, 0.0}), coupling(state.size(), {0.0, 0.0});
-#pragma omp parallel for if(rift::parallel::worth_a_team(state.size())) schedule(static)
-  for (std::size_t s = 0; s < state.size(); ++s) {
-    const std::size_t i = state[s];
+  std::vector<End> end(ends.size());
+#pragma omp parallel for if(rift::parallel::worth_a_team(ends.size())) schedule(static)
+  for (std::size_t s = 0; s < ends.size(); ++s) {
+    const std::size_t i = ends[s];
     const auto& c = m.constants_of(i);
     if (c.model == scene::ModelKind::pmb) continue;
-    double th[2] = {0.0, 0.0}, q[2] = {0.0, 0.0};
+    double th = 0.0, q = 0.0, d_th = 0.0, d_q = 0.0;
     for (auto k = b.offset[i]; k < b.offset[i + 1]; ++k) {
-      bool in[2];
-      if (!alive(k, in[0], in[1])) continue;
+      const bool intact = b.intact[static_cast<std::size_t>(k)] == bond_intact;
+      if (!intact && !in_network(i, k)) continue;
       Vec<D> eta;
       const double xi = b.length(k), ev = bond(i, k, eta) * b.volume(k);
       const double w = influence(c.influence, xi, c.horizon) * xi * ev;
       const BondFactors& g = b.factors_of(i, k);
-      for (int v = 0; v < 2; ++v)
-        if (in[v]) {
-          th[v] += c.surface_correction ? g.dilatation_weight * ev : w;
-          q[v] += c.surface_correction ? g.correction * w : w;
-        }
+      const double t = c.surface_correction ? g.dilatation_weight * ev : w, u = c.surface_correction ? g.correction * w : w;
+      if (intact) th += t, q += u;
+      else d_th += t, d_q += u;
     }
-    for (int v = 0; v < 2; ++v) {
-      if (!c.surface_correction) th[v] *= dilatation_scale<D>(m.weighted_volume[i]);
-      theta[s][static_cast<std::size_t>(v)] = th[v], coupling[s][static_cast<std::size_t>(v)] = q[v] - th[v] * m.weighted_volume[i] / D;
-    }
+    const double scale = c.surface_correction ? 1.0 : dilatation_scale<D>(m.weighted_volume[i]);
+    th = (th + d_th) * scale, d_th *= scale;
+    end[s] = {th, q + d_q - th * m.weighted_volume[i] / D, d_th, d_q - d_th * m.weighted_volume[i] / D};
   }
   std::vector<Vec<D>> difference(near.size(), Vec<D>{});
 #pragma omp parallel for if(rift::parallel::worth_a_team(near.size())) schedule(static)
   for (std::size_t s = 0; s < near.size(); ++s) {
     const std::size_t i = near[s];
     const auto& c = m.constants_of(i);
+    const bool pmb = c.model == scene::ModelKind::pmb;
     const double a_dev = c.lps_deviatoric_coefficient();
-    // p, a and b of one end (lps.hpp force_state) in evaluation v
-    auto end = [&](std::size_t p, std::size_t v, double& pressure, double& a) {
-      const auto t = static_cast<std::size_t>(slot[p]);
-      a = m.weighted_volume[p] > 0.0 ? a_dev / m.weighted_volume[p] : 0.0;
-      pressure = pressure_factor<D>(c.kappa, theta[t][v], a, coupling[t][v]);
-    };
-    Vec<D> force[2] = {Vec<D>{}, Vec<D>{}};
+    Vec<D> sum{};
     for (auto k = b.offset[i]; k < b.offset[i + 1]; ++k) {
-      bool in[2];
-      if (!alive(k, in[0], in[1])) continue;
       const auto j = static_cast<std::size_t>(b.neighbor[k]);
+      const bool intact = b.intact[static_cast<std::size_t>(k)] == bond_intact;
+      if (intact ? pmb || (end_slot[i] < 0 && end_slot[j] < 0) : !in_network(i, k)) continue;
       Vec<D> eta;
       const double xi = b.length(k), e = bond(i, k, eta), r = e + xi;
       const double omega = influence(c.influence, xi, c.horizon);
-      for (std::size_t v = 0; v < 2; ++v) {
-        if (!in[v]) continue;
-        double pair;
-        if (c.model == scene::ModelKind::pmb) {
-          pair = pmb_bond_force(c.micromodulus, omega, e / xi, b.correction(i, k), b.mirror_correction(j, k));
-        } else {
-          double p_i, a_i, p_j, a_j;
-          end(i, v, p_i, a_i);
-          end(j, v, p_j, a_j);
-          const BondFactors &g_i = b.factors_of(i, k), &g_j = b.mirror_factors_of(j, k);
-          const double b_i = c.surface_correction ? double(g_i.dilatation_weight) : omega * xi * dilatation_scale<D>(m.weighted_volume[i]);
-          const double b_j = c.surface_correction ? double(g_j.dilatation_weight) : omega * xi * dilatation_scale<D>(m.weighted_volume[j]);
-          pair = force_state(b_i, p_i, a_i, g_i.correction, omega, e - theta[static_cast<std::size_t>(slot[i])][v] * (xi / D)) +
-                 force_state(b_j, p_j, a_j, g_j.correction, omega, e - theta[static_cast<std::size_t>(slot[j])][v] * (xi / D));
-        }
-        const double scale = pair * b.volume(k) / r;
-        for (int q = 0; q < D; ++q) force[v][q] += scale * eta[q];
+      double pair;  // F less F^s of this bond
+      if (pmb) {
+        pair = -pmb_bond_force(c.micromodulus, omega, e / xi, b.correction(i, k), b.mirror_correction(j, k));
+      } else {
+        const BondFactors &g_i = b.factors_of(i, k), &g_j = b.mirror_factors_of(j, k);
+        // t of end x (force_state): with the network held (network bond), or its change (intact bond)
+        auto t = [&](std::size_t x, const BondFactors& g) {
+          if (end_slot[x] < 0) return 0.0;
+          const End& z = end[static_cast<std::size_t>(end_slot[x])];
+          const double a = m.weighted_volume[x] > 0.0 ? a_dev / m.weighted_volume[x] : 0.0;
+          const double weight = c.surface_correction ? double(g.dilatation_weight) : omega * xi * dilatation_scale<D>(m.weighted_volume[x]);
+          if (!intact) return force_state(weight, pressure_factor<D>(c.kappa, z.theta, a, z.coupling), a, g.correction, omega, e - z.theta * (xi / D));
+          return force_state(weight, pressure_factor<D>(c.kappa, z.d_theta, a, z.d_coupling), a, g.correction, omega, -z.d_theta * (xi / D));
+        };
+        pair = -(t(i, g_i) + t(j, g_j));
       }
+      const double scale = pair * b.volume(k) / r;
+      for (int q = 0; q < D; ++q) sum[q] += scale * eta[q];
     }
-    for (int q = 0; q < D; ++q) difference[s][q] = force[0][q] - force[1][q];
+    difference[s] = sum;
   }
   return difference;
 }
@@ -211,12 +204,28 @@ void update_network_load(Model<D>& m) {
       if (state_changed[i] && !in[i]) in[i] = 1, near.push_back(i);
     if (near.empty()) continue;
     detail::add_neighbours(b, near, in);
+    // the ends (particles with network bonds) among the near particles and their neighbours
     std::vector<std::size_t> state = near;
     detail::add_neighbours(b, state, in);
-    std::vector<std::int32_t> slot(n, -1);
-    for (std::size_t q = 0; q < state.size(); ++q) slot[state[q]] = static_cast<std::int32_t>(q);
-    const auto difference = detail::expansion_force_difference<D>(
-        m, expansion, near, state, slot, [&](std::int64_t k) { return std::binary_search(bonds.begin(), bonds.end(), k); });
+    // whether the broken entry k of row i is one of the network's bonds: a broken bond whose ends the
+    // fluid reaches carries it (update_fluid_network); a failed interface bond only where its faces
+    // are apart, as the list says
+    const int source = static_cast<int>(s);
+    auto in_network = [&](std::size_t i, std::int64_t k) {
+      if (b.intact[static_cast<std::size_t>(k)] == bond_broken)
+        return f.source[i] == source && f.source[static_cast<std::size_t>(b.neighbor[k])] == source;
+      return std::binary_search(bonds.begin(), bonds.end(), k);
+    };
+    std::vector<std::int32_t> end_slot(n, -1);
+    std::vector<std::size_t> ends;
+    for (const std::size_t i : state)
+      for (auto k = b.offset[i]; k < b.offset[i + 1]; ++k)
+        if (b.intact[static_cast<std::size_t>(k)] != bond_intact && in_network(i, k)) {
+          end_slot[i] = static_cast<std::int32_t>(ends.size());
+          ends.push_back(i);
+          break;
+        }
+    const auto difference = detail::expansion_force_difference<D>(m, expansion, near, ends, end_slot, in_network);
     for (std::size_t q = 0; q < near.size(); ++q) {
       const std::size_t i = near[q];
       const double scale = 1.0 / (expansion * D * m.constants_of(i).kappa);
