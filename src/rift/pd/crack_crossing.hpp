@@ -36,10 +36,11 @@
 namespace rift::pd {
 
 namespace detail {
+// x the fastest: the cells of a row along x have consecutive keys
 template <int D>
 std::int64_t surface_cell_key(const std::array<std::int64_t, D>& c) {
   std::int64_t k = 0;
-  for (int q = 0; q < D; ++q) k = k * 2097152 + (c[q] + 1048576);
+  for (int q = D - 1; q >= 0; --q) k = k * 2097152 + (c[q] + 1048576);
   return k;
 }
 
@@ -50,19 +51,22 @@ std::array<std::int64_t, D> surface_cell_of(const double* x, double cell) {
   return c;
 }
 
-/// Calls f(patch) for every patch in the 3^D cells around x's.
+/// Calls f(patch) for every patch in the 3^D cells around x's (x fastest, then y, then z; in a
+/// cell in the grid's order) until f returns true. The three cells of a row along x are one range
+/// of keys, found by one search.
 template <int D, class F>
 void for_patches_around(const CrackSurface& s, const double* x, F&& f) {
   const auto c = surface_cell_of<D>(x, s.cell);
   std::array<std::int64_t, D> d{};
-  for (int q = 0; q < D; ++q) d[q] = -1;
+  for (int q = 1; q < D; ++q) d[q] = -1;
   while (true) {
     std::array<std::int64_t, D> at{};
-    for (int q = 0; q < D; ++q) at[q] = c[q] + d[q];
-    const auto range = std::equal_range(s.cell_keys.begin(), s.cell_keys.end(), surface_cell_key<D>(at));
-    for (auto e = range.first; e != range.second; ++e)
+    for (int q = 1; q < D; ++q) at[q] = c[q] + d[q];
+    at[0] = c[0] - 1;
+    const std::int64_t first = surface_cell_key<D>(at), last = first + 2;
+    for (auto e = std::lower_bound(s.cell_keys.begin(), s.cell_keys.end(), first); e != s.cell_keys.end() && *e <= last; ++e)
       if (f(s.in_cell[static_cast<std::size_t>(e - s.cell_keys.begin())])) return;
-    int q = 0;
+    int q = 1;
     for (; q < D; ++q) {
       if (++d[q] <= 1) break;
       d[q] = -1;
