@@ -143,25 +143,44 @@ void mark_immersed_fragments(Model<D>& m) {
   // a wet particle held by bonds that do not span D dimensions (one bond, or a row of them) turns
   // about them freely: the fluid swung such a particle 0.7 mm about its last bond in 2-7. Peeled
   // off, with the particles it alone held, until every particle left holds on in every direction.
-  std::vector<std::size_t> wet;  // the peeling runs over the wet particles alone
+  // Peeling is monotone (a particle peeled off leaves its neighbours fewer directions), so what is
+  // left is the same whatever the order: each round decides on every candidate from the last
+  // round's flags, in parallel, and the next round looks again only at the wet neighbours of what
+  // it peeled.
+  auto spans = [&](std::size_t i) {
+    Eigen::Matrix<double, D, D> shape = Eigen::Matrix<double, D, D>::Zero();
+    for (auto k = b.offset[i]; k < b.offset[i + 1]; ++k) {
+      const auto j = static_cast<std::size_t>(b.neighbor[k]);
+      if (b.intact[k] != bond_intact || f.immersed[j]) continue;
+      Eigen::Matrix<double, D, 1> xi;
+      for (int q = 0; q < D; ++q) xi[q] = m.reference_position[j][q] - m.reference_position[i][q];
+      shape += xi * xi.transpose() / xi.squaredNorm();
+    }
+    return std::abs(shape.determinant()) > 1e-6 * std::pow(shape.trace() / D, D);
+  };
+  std::vector<std::size_t> candidates;  // the wet particles not yet immersed
   for (std::size_t i = 0; i < n; ++i)
-    if (f.source[i] >= 0 && !f.immersed[i]) wet.push_back(i);
-  for (bool peeled = true; peeled;) {
-    peeled = false;
-    for (std::size_t i : wet) {
-      if (f.immersed[i]) continue;
-      Eigen::Matrix<double, D, D> shape = Eigen::Matrix<double, D, D>::Zero();
+    if (f.source[i] >= 0 && !f.immersed[i]) candidates.push_back(i);
+  std::vector<std::uint8_t> peel, queued(n, 0);
+  while (!candidates.empty()) {
+    peel.assign(candidates.size(), 0);
+#pragma omp parallel for if(rift::parallel::worth_a_team(candidates.size())) schedule(dynamic, 256)
+    for (std::size_t q = 0; q < candidates.size(); ++q) peel[q] = spans(candidates[q]) ? 0 : 1;
+    std::vector<std::size_t> next;
+    for (std::size_t q = 0; q < candidates.size(); ++q)
+      if (peel[q]) f.immersed[candidates[q]] = 1;
+    for (std::size_t q = 0; q < candidates.size(); ++q) {
+      if (!peel[q]) continue;
+      const std::size_t i = candidates[q];
       for (auto k = b.offset[i]; k < b.offset[i + 1]; ++k) {
         const auto j = static_cast<std::size_t>(b.neighbor[k]);
-        if (b.intact[k] != bond_intact || f.immersed[j]) continue;
-        Eigen::Matrix<double, D, 1> xi;
-        for (int q = 0; q < D; ++q) xi[q] = m.reference_position[j][q] - m.reference_position[i][q];
-        shape += xi * xi.transpose() / xi.squaredNorm();
+        if (b.intact[k] != bond_intact || f.immersed[j] || f.source[j] < 0 || queued[j]) continue;
+        queued[j] = 1;
+        next.push_back(j);
       }
-      if (std::abs(shape.determinant()) > 1e-6 * std::pow(shape.trace() / D, D)) continue;
-      f.immersed[i] = 1;
-      peeled = true;
     }
+    for (const std::size_t j : next) queued[j] = 0;
+    candidates = std::move(next);
   }
 }
 
@@ -175,7 +194,9 @@ void update_fluid_network(Model<D>& m) {
   const Bonds& b = m.bonds;
   const CrackBonds& w = m.crack_bonds;
   std::int64_t broken = 0, interface_failed = 0;
-  for (const auto state : b.intact) broken += state != bond_intact, interface_failed += state == bond_interface_failed;
+  const std::size_t bonds = b.intact.size();
+#pragma omp parallel for if(rift::parallel::worth_a_team(bonds)) schedule(static) reduction(+ : broken, interface_failed)
+  for (std::size_t k = 0; k < bonds; ++k) broken += b.intact[k] != bond_intact, interface_failed += b.intact[k] == bond_interface_failed;
   if (broken == f.broken_bonds && interface_failed == 0 && !f.source.empty()) return;
   f.broken_bonds = broken;
   const std::size_t n = m.size();

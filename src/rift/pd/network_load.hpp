@@ -52,11 +52,12 @@ inline void add_neighbours(const Bonds& b, std::vector<std::size_t>& set, std::v
 
 /// F_i - F^s_i on the particles `near` (no bond breaking; the VES by its LPS response) under the
 /// uniform expansion y = (1 + eps) X: F with the bonds as they are, F^s with the network's broken
-/// bonds (in_network(i, k): entry k of row i, not intact) held intact as well. The formulas of pmb.hpp and lps.hpp, summed as the
-/// difference itself: a network bond adds -f^s (its pair force in F^s); an intact bond adds the
-/// change of its pair force, which is linear in the changes of its ends' dilatation and P (lps.hpp
-/// force_state, pressure_factor), nonzero only where an end has network bonds (an `end`, slot
-/// end_slot[i] >= 0: its dilatation reads them); every other bond adds nothing and is skipped.
+/// bonds (in_network(i, k): entry k of row i, not intact) held intact as well. The formulas of
+/// pmb.hpp and lps.hpp, summed as the difference itself: a network bond adds -f^s (its pair force
+/// in F^s); an intact bond adds the change of its pair force, which is linear in the changes of its
+/// ends' dilatation and P (lps.hpp force_state, pressure_factor), nonzero only where an end has
+/// network bonds (an `end`, slot end_slot[i] >= 0: its dilatation reads them); every other bond
+/// adds nothing and is skipped.
 /// So a particle's sum reads its network bonds and its bonds to ends alone, and F and F^s never
 /// cancel each other's rounding. `ends`: the ends among the near particles' neighbours.
 template <int D, class InNetwork>
@@ -157,8 +158,8 @@ inline std::vector<std::uint64_t> bond_state_signatures(const Bonds& b, std::siz
 /// update_fluid_network). Reads the model, changes nothing of its state.
 /// Incremental: g_i reads the bonds of i and of its neighbours (their dilatations), so it changes
 /// only where a bond of i or of a neighbour changed state or joined or left the network since the
-/// last call; g is evaluated again on those particles alone, with the same formulas in the same
-/// order, so it equals g made from scratch bit for bit (tests/test_network_load.cpp).
+/// last call; g is evaluated again on those particles alone, each by the same sum as from scratch,
+/// so it equals g made from scratch bit for bit (tests/test_network_load.cpp).
 template <int D>
 void update_network_load(Model<D>& m) {
   FluidNetwork& f = m.fluid_network;
