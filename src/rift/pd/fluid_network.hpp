@@ -113,7 +113,8 @@ void mark_immersed_fragments(Model<D>& m) {
   const std::size_t n = m.size();
   f.immersed.assign(n, 0);
   // per particle: 0 not yet reached, -1 joined to more than a family, else the search that reached it
-  std::vector<std::int64_t> label(n, 0);
+  static thread_local std::vector<std::int64_t> label;  // the calling thread's, kept between calls
+  label.assign(n, 0);
   std::vector<std::size_t> piece;
   std::int64_t search = 0;
   for (std::size_t start = 0; start < n; ++start) {
@@ -241,7 +242,8 @@ void update_fluid_network(Model<D>& m) {
   for (std::size_t s = 0; s < f.vented.size(); ++s) f.broke_through[s] |= f.vented[s];
   mark_immersed_fragments<D>(m);
   // the broken bonds each fluid fills, both entries of each (network_load.hpp)
-  f.network_bonds.assign(f.dry.size(), {});
+  f.network_bonds.resize(f.dry.size());  // emptied, each keeping its capacity
+  for (auto& list : f.network_bonds) list.clear();
   for (std::size_t i = 0; i < n; ++i) {
     const int s = f.source[i];
     if (s < 0) continue;

@@ -28,6 +28,7 @@
 #include <array>
 #include <cstdint>
 #include <iterator>
+#include <utility>
 #include <vector>
 
 #include "rift/pd/fluid_network.hpp"
@@ -140,8 +141,8 @@ std::vector<Vec<D>> expansion_force_difference(const Model<D>& m, double eps, co
 
 /// Per particle: its intact and its broken bonds, counted (bond states never heal, so any change of
 /// state among its bonds changes these).
-inline std::vector<std::uint64_t> bond_state_signatures(const Bonds& b, std::size_t n) {
-  std::vector<std::uint64_t> signature(n);
+inline void bond_state_signatures(const Bonds& b, std::size_t n, std::vector<std::uint64_t>& signature) {
+  signature.resize(n);
 #pragma omp parallel for if(rift::parallel::worth_a_team(n)) schedule(static)
   for (std::size_t i = 0; i < n; ++i) {
     std::uint64_t intact = 0, broken = 0;
@@ -151,7 +152,6 @@ inline std::vector<std::uint64_t> bond_state_signatures(const Bonds& b, std::siz
     }
     signature[i] = intact | broken << 32;
   }
-  return signature;
 }
 
 /// Makes g_s for every source whose network changed since the last call (call after
@@ -168,18 +168,22 @@ void update_network_load(Model<D>& m) {
   const Bonds& b = m.bonds;
   const std::size_t n = m.size();
   // the particles whose bonds changed state since the last call (all of them the first time)
-  auto signature = bond_state_signatures(b, n);
+  // per-particle scratch kept by the calling thread (these run every time step while a network grows)
+  static thread_local std::vector<std::uint64_t> signature;
+  static thread_local std::vector<std::uint8_t> state_changed, in;
+  static thread_local std::vector<std::int32_t> end_slot;
+  bond_state_signatures(b, n, signature);
   const bool first = f.loaded_signature.size() != n;
-  std::vector<std::uint8_t> state_changed(n, first ? 1 : 0);
+  state_changed.assign(n, first ? 1 : 0);
   if (!first)
     for (std::size_t i = 0; i < n; ++i) state_changed[i] = signature[i] != f.loaded_signature[i];
-  f.loaded_signature = std::move(signature);
+  std::swap(f.loaded_signature, signature);
   f.loaded_bonds.resize(f.network_bonds.size());
   f.network_load.resize(f.network_bonds.size());
   auto end_of = [&](std::int64_t k) {  // the particle whose row holds entry k
     return static_cast<std::size_t>(std::upper_bound(b.offset.begin(), b.offset.end(), k) - b.offset.begin() - 1);
   };
-  std::vector<std::uint8_t> in(n, 0);
+  in.assign(n, 0);
   for (std::size_t s = 0; s < f.network_bonds.size(); ++s) {
     const auto& bonds = f.network_bonds[s];  // both directions of each, ascending
     auto& g = f.network_load[s];
@@ -217,7 +221,7 @@ void update_network_load(Model<D>& m) {
         return f.source[i] == source && f.source[static_cast<std::size_t>(b.neighbor[k])] == source;
       return std::binary_search(bonds.begin(), bonds.end(), k);
     };
-    std::vector<std::int32_t> end_slot(n, -1);
+    end_slot.assign(n, -1);
     std::vector<std::size_t> ends;
     for (const std::size_t i : state)
       for (auto k = b.offset[i]; k < b.offset[i + 1]; ++k)
