@@ -74,6 +74,29 @@ void for_patches_around(const CrackSurface& s, const double* x, F&& f) {
     if (q == D) break;
   }
 }
+/// Calls f(patch) for every patch in the cells within `margin` of the box around a and b (x
+/// fastest: one search per row of cells along x) until f returns true.
+template <int D, class F>
+void for_patches_near_segment(const CrackSurface& s, const double* a, const double* b, double margin, F&& f) {
+  std::array<std::int64_t, D> lo{}, hi{};
+  for (int q = 0; q < D; ++q) {
+    lo[q] = static_cast<std::int64_t>(std::floor((std::min(a[q], b[q]) - margin) / s.cell));
+    hi[q] = static_cast<std::int64_t>(std::floor((std::max(a[q], b[q]) + margin) / s.cell));
+  }
+  std::array<std::int64_t, D> at = lo;
+  while (true) {
+    at[0] = lo[0];
+    const std::int64_t first = surface_cell_key<D>(at), last = first + (hi[0] - lo[0]);
+    for (auto e = std::lower_bound(s.cell_keys.begin(), s.cell_keys.end(), first); e != s.cell_keys.end() && *e <= last; ++e)
+      if (f(s.in_cell[static_cast<std::size_t>(e - s.cell_keys.begin())])) return;
+    int q = 1;
+    for (; q < D; ++q) {
+      if (++at[q] <= hi[q]) break;
+      at[q] = lo[q];
+    }
+    if (q == D) break;
+  }
+}
 }  // namespace detail
 
 /// Whether the bond between reference positions a and b crosses the crack surface or its extension:
@@ -83,10 +106,9 @@ template <int D, class Accept>
 bool pierces_crack_if(const CrackSurface& s, const Vec<D>& a, const Vec<D>& b, double reach, Accept accept) {
   if (s.empty()) return false;
   if (reach < 0.0 || reach > s.reach) reach = s.reach;
-  double mid[D];
-  for (int q = 0; q < D; ++q) mid[q] = 0.5 * (a[q] + b[q]);
+  // a patch it pierces within reach lies within reach of the bond
   bool crosses = false;
-  detail::for_patches_around<D>(s, mid, [&](std::uint32_t p) {
+  detail::for_patches_near_segment<D>(s, a.data(), b.data(), reach, [&](std::uint32_t p) {
     if (!accept(p)) return false;
     const auto& plane = s.planes[p];
     double da = 0.0, db = 0.0;
@@ -126,12 +148,11 @@ void update_crack_surface(Model<D>& m) {
   surface = CrackSurface{};
   surface.made = true;
   if (f.source.size() != n) return;
-  // the bodies' largest lattice spacing and horizon
-  double spacing = 0.0, horizon = 0.0;
-  for (const auto& body : m.bodies) spacing = std::max(spacing, body.constants.spacing), horizon = std::max(horizon, body.constants.horizon);
+  // the bodies' largest lattice spacing
+  double spacing = 0.0;
+  for (const auto& body : m.bodies) spacing = std::max(spacing, body.constants.spacing);
   const double short_bond = 1.5 * spacing;  // nearest and diagonal neighbours
   surface.reach = (1.0 + 1e-9) * spacing;   // a lattice neighbour's crossing included
-  const double pierce_cell = 0.5 * horizon + surface.reach;  // a pierced patch lies within this of the bond's midpoint
   struct Seed {
     std::int64_t key;
     std::array<double, 3> point, direction;
@@ -233,7 +254,7 @@ void update_crack_surface(Model<D>& m) {
     for (int q = 0; q < D; ++q) surface.planes[p][static_cast<std::size_t>(q)] = seeds[p].point[static_cast<std::size_t>(q)],
                                 surface.planes[p][static_cast<std::size_t>(3 + q)] = v[q];
   }
-  make_grid(pierce_cell);
+  make_grid(surface.reach);  // for pierces_crack_if: a pierced patch lies within reach of the bond
 }
 
 /// Keeps the bonds just broken that crossed the crack (pairs (i, k): row i's entry k), both entries.
