@@ -48,6 +48,9 @@ type = "dynamic_relaxation"
 
 struct Injected {
   double pressure = 0.0, volume = 0.0, held = 0.0;
+  std::vector<double> step_pressures;          // the borehole's pressure at each load step's equilibrium
+  double wall_volume = 0.0, reference = 0.0;  // the borehole's own cavity (its wall alone), and V0
+  bool sealed = false;                        // the wall not yet broken down (breakdown_pressure)
 };
 
 // Relaxes at t = 0.25, 0.5, 0.75, 1 s; the borehole's pressure, the cavity volume and (viscous) the
@@ -57,13 +60,18 @@ Injected inject(const std::string& viscosity_key) {
   rift::run::Simulation<2> sim(scene);
   auto& m = sim.model;
   rift::pd::DynamicRelaxation<2> dr(m);
+  Injected out;
   for (double t : {0.25, 0.5, 0.75, 1.0}) {
     const auto r = dr.relax(m, sim.loads, sim.contact_ptr(), t, 50000, 1e-7);
     EXPECT_TRUE(r.converged) << "t = " << t << ": residual " << r.residual;
+    out.step_pressures.push_back(m.fluid_network.pressure[1]);
   }
   sim.loads.apply_body_forces(m, 1.0);
   const auto& f = m.fluid_network;
-  Injected out{f.pressure[1], f.cavity_volume[1], 0.0};
+  out.pressure = f.pressure[1], out.volume = f.cavity_volume[1];
+  out.reference = f.reference_volume[1];
+  out.wall_volume = f.reference_volume[1] + rift::pd::cavity_volume_change<2>(m, 1, true);
+  out.sealed = f.sealed[1] != 0;
   if (!f.viscous.empty() && f.viscous[1].viscosity > 0.0) {
     out.held = f.viscous[1].trial_inlet;
     for (double x : f.viscous[1].trial) out.held += x;
@@ -121,32 +129,13 @@ TEST(ViscousFluid, InjectionSystemVolumeStoresItsShareInBothFluids) {
 // unsealed run's to the relaxation's tolerance (1e-4 of p).
 TEST(ViscousFluid, BreakdownPressureKeepsThePreCrackDryUntilReached) {
   const double K_f = 2e8, Q_t = 2e-10;
-  auto run = [&](const std::string& key, std::vector<double>* pressures = nullptr) {
-    auto scene = rift::scene::parse_string(borehole_with_pre_crack(key), "viscous.toml");
-    rift::run::Simulation<2> sim(scene);
-    auto& m = sim.model;
-    rift::pd::DynamicRelaxation<2> dr(m);
-    for (double t : {0.25, 0.5, 0.75, 1.0}) {
-      const auto r = dr.relax(m, sim.loads, sim.contact_ptr(), t, 50000, 1e-7);
-      EXPECT_TRUE(r.converged) << "t = " << t << ": residual " << r.residual;
-      if (pressures) pressures->push_back(m.fluid_network.pressure[1]);
-    }
-    sim.loads.apply_body_forces(m, 1.0);
-    const auto& f = m.fluid_network;
-    struct Out {
-      double pressure, volume, wall_volume, reference;
-      bool sealed;
-    };
-    return Out{f.pressure[1], f.cavity_volume[1], f.reference_volume[1] + rift::pd::cavity_volume_change<2>(m, 1, true), f.reference_volume[1],
-               f.sealed[1] != 0};
-  };
-  std::vector<double> sealed_pressures;
-  const auto open = run(""), sealed = run("breakdown_pressure = 1e9\n", &sealed_pressures);
+  const auto open = inject(""), sealed = inject("breakdown_pressure = 1e9\n");
+  const double breakdown = 0.5 * (sealed.step_pressures[0] + sealed.step_pressures[1]);
   char key[80];
-  std::snprintf(key, sizeof key, "breakdown_pressure = %.17g\n", 0.5 * (sealed_pressures[0] + sealed_pressures[1]));
-  const auto broken_down = run(key);
+  std::snprintf(key, sizeof key, "breakdown_pressure = %.17g\n", breakdown);
+  const auto broken_down = inject(key);
   std::printf("unsealed p = %.5g MPa; sealed p = %.5g MPa (cavity %.6g, wall %.6g m^3); broken down at %.4g MPa: p = %.5g MPa\n",
-              open.pressure / 1e6, sealed.pressure / 1e6, sealed.volume, sealed.wall_volume, 0.5 * (sealed_pressures[0] + sealed_pressures[1]) / 1e6,
+              open.pressure / 1e6, sealed.pressure / 1e6, sealed.volume, sealed.wall_volume, breakdown / 1e6,
               broken_down.pressure / 1e6);
   EXPECT_TRUE(sealed.sealed);
   EXPECT_NEAR(sealed.volume / sealed.wall_volume, 1.0, 1e-12);
