@@ -5,6 +5,7 @@
 // influence-function factors of the surface correction sit in one row per particle, shared by the
 // particles whose family is whole.
 #pragma once
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdint>
@@ -97,6 +98,10 @@ struct Bonds {
   std::int64_t size() const { return static_cast<std::int64_t>(neighbor.size()); }
   BondView view() {
     return {offset.data(), neighbor.data(), family.data(), intact.data(), families.data(), factors.data(), factor_row.data()};
+  }
+  /// The particle whose row holds entry k.
+  std::size_t row_of(std::int64_t k) const {
+    return static_cast<std::size_t>(std::upper_bound(offset.begin(), offset.end(), k) - offset.begin() - 1);
   }
   const FamilyOffset& family_of(std::int64_t k) const { return families[family[static_cast<std::size_t>(k)]]; }
   double length(std::int64_t k) const { return family_of(k).length; }

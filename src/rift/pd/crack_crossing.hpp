@@ -174,7 +174,7 @@ void update_crack_surface(Model<D>& m) {
   };
   for (const auto& bonds : f.network_bonds)
     for (const auto k : bonds) {
-      const auto i = static_cast<std::size_t>(std::upper_bound(b.offset.begin(), b.offset.end(), k) - b.offset.begin() - 1);
+      const auto i = b.row_of(k);
       const auto j = static_cast<std::size_t>(b.neighbor[static_cast<std::size_t>(k)]);
       if (j < i) continue;
       // the crack grows by the bonds that break across it or its extension, and from a borehole's

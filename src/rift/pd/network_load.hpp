@@ -180,9 +180,6 @@ void update_network_load(Model<D>& m) {
   std::swap(f.loaded_signature, signature);
   f.loaded_bonds.resize(f.network_bonds.size());
   f.network_load.resize(f.network_bonds.size());
-  auto end_of = [&](std::int64_t k) {  // the particle whose row holds entry k
-    return static_cast<std::size_t>(std::upper_bound(b.offset.begin(), b.offset.end(), k) - b.offset.begin() - 1);
-  };
   in.assign(n, 0);
   for (std::size_t s = 0; s < f.network_bonds.size(); ++s) {
     const auto& bonds = f.network_bonds[s];  // both directions of each, ascending
@@ -202,7 +199,7 @@ void update_network_load(Model<D>& m) {
     std::vector<std::size_t> near;
     std::fill(in.begin(), in.end(), 0);
     for (const std::int64_t k : joined_or_left) {
-      const auto i = end_of(k);
+      const auto i = b.row_of(k);
       if (!in[i]) in[i] = 1, near.push_back(i);
     }
     for (std::size_t i = 0; i < n; ++i)
