@@ -18,6 +18,7 @@
 #include "rift/pd/discretize.hpp"
 #include "rift/pd/fluid_network.hpp"
 #include "rift/pd/held_breaking.hpp"
+#include "rift/pd/crack_crossing.hpp"
 #include "rift/pd/network_load.hpp"
 #include "rift/scene/parse.hpp"
 
@@ -92,7 +93,7 @@ void check(const std::string& material) {
   grow_crack<D>(m, 0.012, 0.020);
   auto& b = m.bonds;
   rift::pd::update_fluid_network<D>(m);
-  const auto& network = m.fluid_network.network_bonds.at(0);
+  const auto network = rift::pd::network_bond_list<D>(m, 0);
   ASSERT_GT(network.size(), 20u);
   const auto state = b.intact;
   rift::pd::update_network_load<D>(m);
@@ -134,7 +135,7 @@ void check_incremental(const std::string& material) {
   rift::pd::update_network_load<D>(m);
   const auto incremental = m.fluid_network.network_load.at(0);
   auto& f = m.fluid_network;
-  f.loaded_bonds.clear(), f.loaded_signature.clear(), f.network_load.clear();
+  rift::pd::forget_network_load(f);
   rift::pd::update_network_load<D>(m);
   const auto& scratch = f.network_load.at(0);
   ASSERT_EQ(incremental.size(), scratch.size());
@@ -143,6 +144,90 @@ void check_incremental(const std::string& material) {
   std::printf("%dD: %zu of %zu entries of g nonzero, %zu differ\n", D, nonzero, scratch.size(), differing);
   EXPECT_GT(nonzero, 0u);
   EXPECT_EQ(differing, 0u);
+}
+
+// While a network only grows (bonds break, no failed interface, one fluid), update_fluid_network
+// goes on from the particles whose bonds broke (fluid_network.hpp): the labels, the immersed
+// fragments, the crack surface (crack_crossing.hpp) and the network load follow from what changed.
+// After the crack grew further, with a flake cut loose at its face and bonds broken beside it, they
+// equal those made from scratch, bit for bit.
+template <int D>
+void check_growth(const std::string& material) {
+  auto m = rift::pd::discretize<D>(rift::scene::parse_string(grown_crack_scene(D, material), "grown.toml"));
+  auto& b = m.bonds;
+  auto grow_across = [&](double from, double to) {  // breaks them as crossing breaks (lps.hpp)
+    const auto before = b.intact;
+    grow_crack<D>(m, from, to);
+    std::vector<std::pair<std::size_t, std::int64_t>> crossed;
+    for (std::size_t i = 0; i < m.size(); ++i)
+      for (auto k = b.offset[i]; k < b.offset[i + 1]; ++k)
+        if (before[static_cast<std::size_t>(k)] != b.intact[static_cast<std::size_t>(k)] && static_cast<std::size_t>(b.neighbor[k]) > i)
+          crossed.emplace_back(i, k);
+    rift::pd::record_crossing_breaks<D>(m, crossed);
+  };
+  grow_across(0.012, 0.016);
+  rift::pd::update_fluid_network<D>(m);
+  rift::pd::update_network_load<D>(m);
+  const std::size_t patches = m.fluid_network.crack_surface.planes.size();
+  grow_across(0.016, 0.020);
+  // a flake: every bond of the particle just above the crack at x = 17 mm; and a bond a row higher
+  auto nearest = [&](double x, double y) {
+    std::size_t best = 0;
+    double distance = 1e9;
+    for (std::size_t i = 0; i < m.size(); ++i) {
+      double d = std::abs(m.reference_position[i][0] - x) + std::abs(m.reference_position[i][1] - y);
+      for (int q = 2; q < D; ++q) d += std::abs(m.reference_position[i][q] - 0.0035);
+      if (d < distance) distance = d, best = i;
+    }
+    return best;
+  };
+  const std::size_t flake = nearest(0.017, 0.0085);
+  for (auto k = b.offset[flake]; k < b.offset[flake + 1]; ++k) {
+    const auto j = static_cast<std::size_t>(b.neighbor[k]);
+    b.intact[static_cast<std::size_t>(k)] = rift::pd::bond_broken;
+    for (auto r = b.offset[j]; r < b.offset[j + 1]; ++r)
+      if (static_cast<std::size_t>(b.neighbor[r]) == flake) b.intact[static_cast<std::size_t>(r)] = rift::pd::bond_broken;
+  }
+  const std::size_t beside = nearest(0.014, 0.0095);
+  b.intact[static_cast<std::size_t>(b.offset[beside])] = rift::pd::bond_broken;
+  auto& f = m.fluid_network;
+  ASSERT_TRUE(rift::pd::fluid_network_grows(f, 0));
+  rift::pd::update_fluid_network<D>(m);
+  rift::pd::update_network_load<D>(m);
+  ASSERT_TRUE(f.immersed[flake]);
+  ASSERT_GT(f.crack_surface.planes.size(), patches);  // the crack's surface grew too
+  auto scratch = m;
+  auto& s = scratch.fluid_network;
+  s.relabel = true;
+  s.crack_surface = {};
+  s.crack_surface.made = true;
+  rift::pd::forget_network_load(s);
+  rift::pd::update_fluid_network<D>(scratch);
+  rift::pd::update_network_load<D>(scratch);
+  EXPECT_EQ(f.source, s.source);
+  EXPECT_EQ(f.in_crack, s.in_crack);
+  EXPECT_EQ(f.immersed, s.immersed);
+  EXPECT_EQ(f.has_network, s.has_network);
+  EXPECT_EQ(f.network_load, s.network_load);
+  // the same patches, each with the same plane
+  auto planes_by_bond = [](const rift::pd::CrackSurface& c) {
+    std::vector<std::pair<std::int64_t, std::array<double, 6>>> out;
+    for (std::size_t p = 0; p < c.patches.size(); ++p) out.emplace_back(c.patches[p], c.planes[p]);
+    std::sort(out.begin(), out.end());
+    return out;
+  };
+  EXPECT_EQ(planes_by_bond(f.crack_surface), planes_by_bond(s.crack_surface));
+  EXPECT_EQ(f.crack_surface.sorted_patches, s.crack_surface.sorted_patches);
+  std::printf("%dD: %zu wet particles, %zu patches (%zu before the crack grew), %ld immersed\n", D,
+              static_cast<std::size_t>(std::count_if(f.source.begin(), f.source.end(), [](int x) { return x >= 0; })),
+              f.crack_surface.planes.size(), patches, static_cast<long>(std::count(f.immersed.begin(), f.immersed.end(), 1)));
+}
+
+TEST(FluidNetwork, UpdatesWhileItGrowsEqualTheNetworkMadeFromScratch) {
+  for (const char* material : {"model = \"lps\"\n", "model = \"ves\"\nviscous_fraction = 0.5\nrelaxation_time = 1e-4\n"}) {
+    check_growth<2>(material);
+    check_growth<3>(material);
+  }
 }
 
 TEST(NetworkLoad, IncrementalUpdateEqualsTheLoadMadeFromScratch) {

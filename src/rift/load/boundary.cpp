@@ -144,7 +144,7 @@ void Boundaries<D>::apply_body_forces(pd::Model<D>& m, double t) const {
   for (std::size_t c = 0; c < pressure_sources_.size() && c < fluid.sealed.size(); ++c)
     if (fluid.sealed[c] && pressure_sources_[c].breakdown_pressure && fluid.pressure[c] >= *pressure_sources_[c].breakdown_pressure) {
       fluid.sealed[c] = 0;
-      fluid.broken_bonds = -1;
+      fluid.relabel = true;
     }
   pd::add_crack_pressure<D>(m, fluid.pressure);
   pd::add_network_pressure<D>(m, fluid.pressure);

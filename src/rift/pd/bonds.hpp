@@ -185,8 +185,9 @@ struct ViscousFluid {
 /// normal, found through a grid of their points.
 struct CrackSurface {
   bool made = false;                          // made once at least (before: a scene's initial state)
-  std::vector<std::int64_t> patches;          // a broken bond's index, or -1 - a cut bond's; ascending
+  std::vector<std::int64_t> patches;          // per patch, in the order they came: a broken bond's entry in its lower end's row, or -1 - a cut bond's
   std::vector<std::array<double, 6>> planes;  // per patch: its point and unit normal (z = 0 in 2D)
+  std::vector<std::int64_t> sorted_patches;   // the patches' bonds, ascending (which bonds have one)
   double cell = 0.0, reach = 0.0;             // the grid's cell size; how far a patch reaches along its plane, m
   std::vector<std::int64_t> cell_keys;        // the grid: cell keys, ascending
   std::vector<std::uint32_t> in_cell;         // the patch of each entry of cell_keys
@@ -197,21 +198,25 @@ struct CrackSurface {
 /// without pressure sources.
 struct FluidNetwork {
   std::vector<int> source;                    // per particle: the source whose fluid reaches it, -1 none
-  std::int64_t broken_bonds = -1;             // broken bonds when the labels were last made
+  bool relabel = true;                        // the labels are to be made from scratch (the first time, a wall broke down)
+  std::vector<std::uint64_t> bond_counts;     // per particle at the last update: its intact and broken bonds counted (fluid_network.hpp)
   std::vector<std::uint8_t> outer_surface;    // per particle: on the body's outer free surface (fluid_network.hpp)
   std::vector<std::uint8_t> in_crack;         // per particle: the fluid reaches it across a crack (a broken or cut bond), not only at a borehole's wall
   std::vector<std::uint8_t> immersed;         // per particle: wet, in a fragment its intact bonds no longer join to the body (fluid_network.hpp): no fluid load
   std::vector<double> pore_stretch;           // per particle: p / (d kappa) where the fluid is in the cracked rock, 0 elsewhere; empty: nowhere (effective_stretch.hpp)
-  std::vector<std::vector<std::int64_t>> network_bonds;  // per source: the broken bonds its fluid fills (both entries of each), ascending
+  std::vector<std::vector<std::int64_t>> open_interface_bonds;  // per source: the failed interface bonds its fluid fills (both entries), ascending
   CrackSurface crack_surface;                 // the cracks' surface the fluid fills (crack_crossing.hpp)
-  std::vector<std::vector<std::int64_t>> surface_bonds;  // network_bonds when crack_surface was made
   std::vector<std::int64_t> crossing_broken;  // broken bonds (both entries) that crossed the crack or its extension when they broke, ascending
-  std::vector<std::vector<std::int64_t>> loaded_bonds;   // network_bonds when network_load was made
-  std::vector<std::uint64_t> loaded_signature;  // per particle, when network_load was made: its intact and broken bonds counted (network_load.hpp)
+  // the particles whose bonds changed state, or whose bonds joined or left a network, since the
+  // network load was last made (network_load.hpp); all of them while load_from_scratch
+  std::vector<std::size_t> load_changed;
+  std::vector<std::uint8_t> load_changed_mark;  // per particle: in load_changed
+  bool load_from_scratch = true;
   std::vector<std::vector<double>> network_load;         // per source: the force density on each particle per unit pressure (n x d, 1/m); empty: none (network_load.hpp)
   // per pressure source (the scene's cracks, then its boreholes)
   std::vector<std::uint8_t> dry;         // a crack without pressure of its own: its cut bonds carry a fluid that reaches them
   std::vector<std::uint8_t> sealed;      // a borehole whose wall has not broken down yet: the dry pre-cracks stay shut to its fluid
+  std::vector<std::uint8_t> has_network; // its fluid fills broken bonds (its network load is made)
   std::vector<double> reference_volume;  // the cavity's volume in the reference state (a borehole's lattice sites)
   std::vector<double> pressure;          // the last pressure applied, Pa
   std::vector<double> pore_pressure;     // the pressure of the last equilibrium (or time step), which the wet rock feels, Pa (effective_stretch.hpp)

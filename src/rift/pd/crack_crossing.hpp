@@ -20,8 +20,11 @@
 // Whether a bond crosses is pure geometry in the reference configuration. It is asked only of the
 // bonds the pore shift would break, and of the bonds that break (to know whether they extend the
 // crack): a mark per bond, remade around each new patch, made hf_injection_rate's cube (diffuse
-// damage, a network change every time step) several times slower. The patches are remade when a
-// network changes, each normal only where a patch within 1.5 spacings came or went.
+// damage, a network change every time step) several times slower. While the networks only grow,
+// the patches of the bonds that joined them are added (extend_crack_surface), otherwise the set is
+// made again and compared (remake_crack_surface); either way a normal is made again only where a
+// patch within 1.5 spacings came or went, summed in the order of the patches' bonds, so the surface
+// does not depend on the order the patches came in.
 #pragma once
 #include <Eigen/Dense>
 #include <algorithm>
@@ -32,6 +35,7 @@
 #include <vector>
 
 #include "rift/pd/model.hpp"
+#include "rift/parallel/team.hpp"
 
 namespace rift::pd {
 
@@ -133,128 +137,251 @@ bool pierces_crack(const CrackSurface& s, const Vec<D>& a, const Vec<D>& b) {
   return pierces_crack_if<D>(s, a, b, -1.0, [](std::uint32_t) { return true; });
 }
 
-/// Remakes the crack surface when a network changed (call after update_fluid_network).
+/// The network whose fluid fills entry k of row i: a broken bond between two particles the same
+/// fluid reaches, or a failed interface bond that fluid fills where its faces are apart
+/// (FluidNetwork::open_interface_bonds, made with the labels); -1: none.
+inline int network_of_bond(const FluidNetwork& f, const Bonds& b, std::size_t i, std::int64_t k) {
+  const auto state = b.intact[static_cast<std::size_t>(k)];
+  if (state == bond_intact || f.source.empty()) return -1;
+  const int s = f.source[i];
+  if (s < 0 || f.source[static_cast<std::size_t>(b.neighbor[static_cast<std::size_t>(k)])] != s) return -1;
+  if (state == bond_broken) return s;
+  const auto& open = f.open_interface_bonds[static_cast<std::size_t>(s)];
+  return std::binary_search(open.begin(), open.end(), k) ? s : -1;
+}
+
+namespace detail {
+
+/// The bodies' largest lattice spacing.
 template <int D>
-void update_crack_surface(Model<D>& m) {
-  FluidNetwork& f = m.fluid_network;
-  CrackSurface& surface = f.crack_surface;
-  if (surface.made && f.network_bonds == f.surface_bonds) return;
-  f.surface_bonds = f.network_bonds;
-  const Bonds& b = m.bonds;
-  const CrackBonds& w = m.crack_bonds;
-  const std::size_t n = m.size();
-  const bool first = !surface.made;
-  const CrackSurface before = std::move(surface);  // its normals serve the patches nothing changed around
-  surface = CrackSurface{};
-  surface.made = true;
-  if (f.source.size() != n) return;
-  // the bodies' largest lattice spacing
+double surface_spacing(const Model<D>& m) {
   double spacing = 0.0;
   for (const auto& body : m.bodies) spacing = std::max(spacing, body.constants.spacing);
-  const double short_bond = 1.5 * spacing;  // nearest and diagonal neighbours
-  surface.reach = (1.0 + 1e-9) * spacing;   // a lattice neighbour's crossing included
-  struct Seed {
-    std::int64_t key;
-    std::array<double, 3> point, direction;
-  };
-  std::vector<Seed> seeds;
-  auto add_seed = [&](std::int64_t key, std::size_t i, const std::array<double, 3>& xi, double length) {
-    if (length > short_bond) return;
-    Seed p{key, {}, {}};
-    for (int q = 0; q < D; ++q) p.point[static_cast<std::size_t>(q)] = m.reference_position[i][q] + 0.5 * xi[static_cast<std::size_t>(q)],
-                                p.direction[static_cast<std::size_t>(q)] = xi[static_cast<std::size_t>(q)] / length;
-    seeds.push_back(p);
-  };
-  // a particle on a borehole's wall: a pressure bond to a fluid site as short as a lattice neighbour
-  auto on_wall = [&](std::size_t i) {
-    if (w.offset.size() != n + 1) return false;
-    for (auto q = w.offset[i]; q < w.offset[i + 1]; ++q)
-      if (w.neighbor[static_cast<std::size_t>(q)] < 0 && w.length(static_cast<std::size_t>(q)) <= short_bond) return true;
-    return false;
-  };
-  for (const auto& bonds : f.network_bonds)
-    for (const auto k : bonds) {
-      const auto i = b.row_of(k);
-      const auto j = static_cast<std::size_t>(b.neighbor[static_cast<std::size_t>(k)]);
-      if (j < i) continue;
-      // the crack grows by the bonds that break across it or its extension, and from a borehole's
-      // wall; a bond that breaks beside it (a face's rock splitting) does not extend it (before the
-      // surface is first made, every broken bond is the crack's: a scene's initial state)
-      const bool crossed = std::binary_search(f.crossing_broken.begin(), f.crossing_broken.end(), k);
-      if (!first && !crossed && !on_wall(i) && !on_wall(j)) continue;
-      add_seed(k, i, b.family_of(k).xi, b.length(k));
-    }
-  // the short bonds a pre-crack cut, where a fluid (its own or one that reached it) fills it
-  if (w.offset.size() == n + 1)
-    for (std::size_t i = 0; i < n; ++i) {
-      if (f.source[i] < 0) continue;
-      for (auto k = w.offset[i]; k < w.offset[i + 1]; ++k) {
-        const auto j = w.neighbor[static_cast<std::size_t>(k)];
-        if (j < 0 || static_cast<std::size_t>(j) < i || f.source[static_cast<std::size_t>(j)] != f.source[i]) continue;
-        add_seed(-1 - k, i, w.xi[static_cast<std::size_t>(k)], w.length(static_cast<std::size_t>(k)));
-      }
-    }
-  if (seeds.empty()) return;
-  std::sort(seeds.begin(), seeds.end(), [](const Seed& a, const Seed& c) { return a.key < c.key; });
-  // the grid of the patches' points, cell size 1.5 spacings first: each normal is the principal
-  // direction of the short broken bonds within 1.5 spacings
-  auto make_grid = [&](double cell) {
-    surface.cell = cell;
-    std::vector<std::pair<std::int64_t, std::uint32_t>> entries(seeds.size());
-    for (std::size_t p = 0; p < seeds.size(); ++p)
-      entries[p] = {detail::surface_cell_key<D>(detail::surface_cell_of<D>(seeds[p].point.data(), cell)), static_cast<std::uint32_t>(p)};
-    std::sort(entries.begin(), entries.end());
-    surface.cell_keys.resize(entries.size()), surface.in_cell.resize(entries.size());
-    for (std::size_t e = 0; e < entries.size(); ++e) surface.cell_keys[e] = entries[e].first, surface.in_cell[e] = entries[e].second;
-  };
-  make_grid(short_bond);
-  surface.patches.resize(seeds.size());
-  surface.planes.resize(seeds.size());
-  // a patch keeps its normal unless a patch within 1.5 spacings came or went: the new patches and
-  // those the old surface had that are gone mark their neighbourhoods
-  std::vector<std::uint8_t> turn(seeds.size(), 0);
-  std::vector<std::int64_t> kept_from(seeds.size(), -1);  // the old surface's index of each kept patch
-  auto mark_around = [&](const double* x) {
-    detail::for_patches_around<D>(surface, x, [&](std::uint32_t o) {
-      turn[o] = 1;
-      return false;
-    });
-  };
-  for (std::size_t p = 0, o = 0; p < seeds.size() || o < before.patches.size();) {
-    if (o == before.patches.size() || (p < seeds.size() && seeds[p].key < before.patches[o])) {
-      mark_around(seeds[p++].point.data());
-    } else if (p == seeds.size() || before.patches[o] < seeds[p].key) {
-      mark_around(before.planes[o++].data());
-    } else {
-      kept_from[p++] = static_cast<std::int64_t>(o++);
+  return spacing;
+}
+
+/// The unit direction of a patch's bond, from the patch's key.
+template <int D>
+std::array<double, 3> patch_direction(const Model<D>& m, std::int64_t key) {
+  const bool cut = key < 0;
+  const auto k = cut ? -1 - key : key;
+  const std::array<double, 3>& xi = cut ? m.crack_bonds.xi[static_cast<std::size_t>(k)] : m.bonds.family_of(k).xi;
+  const double length = cut ? m.crack_bonds.length(static_cast<std::size_t>(k)) : m.bonds.length(k);
+  return {xi[0] / length, xi[1] / length, xi[2] / length};
+}
+
+/// A patch's point, its bond's midpoint, from the bond's lower end i.
+template <int D>
+std::array<double, 3> patch_point(const Model<D>& m, std::size_t i, std::int64_t key) {
+  const bool cut = key < 0;
+  const auto k = cut ? -1 - key : key;
+  const std::array<double, 3>& xi = cut ? m.crack_bonds.xi[static_cast<std::size_t>(k)] : m.bonds.family_of(k).xi;
+  std::array<double, 3> point{};
+  for (int q = 0; q < D; ++q) point[static_cast<std::size_t>(q)] = m.reference_position[i][q] + 0.5 * xi[static_cast<std::size_t>(q)];
+  return point;
+}
+
+/// Whether a particle is on a borehole's wall: a pressure bond to a fluid site as short as a
+/// lattice neighbour.
+template <int D>
+bool on_borehole_wall(const Model<D>& m, std::size_t i, double short_bond) {
+  const CrackBonds& w = m.crack_bonds;
+  if (w.offset.size() != m.size() + 1) return false;
+  for (auto q = w.offset[i]; q < w.offset[i + 1]; ++q)
+    if (w.neighbor[static_cast<std::size_t>(q)] < 0 && w.length(static_cast<std::size_t>(q)) <= short_bond) return true;
+  return false;
+}
+
+/// Whether the short network bond k = i-j (i < j) makes a patch: a bond (nearest and diagonal
+/// neighbours) that broke across the crack or its extension, or from a borehole's wall; a bond
+/// that broke beside the crack (a face's rock splitting) does not extend it. Before the surface is
+/// first made, every short broken bond of a network is the crack's (a scene's initial state).
+template <int D>
+bool makes_patch(const Model<D>& m, std::size_t i, std::size_t j, std::int64_t k, double short_bond) {
+  const FluidNetwork& f = m.fluid_network;
+  if (!f.crack_surface.made || std::binary_search(f.crossing_broken.begin(), f.crossing_broken.end(), k)) return true;
+  return on_borehole_wall<D>(m, i, short_bond) || on_borehole_wall<D>(m, j, short_bond);
+}
+
+/// The patches of particle i's bonds, as (key, lower end): its network bonds that make one and the
+/// short bonds a pre-crack cut where a fluid (its own or one that reached it) fills it; a pair's key
+/// is its lower end's entry. With lower_only, the pairs whose lower end is i alone.
+template <int D>
+void patches_of_particle(const Model<D>& m, std::size_t i, double short_bond, bool lower_only,
+                         std::vector<std::pair<std::int64_t, std::size_t>>& found) {
+  const FluidNetwork& f = m.fluid_network;
+  const Bonds& b = m.bonds;
+  const CrackBonds& w = m.crack_bonds;
+  if (f.source[i] < 0) return;
+  for (auto k = b.offset[i]; k < b.offset[i + 1]; ++k) {
+    const auto j = static_cast<std::size_t>(b.neighbor[k]);
+    if ((lower_only && j < i) || b.length(k) > short_bond || network_of_bond(f, b, i, k) < 0) continue;
+    const std::int64_t entry = j > i ? k : std::lower_bound(b.neighbor.begin() + b.offset[j], b.neighbor.begin() + b.offset[j + 1],
+                                                            static_cast<std::int32_t>(i)) - b.neighbor.begin();
+    if (makes_patch<D>(m, std::min(i, j), std::max(i, j), entry, short_bond)) found.emplace_back(entry, std::min(i, j));
+  }
+  if (w.offset.size() != m.size() + 1) return;
+  for (auto k = w.offset[i]; k < w.offset[i + 1]; ++k) {
+    const auto j = w.neighbor[static_cast<std::size_t>(k)];
+    if (j < 0 || f.source[static_cast<std::size_t>(j)] != f.source[i] || w.length(static_cast<std::size_t>(k)) > short_bond) continue;
+    if (static_cast<std::size_t>(j) > i) {
+      found.emplace_back(-1 - k, i);
+    } else if (!lower_only) {
+      for (auto q = w.offset[static_cast<std::size_t>(j)]; q < w.offset[static_cast<std::size_t>(j) + 1]; ++q)
+        if (w.neighbor[static_cast<std::size_t>(q)] == static_cast<std::int32_t>(i)) found.emplace_back(-1 - q, static_cast<std::size_t>(j));
     }
   }
-  for (std::size_t p = 0; p < seeds.size(); ++p) {
-    surface.patches[p] = seeds[p].key;
-    if (!turn[p] && kept_from[p] >= 0) {
-      surface.planes[p] = before.planes[static_cast<std::size_t>(kept_from[p])];
-      continue;
-    }
-    Eigen::Matrix<double, D, D> t = Eigen::Matrix<double, D, D>::Zero();
-    detail::for_patches_around<D>(surface, seeds[p].point.data(), [&](std::uint32_t o) {
-      double r2 = 0.0;
-      for (int q = 0; q < D; ++q) {
-        const double e = seeds[o].point[static_cast<std::size_t>(q)] - seeds[p].point[static_cast<std::size_t>(q)];
-        r2 += e * e;
-      }
-      if (r2 > short_bond * short_bond) return false;
-      Eigen::Matrix<double, D, 1> v;
-      for (int q = 0; q < D; ++q) v[q] = seeds[o].direction[static_cast<std::size_t>(q)];
-      t += v * v.transpose();
+}
+
+/// The grid of the patches' points, made from scratch.
+template <int D>
+void make_surface_grid(CrackSurface& s) {
+  std::vector<std::pair<std::int64_t, std::uint32_t>> entries(s.planes.size());
+  for (std::size_t p = 0; p < s.planes.size(); ++p)
+    entries[p] = {surface_cell_key<D>(surface_cell_of<D>(s.planes[p].data(), s.cell)), static_cast<std::uint32_t>(p)};
+  std::sort(entries.begin(), entries.end());
+  s.cell_keys.resize(entries.size()), s.in_cell.resize(entries.size());
+  for (std::size_t e = 0; e < entries.size(); ++e) s.cell_keys[e] = entries[e].first, s.in_cell[e] = entries[e].second;
+}
+
+/// Adds the patches `found` (key and lower end, by key ascending, none of them on the surface yet)
+/// at the end, their points into the grid and their keys into the sorted list (merges: the surface
+/// is not sorted again).
+template <int D>
+void add_patches(const Model<D>& m, CrackSurface& s, const std::vector<std::pair<std::int64_t, std::size_t>>& found) {
+  const std::size_t first = s.planes.size();
+  std::vector<std::pair<std::int64_t, std::uint32_t>> entries(found.size());
+  for (std::size_t q = 0; q < found.size(); ++q) {
+    const auto point = patch_point<D>(m, found[q].second, found[q].first);
+    s.patches.push_back(found[q].first);
+    s.planes.push_back({point[0], point[1], point[2], 0.0, 0.0, 0.0});  // the normal comes later
+    entries[q] = {surface_cell_key<D>(surface_cell_of<D>(point.data(), s.cell)), static_cast<std::uint32_t>(first + q)};
+  }
+  std::sort(entries.begin(), entries.end());
+  std::vector<std::int64_t> cell_keys(s.cell_keys.size() + entries.size());
+  std::vector<std::uint32_t> in_cell(cell_keys.size());
+  // the grid's order: by cell, then by patch
+  for (std::size_t a = 0, c = 0, e = 0; e < cell_keys.size(); ++e) {
+    const bool old = c == entries.size() || (a < s.cell_keys.size() && std::pair(s.cell_keys[a], s.in_cell[a]) < entries[c]);
+    cell_keys[e] = old ? s.cell_keys[a] : entries[c].first;
+    in_cell[e] = old ? s.in_cell[a++] : entries[c++].second;
+  }
+  s.cell_keys = std::move(cell_keys), s.in_cell = std::move(in_cell);
+  const std::size_t before = s.sorted_patches.size();
+  for (const auto& [key, lower] : found) s.sorted_patches.push_back(key);
+  std::inplace_merge(s.sorted_patches.begin(), s.sorted_patches.begin() + static_cast<std::ptrdiff_t>(before), s.sorted_patches.end());
+}
+
+/// Makes again the normal of every patch within 1.5 spacings of `points`: the principal direction
+/// (the largest eigenvector of the sum of n n^T, sign-free) of the short broken bonds within 1.5
+/// spacings of it, summed in the order of their keys (the same normal however the patches came).
+template <int D>
+void turn_patches_around(const Model<D>& m, CrackSurface& s, const std::vector<std::array<double, 3>>& points, double short_bond) {
+  std::vector<std::uint8_t> turn(s.planes.size(), 0);
+  auto within = [&](const double* a, const double* c) {
+    double r2 = 0.0;
+    for (int q = 0; q < D; ++q) r2 += (a[q] - c[q]) * (a[q] - c[q]);
+    return r2 <= short_bond * short_bond;
+  };
+  for (const auto& x : points)
+    for_patches_near_segment<D>(s, x.data(), x.data(), short_bond, [&](std::uint32_t p) {
+      if (within(s.planes[p].data(), x.data())) turn[p] = 1;
       return false;
     });
-    const Eigen::SelfAdjointEigenSolver<Eigen::Matrix<double, D, D>> eigen(t);
-    const auto v = eigen.eigenvectors().col(D - 1);  // the largest eigenvalue's
-    surface.planes[p] = {};
-    for (int q = 0; q < D; ++q) surface.planes[p][static_cast<std::size_t>(q)] = seeds[p].point[static_cast<std::size_t>(q)],
-                                surface.planes[p][static_cast<std::size_t>(3 + q)] = v[q];
+  std::vector<std::uint32_t> turned;
+  for (std::size_t p = 0; p < turn.size(); ++p)
+    if (turn[p]) turned.push_back(static_cast<std::uint32_t>(p));
+#pragma omp parallel if(rift::parallel::worth_a_team(turned.size() * 64))
+  {
+    std::vector<std::int64_t> near;
+#pragma omp for schedule(dynamic, 64)
+    for (std::size_t t = 0; t < turned.size(); ++t) {
+      auto& plane = s.planes[turned[t]];
+      near.clear();
+      for_patches_near_segment<D>(s, plane.data(), plane.data(), short_bond, [&](std::uint32_t o) {
+        if (within(s.planes[o].data(), plane.data())) near.push_back(s.patches[o]);
+        return false;
+      });
+      std::sort(near.begin(), near.end());
+      Eigen::Matrix<double, D, D> sum = Eigen::Matrix<double, D, D>::Zero();
+      for (const std::int64_t key : near) {
+        const auto direction = patch_direction<D>(m, key);
+        Eigen::Matrix<double, D, 1> v;
+        for (int q = 0; q < D; ++q) v[q] = direction[static_cast<std::size_t>(q)];
+        sum += v * v.transpose();
+      }
+      const Eigen::SelfAdjointEigenSolver<Eigen::Matrix<double, D, D>> eigen(sum);
+      const auto v = eigen.eigenvectors().col(D - 1);  // the largest eigenvalue's
+      for (int q = 0; q < 3; ++q) plane[static_cast<std::size_t>(3 + q)] = q < D ? v[q] : 0.0;
+    }
   }
-  make_grid(surface.reach);  // for pierces_crack_if: a pierced patch lies within reach of the bond
+}
+
+}  // namespace detail
+
+/// Makes the crack surface again from the networks as they are (call after the fluid's labels are
+/// made from scratch): the patches that came are added, those gone are removed, and the normals
+/// are made again around both.
+template <int D>
+void remake_crack_surface(Model<D>& m) {
+  FluidNetwork& f = m.fluid_network;
+  CrackSurface& surface = f.crack_surface;
+  const std::size_t n = m.size();
+  const double spacing = detail::surface_spacing<D>(m), short_bond = 1.5 * spacing;
+  std::vector<std::pair<std::int64_t, std::size_t>> found;
+  if (f.source.size() == n)
+    for (std::size_t i = 0; i < n; ++i) detail::patches_of_particle<D>(m, i, short_bond, true, found);
+  std::sort(found.begin(), found.end());
+  std::vector<std::int64_t> keys(found.size());
+  for (std::size_t q = 0; q < found.size(); ++q) keys[q] = found[q].first;
+  surface.made = true;
+  surface.cell = surface.reach = (1.0 + 1e-9) * spacing;  // a lattice neighbour's crossing included
+  std::vector<std::int64_t> added, removed;
+  std::set_difference(keys.begin(), keys.end(), surface.sorted_patches.begin(), surface.sorted_patches.end(), std::back_inserter(added));
+  std::set_difference(surface.sorted_patches.begin(), surface.sorted_patches.end(), keys.begin(), keys.end(), std::back_inserter(removed));
+  std::vector<std::array<double, 3>> around;  // where the normals turn
+  if (!removed.empty()) {
+    CrackSurface kept;
+    kept.made = true, kept.cell = surface.cell, kept.reach = surface.reach;
+    for (std::size_t p = 0; p < surface.patches.size(); ++p) {
+      if (std::binary_search(removed.begin(), removed.end(), surface.patches[p])) {
+        around.push_back({surface.planes[p][0], surface.planes[p][1], surface.planes[p][2]});
+        continue;
+      }
+      kept.patches.push_back(surface.patches[p]);
+      kept.planes.push_back(surface.planes[p]);
+    }
+    std::set_difference(surface.sorted_patches.begin(), surface.sorted_patches.end(), removed.begin(), removed.end(),
+                        std::back_inserter(kept.sorted_patches));
+    surface = std::move(kept);
+    detail::make_surface_grid<D>(surface);
+  }
+  std::erase_if(found, [&](const auto& p) { return !std::binary_search(added.begin(), added.end(), p.first); });
+  const std::size_t first = surface.planes.size();
+  detail::add_patches<D>(m, surface, found);
+  for (std::size_t p = first; p < surface.planes.size(); ++p) around.push_back({surface.planes[p][0], surface.planes[p][1], surface.planes[p][2]});
+  detail::turn_patches_around<D>(m, surface, around, short_bond);
+}
+
+/// Adds to the crack surface the patches of the bonds of `changed` (the particles whose bonds broke
+/// or that the fluid reached since the last update) that joined a network, and makes the normals
+/// again around them. While the networks only grow no patch goes, so this is the surface made from
+/// scratch (remake_crack_surface).
+template <int D>
+void extend_crack_surface(Model<D>& m, const std::vector<std::size_t>& changed) {
+  CrackSurface& surface = m.fluid_network.crack_surface;
+  const double short_bond = 1.5 * detail::surface_spacing<D>(m);
+  std::vector<std::pair<std::int64_t, std::size_t>> found;
+  for (const std::size_t i : changed) detail::patches_of_particle<D>(m, i, short_bond, false, found);
+  std::sort(found.begin(), found.end());
+  found.erase(std::unique(found.begin(), found.end()), found.end());
+  std::erase_if(found, [&](const auto& p) { return std::binary_search(surface.sorted_patches.begin(), surface.sorted_patches.end(), p.first); });
+  if (found.empty()) return;
+  const std::size_t first = surface.planes.size();
+  detail::add_patches<D>(m, surface, found);
+  std::vector<std::array<double, 3>> around;
+  for (std::size_t p = first; p < surface.planes.size(); ++p) around.push_back({surface.planes[p][0], surface.planes[p][1], surface.planes[p][2]});
+  detail::turn_patches_around<D>(m, surface, around, short_bond);
 }
 
 /// Keeps the bonds just broken that crossed the crack (pairs (i, k): row i's entry k), both entries.

@@ -21,7 +21,7 @@
 namespace rift::pd {
 
 /// Marks the failed interface bonds that cross the surface of a crack the fluid fills
-/// (InterfaceBonds::across_crack). Call after the crack surface is made (update_crack_surface).
+/// (InterfaceBonds::across_crack). Call after the crack surface is made (crack_crossing.hpp).
 template <int D>
 void mark_bonds_across_crack(Model<D>& m) {
   InterfaceBonds& ib = m.interface_bonds;

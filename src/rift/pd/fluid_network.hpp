@@ -18,6 +18,7 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <iterator>
 #include <vector>
 
 #include "rift/pd/crack_junction.hpp"
@@ -94,6 +95,33 @@ bool carries_fluid(const Model<D>& m, std::int64_t k, std::size_t i, std::size_t
   return law && interface_faces_apart<D>(m, k, i, j, *law);
 }
 
+/// Per particle: its intact and its broken bonds counted (bond states never heal, so any change of
+/// state among its bonds changes these). Returns the failed interface bonds of the whole model.
+inline std::int64_t count_bond_states(const Bonds& b, std::size_t n, std::vector<std::uint64_t>& counts) {
+  counts.resize(n);
+  std::int64_t interface_failed = 0;
+#pragma omp parallel for if(rift::parallel::worth_a_team(n)) schedule(static) reduction(+ : interface_failed)
+  for (std::size_t i = 0; i < n; ++i) {
+    std::uint64_t intact = 0, broken = 0;
+    for (auto k = b.offset[i]; k < b.offset[i + 1]; ++k) {
+      const auto state = b.intact[static_cast<std::size_t>(k)];
+      intact += state == bond_intact, broken += state == bond_broken;
+    }
+    counts[i] = intact | broken << 32;
+    interface_failed += static_cast<std::int64_t>(b.offset[i + 1] - b.offset[i]) - static_cast<std::int64_t>(intact + broken);
+  }
+  return interface_failed;
+}
+
+namespace detail {
+
+/// Marks immersed the wet particles of the closed pieces found from `starts` (below), and peels
+/// off, from `candidates` on, the wet particles whose intact bonds do not span D dimensions.
+template <int D>
+void immerse_fragments(Model<D>& m, const std::vector<std::size_t>& starts, std::vector<std::size_t> candidates);
+
+}  // namespace detail
+
 /// Fragments in the fluid. A few particles whose intact bonds no longer join them to the rest of
 /// the body (a flake off a borehole's wall, between two cracks), or hold them by bonds that do not
 /// span every direction, are surrounded by the fluid, whose pressure on a closed surface has no
@@ -106,19 +134,35 @@ bool carries_fluid(const Model<D>& m, std::int64_t k, std::size_t i, std::size_t
 /// whose intact bonds reach fewer particles than a whole family holds is marked immersed: no fluid
 /// load, no part of the cavity's volume; so is one whose intact bonds to particles not so marked
 /// do not span D dimensions (below).
+/// While the network only grows (fluid_network_grows) a particle once immersed stays so: a piece
+/// closes only where a bond broke or a fluid came, and peeling only removes directions. So the
+/// marks are extended from the particles that changed alone, and equal those made from scratch.
 template <int D>
 void mark_immersed_fragments(Model<D>& m) {
   FluidNetwork& f = m.fluid_network;
-  const Bonds& b = m.bonds;
   const std::size_t n = m.size();
   f.immersed.assign(n, 0);
-  // per particle: 0 not yet reached, -1 joined to more than a family, else the search that reached it
-  static thread_local std::vector<std::int64_t> label;  // the calling thread's, kept between calls
-  label.assign(n, 0);
-  std::vector<std::size_t> piece;
+  std::vector<std::size_t> wet;
+  for (std::size_t i = 0; i < n; ++i)
+    if (f.source[i] >= 0) wet.push_back(i);
+  detail::immerse_fragments<D>(m, wet, wet);
+}
+
+namespace detail {
+
+template <int D>
+void immerse_fragments(Model<D>& m, const std::vector<std::size_t>& starts, std::vector<std::size_t> candidates) {
+  FluidNetwork& f = m.fluid_network;
+  const Bonds& b = m.bonds;
+  const std::size_t n = m.size();
+  // per particle: 0 not yet reached, -1 joined to more than a family, else the search that reached
+  // it; the calling thread's, kept between calls and left all 0
+  static thread_local std::vector<std::int64_t> label;
+  label.resize(n, 0);
+  std::vector<std::size_t> piece, reached;
   std::int64_t search = 0;
-  for (std::size_t start = 0; start < n; ++start) {
-    if (f.source[start] < 0 || label[start] != 0) continue;
+  for (const std::size_t start : starts) {
+    if (f.source[start] < 0 || f.immersed[start] || label[start] != 0) continue;
     // a search over intact bonds that stops once the piece holds more than a whole family, or
     // meets a particle an earlier search found so joined
     const std::size_t family = m.bodies[m.body[start]].family_count;
@@ -137,10 +181,16 @@ void mark_immersed_fragments(Model<D>& m) {
         piece.push_back(j);
       }
     for (std::size_t i : piece) {
-      if (closed) f.immersed[i] = f.source[i] >= 0;
-      else label[i] = -1;
+      reached.push_back(i);
+      if (!closed) {
+        label[i] = -1;
+      } else if (f.source[i] >= 0 && !f.immersed[i]) {
+        f.immersed[i] = 1;
+        for (auto k = b.offset[i]; k < b.offset[i + 1]; ++k) candidates.push_back(static_cast<std::size_t>(b.neighbor[k]));
+      }
     }
   }
+  for (const std::size_t i : reached) label[i] = 0;
   // a wet particle held by bonds that do not span D dimensions (one bond, or a row of them) turns
   // about them freely: the fluid swung such a particle 0.7 mm about its last bond in 2-7. Peeled
   // off, with the particles it alone held, until every particle left holds on in every direction.
@@ -159,10 +209,14 @@ void mark_immersed_fragments(Model<D>& m) {
     }
     return std::abs(shape.determinant()) > 1e-6 * std::pow(shape.trace() / D, D);
   };
-  std::vector<std::size_t> candidates;  // the wet particles not yet immersed
-  for (std::size_t i = 0; i < n; ++i)
-    if (f.source[i] >= 0 && !f.immersed[i]) candidates.push_back(i);
   std::vector<std::uint8_t> peel, queued(n, 0);
+  // the wet particles not yet immersed, each once
+  std::erase_if(candidates, [&](std::size_t i) {
+    if (f.source[i] < 0 || f.immersed[i] || queued[i]) return true;
+    queued[i] = 1;
+    return false;
+  });
+  for (const std::size_t i : candidates) queued[i] = 0;
   while (!candidates.empty()) {
     peel.assign(candidates.size(), 0);
 #pragma omp parallel for if(rift::parallel::worth_a_team(candidates.size())) schedule(dynamic, 256)
@@ -185,77 +239,159 @@ void mark_immersed_fragments(Model<D>& m) {
   }
 }
 
+/// Adds particle i to the particles the network load must evaluate again.
+inline void mark_load_changed(FluidNetwork& f, std::size_t i) {
+  if (f.load_changed_mark[i]) return;
+  f.load_changed_mark[i] = 1;
+  f.load_changed.push_back(i);
+}
+
+}  // namespace detail
+
+/// Whether the next update may only grow the networks: bonds only break (no failed interface bond,
+/// whose faces part and touch again), the labels made once and not to be made again, and one fluid
+/// at most starts from its source (two that meet would share their particles by distance).
+inline bool fluid_network_grows(const FluidNetwork& f, std::int64_t interface_failed) {
+  if (f.relabel || interface_failed > 0) return false;
+  return std::count(f.dry.begin(), f.dry.end(), std::uint8_t{0}) <= 1;
+}
+
 /// Labels every particle with the pressure source whose fluid reaches it (-1: none), by a search
 /// from the particles next to a source (pressure bonds of a borehole or a pressurized crack) across
 /// the bonds that carry fluid and the bonds dry pre-cracks cut. Runs again when bonds broke, and
-/// every time while failed interfaces may open or close.
+/// every time while failed interfaces may open or close. While the networks only grow
+/// (fluid_network_grows), the search goes on from the particles whose bonds broke alone, and the
+/// marks, the crack surface and the network load follow from what changed, not from the networks'
+/// size: a step's cost follows the bonds that broke in it (the thesis-size example breaks millions).
 template <int D>
 void update_fluid_network(Model<D>& m) {
   FluidNetwork& f = m.fluid_network;
   const Bonds& b = m.bonds;
   const CrackBonds& w = m.crack_bonds;
-  std::int64_t broken = 0, interface_failed = 0;
-  const std::size_t bonds = b.intact.size();
-#pragma omp parallel for if(rift::parallel::worth_a_team(bonds)) schedule(static) reduction(+ : broken, interface_failed)
-  for (std::size_t k = 0; k < bonds; ++k) broken += b.intact[k] != bond_intact, interface_failed += b.intact[k] == bond_interface_failed;
-  if (broken == f.broken_bonds && interface_failed == 0 && !f.source.empty()) return;
-  f.broken_bonds = broken;
   const std::size_t n = m.size();
-  f.source.assign(n, -1);
-  f.in_crack.assign(n, 0);
-  std::vector<std::size_t> queue;
-  for (std::size_t i = 0; i < n; ++i)
-    for (auto k = w.offset[i]; k < w.offset[i + 1]; ++k)
-      if (!f.dry[w.source[static_cast<std::size_t>(k)]]) {
-        f.source[i] = w.source[static_cast<std::size_t>(k)];
-        queue.push_back(i);
-        break;
-      }
-  // the faces of a pressurized pre-crack are in a crack (a borehole's cut bonds end at its sites, -1)
-  for (std::size_t i : queue)
-    for (auto k = w.offset[i]; k < w.offset[i + 1]; ++k)
-      if (!f.dry[w.source[static_cast<std::size_t>(k)]] && w.neighbor[k] >= 0) f.in_crack[i] = 1;
-  const std::size_t next_to_source = queue.size();
+  static thread_local std::vector<std::uint64_t> counts;  // the calling thread's, kept between calls
+  const std::int64_t interface_failed = count_bond_states(b, n, counts);
+  const bool made = f.source.size() == n && f.bond_counts.size() == n;
+  // the particles whose bonds changed state since the last update
+  std::vector<std::size_t> changed;
+  if (made)
+    for (std::size_t i = 0; i < n; ++i)
+      if (counts[i] != f.bond_counts[i]) changed.push_back(i);
+  std::swap(f.bond_counts, counts);
+  const bool grows = made && fluid_network_grows(f, interface_failed);
+  if (grows && changed.empty()) return;
+  f.load_changed_mark.resize(n, 0);
+  for (const std::size_t i : changed) detail::mark_load_changed(f, i);
+  f.has_network.resize(f.dry.size(), 0);
+  f.open_interface_bonds.resize(f.dry.size());
+  f.vented.resize(f.dry.size(), 0);
+  f.broke_through.resize(f.dry.size(), 0);
+  std::vector<std::size_t> queue;  // the particles the fluid reached in this update's search
   auto reach = [&](std::size_t i, std::size_t j) {
     f.in_crack[i] = f.in_crack[j] = 1;
     if (f.source[j] >= 0) return;
     f.source[j] = f.source[i];
     queue.push_back(j);
   };
-  for (std::size_t q = 0; q < queue.size(); ++q) {
-    const std::size_t i = queue[q];
+  // the fluid of i goes on across its bonds that carry fluid and the dry pre-cracks it may enter
+  auto spread = [&](std::size_t i) {
     for (auto k = b.offset[i]; k < b.offset[i + 1]; ++k)
       if (carries_fluid<D>(m, k, i, static_cast<std::size_t>(b.neighbor[k]))) reach(i, static_cast<std::size_t>(b.neighbor[k]));
     for (auto k = w.offset[i]; k < w.offset[i + 1]; ++k)
       if (f.dry[w.source[static_cast<std::size_t>(k)]] && w.neighbor[k] >= 0 && f.enters_dry_cracks(f.source[i]))
         reach(i, static_cast<std::size_t>(w.neighbor[k]));
-  }
-  // breakthrough: a particle on the outer surface that the fluid reached across broken bonds (not
-  // the wall of a borehole that itself reaches the surface, whose casing keeps the fluid in). A
-  // network can close again (the fluid at zero pressure, failed interface bonds on its path shut),
-  // so broke_through keeps that it once did.
-  f.vented.assign(f.dry.size(), 0);
-  f.broke_through.resize(f.dry.size(), 0);
-  if (f.outer_surface.size() == n)
-    for (std::size_t q = next_to_source; q < queue.size(); ++q)
-      if (f.outer_surface[queue[q]]) f.vented[static_cast<std::size_t>(f.source[queue[q]])] = 1;
-  for (std::size_t s = 0; s < f.vented.size(); ++s) f.broke_through[s] |= f.vented[s];
-  mark_immersed_fragments<D>(m);
-  // the broken bonds each fluid fills, both entries of each (network_load.hpp)
-  f.network_bonds.resize(f.dry.size());  // emptied, each keeping its capacity
-  for (auto& list : f.network_bonds) list.clear();
-  for (std::size_t i = 0; i < n; ++i) {
-    const int s = f.source[i];
-    if (s < 0) continue;
-    for (auto k = b.offset[i]; k < b.offset[i + 1]; ++k) {
-      if (b.intact[k] == bond_intact) continue;
-      const auto j = static_cast<std::size_t>(b.neighbor[k]);
-      if (f.source[j] == s && carries_fluid<D>(m, k, i, j)) f.network_bonds[static_cast<std::size_t>(s)].push_back(k);
+  };
+  if (grows) {
+    // on from the wet particles whose bonds broke: a broken bond to a dry particle lets the fluid in
+    for (const std::size_t i : changed)
+      if (f.source[i] >= 0) spread(i);
+    for (std::size_t q = 0; q < queue.size(); ++q) spread(queue[q]);
+    for (const std::size_t j : queue) {
+      detail::mark_load_changed(f, j);
+      if (f.outer_surface.size() == n && f.outer_surface[j]) f.vented[static_cast<std::size_t>(f.source[j])] = 1;
     }
+    for (std::size_t s = 0; s < f.vented.size(); ++s) f.broke_through[s] |= f.vented[s];
+    // a closed piece or a particle that lost a direction has a bond that broke or a fluid that came
+    std::vector<std::size_t> starts = changed;
+    starts.insert(starts.end(), queue.begin(), queue.end());
+    detail::immerse_fragments<D>(m, starts, starts);
+    for (const std::size_t i : starts)
+      if (f.source[i] >= 0 && !f.has_network[static_cast<std::size_t>(f.source[i])])
+        for (auto k = b.offset[i]; k < b.offset[i + 1]; ++k)
+          if (b.intact[static_cast<std::size_t>(k)] == bond_broken && f.source[static_cast<std::size_t>(b.neighbor[k])] == f.source[i])
+            f.has_network[static_cast<std::size_t>(f.source[i])] = 1;
+    extend_crack_surface<D>(m, starts);
+  } else {
+    f.relabel = false;
+    const std::vector<int> before = made ? f.source : std::vector<int>{};
+    f.source.assign(n, -1);
+    f.in_crack.assign(n, 0);
+    for (std::size_t i = 0; i < n; ++i)
+      for (auto k = w.offset[i]; k < w.offset[i + 1]; ++k)
+        if (!f.dry[w.source[static_cast<std::size_t>(k)]]) {
+          f.source[i] = w.source[static_cast<std::size_t>(k)];
+          queue.push_back(i);
+          break;
+        }
+    // the faces of a pressurized pre-crack are in a crack (a borehole's cut bonds end at its sites, -1)
+    for (std::size_t i : queue)
+      for (auto k = w.offset[i]; k < w.offset[i + 1]; ++k)
+        if (!f.dry[w.source[static_cast<std::size_t>(k)]] && w.neighbor[k] >= 0) f.in_crack[i] = 1;
+    const std::size_t next_to_source = queue.size();
+    for (std::size_t q = 0; q < queue.size(); ++q) spread(queue[q]);
+    // breakthrough: a particle on the outer surface that the fluid reached across broken bonds (not
+    // the wall of a borehole that itself reaches the surface, whose casing keeps the fluid in). A
+    // network can close again (the fluid at zero pressure, failed interface bonds on its path shut),
+    // so broke_through keeps that it once did.
+    f.vented.assign(f.dry.size(), 0);
+    if (f.outer_surface.size() == n)
+      for (std::size_t q = next_to_source; q < queue.size(); ++q)
+        if (f.outer_surface[queue[q]]) f.vented[static_cast<std::size_t>(f.source[queue[q]])] = 1;
+    for (std::size_t s = 0; s < f.vented.size(); ++s) f.broke_through[s] |= f.vented[s];
+    mark_immersed_fragments<D>(m);
+    // what the network load must evaluate again: the particles whose fluid came, went or changed,
+    // and the ends of the failed interface bonds that opened or shut to a fluid
+    if (!made) f.load_from_scratch = true;
+    for (std::size_t i = 0; i < before.size(); ++i)
+      if (before[i] != f.source[i]) detail::mark_load_changed(f, i);
+    std::fill(f.has_network.begin(), f.has_network.end(), 0);
+    std::vector<std::vector<std::int64_t>> open(f.dry.size());
+    for (std::size_t i = 0; i < n; ++i) {
+      const int s = f.source[i];
+      if (s < 0) continue;
+      for (auto k = b.offset[i]; k < b.offset[i + 1]; ++k) {
+        const auto state = b.intact[static_cast<std::size_t>(k)];
+        if (state == bond_intact) continue;
+        const auto j = static_cast<std::size_t>(b.neighbor[k]);
+        if (f.source[j] != s || !carries_fluid<D>(m, k, i, j)) continue;
+        f.has_network[static_cast<std::size_t>(s)] = 1;
+        if (state == bond_interface_failed) open[static_cast<std::size_t>(s)].push_back(k);
+      }
+    }
+    for (std::size_t s = 0; s < open.size(); ++s) {
+      std::vector<std::int64_t> opened_or_shut;
+      std::set_symmetric_difference(open[s].begin(), open[s].end(), f.open_interface_bonds[s].begin(), f.open_interface_bonds[s].end(),
+                                    std::back_inserter(opened_or_shut));
+      for (const std::int64_t k : opened_or_shut) detail::mark_load_changed(f, b.row_of(k));
+      f.open_interface_bonds[s] = std::move(open[s]);
+    }
+    remake_crack_surface<D>(m);
   }
-  update_crack_surface<D>(m);
   mark_bonds_across_crack<D>(m);  // the contact of the failed interface bonds at a junction
   update_pore_stretch<D>(m);  // the rock the fluid reached is wet at once
+}
+
+/// The broken bonds source s's fluid fills, both entries of each, ascending (the network whose
+/// load network_load.hpp makes).
+template <int D>
+std::vector<std::int64_t> network_bond_list(const Model<D>& m, int s) {
+  const FluidNetwork& f = m.fluid_network;
+  const Bonds& b = m.bonds;
+  std::vector<std::int64_t> list;
+  for (std::size_t i = 0; i < m.size(); ++i)
+    for (auto k = b.offset[i]; k < b.offset[i + 1]; ++k)
+      if (network_of_bond(f, b, i, k) == s) list.push_back(k);
+  return list;
 }
 
 /// Whether source s's fluid flows by the cubic law, with a pressure per particle (viscous_fluid.hpp).

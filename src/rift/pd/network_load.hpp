@@ -139,85 +139,50 @@ std::vector<Vec<D>> expansion_force_difference(const Model<D>& m, double eps, co
 
 }  // namespace detail
 
-/// Per particle: its intact and its broken bonds, counted (bond states never heal, so any change of
-/// state among its bonds changes these).
-inline void bond_state_signatures(const Bonds& b, std::size_t n, std::vector<std::uint64_t>& signature) {
-  signature.resize(n);
-#pragma omp parallel for if(rift::parallel::worth_a_team(n)) schedule(static)
-  for (std::size_t i = 0; i < n; ++i) {
-    std::uint64_t intact = 0, broken = 0;
-    for (auto k = b.offset[i]; k < b.offset[i + 1]; ++k) {
-      const auto state = b.intact[static_cast<std::size_t>(k)];
-      intact += state == bond_intact, broken += state == bond_broken;
-    }
-    signature[i] = intact | broken << 32;
-  }
-}
-
 /// Makes g_s for every source whose network changed since the last call (call after
 /// update_fluid_network). Reads the model, changes nothing of its state.
 /// Incremental: g_i reads the bonds of i and of its neighbours (their dilatations), so it changes
 /// only where a bond of i or of a neighbour changed state or joined or left the network since the
-/// last call; g is evaluated again on those particles alone, each by the same sum as from scratch,
-/// so it equals g made from scratch bit for bit (tests/test_network_load.cpp).
+/// last call (FluidNetwork::load_changed, which update_fluid_network keeps); g is evaluated again on
+/// those particles alone, each by the same sum as from scratch, so it equals g made from scratch
+/// bit for bit (tests/test_network_load.cpp).
 template <int D>
 void update_network_load(Model<D>& m) {
   FluidNetwork& f = m.fluid_network;
-  if (f.network_bonds == f.loaded_bonds) return;
+  const bool scratch = f.load_from_scratch;
+  if (!scratch && f.load_changed.empty()) return;
   constexpr double expansion = 1e-6;
   const Bonds& b = m.bonds;
   const std::size_t n = m.size();
-  // the particles whose bonds changed state since the last call (all of them the first time)
-  // per-particle scratch kept by the calling thread (these run every time step while a network grows)
-  static thread_local std::vector<std::uint64_t> signature;
-  static thread_local std::vector<std::uint8_t> state_changed, in;
+  static thread_local std::vector<std::uint8_t> in;  // the calling thread's, kept between calls
   static thread_local std::vector<std::int32_t> end_slot;
-  bond_state_signatures(b, n, signature);
-  const bool first = f.loaded_signature.size() != n;
-  state_changed.assign(n, first ? 1 : 0);
-  if (!first)
-    for (std::size_t i = 0; i < n; ++i) state_changed[i] = signature[i] != f.loaded_signature[i];
-  std::swap(f.loaded_signature, signature);
-  f.loaded_bonds.resize(f.network_bonds.size());
-  f.network_load.resize(f.network_bonds.size());
+  f.network_load.resize(f.dry.size());
   in.assign(n, 0);
-  for (std::size_t s = 0; s < f.network_bonds.size(); ++s) {
-    const auto& bonds = f.network_bonds[s];  // both directions of each, ascending
+  for (std::size_t s = 0; s < f.network_load.size(); ++s) {
     auto& g = f.network_load[s];
-    if (bonds.empty()) {
+    if (s >= f.has_network.size() || !f.has_network[s]) {
       g.clear();
-      f.loaded_bonds[s].clear();
       continue;
     }
-    if (g.empty()) g.assign(n * D, 0.0), f.loaded_bonds[s].clear();
-    // the particles whose g may change: the ends of the bonds that joined or left the network, those
-    // whose bonds changed state, and the neighbours of both (near); and those whose dilatation they read
-    std::vector<std::int64_t> joined_or_left;
-    std::set_symmetric_difference(bonds.begin(), bonds.end(), f.loaded_bonds[s].begin(), f.loaded_bonds[s].end(),
-                                  std::back_inserter(joined_or_left));
-    f.loaded_bonds[s] = bonds;
+    const bool all = scratch || g.empty();  // g made from scratch: every particle evaluated
+    if (g.empty()) g.assign(n * D, 0.0);
+    // the particles whose g may change: those whose bonds changed state or joined or left the
+    // network, and their neighbours (near); and those whose dilatation they read
     std::vector<std::size_t> near;
     std::fill(in.begin(), in.end(), 0);
-    for (const std::int64_t k : joined_or_left) {
-      const auto i = b.row_of(k);
-      if (!in[i]) in[i] = 1, near.push_back(i);
+    if (all) {
+      near.resize(n);
+      for (std::size_t i = 0; i < n; ++i) near[i] = i, in[i] = 1;
+    } else {
+      for (const std::size_t i : f.load_changed)
+        if (!in[i]) in[i] = 1, near.push_back(i);
+      detail::add_neighbours(b, near, in);
     }
-    for (std::size_t i = 0; i < n; ++i)
-      if (state_changed[i] && !in[i]) in[i] = 1, near.push_back(i);
-    if (near.empty()) continue;
-    detail::add_neighbours(b, near, in);
     // the ends (particles with network bonds) among the near particles and their neighbours
     std::vector<std::size_t> state = near;
     detail::add_neighbours(b, state, in);
-    // whether the broken entry k of row i is one of the network's bonds: a broken bond whose ends the
-    // fluid reaches carries it (update_fluid_network); a failed interface bond only where its faces
-    // are apart, as the list says
     const int source = static_cast<int>(s);
-    auto in_network = [&](std::size_t i, std::int64_t k) {
-      if (b.intact[static_cast<std::size_t>(k)] == bond_broken)
-        return f.source[i] == source && f.source[static_cast<std::size_t>(b.neighbor[k])] == source;
-      return std::binary_search(bonds.begin(), bonds.end(), k);
-    };
+    auto in_network = [&](std::size_t i, std::int64_t k) { return network_of_bond(f, b, i, k) == source; };
     end_slot.assign(n, -1);
     std::vector<std::size_t> ends;
     for (const std::size_t i : state)
@@ -234,6 +199,15 @@ void update_network_load(Model<D>& m) {
       for (int r = 0; r < D; ++r) g[i * D + static_cast<std::size_t>(r)] = difference[q][r] * scale;
     }
   }
+  f.load_from_scratch = false;
+  for (const std::size_t i : f.load_changed) f.load_changed_mark[i] = 0;
+  f.load_changed.clear();
+}
+
+/// Forgets the network load: the next update_network_load makes it from scratch.
+inline void forget_network_load(FluidNetwork& f) {
+  f.network_load.clear();
+  f.load_from_scratch = true;
 }
 
 }  // namespace rift::pd
