@@ -3,6 +3,11 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstring>
+#include <limits>
+#include <utility>
+
+#include <omp.h>
 
 #include "rift/parallel/team.hpp"
 
@@ -27,44 +32,74 @@ Contact<D>::Contact(const scene::Contact& settings, const Model<D>& m) {
   rebuild(m);
 }
 
+namespace {
+
+/// Whether j is in i's family (bonded in the reference state, whatever the bond's state now).
+inline bool in_family(const Bonds& b, std::size_t i, std::int32_t j) {
+  const auto first = b.neighbor.begin() + b.offset[i], last = b.neighbor.begin() + b.offset[i + 1];
+  return std::binary_search(first, last, j);
+}
+
+}  // namespace
+
 template <int D>
 void Contact<D>::rebuild(const Model<D>& m) {
   const std::size_t n = m.size();
   built_at_ = m.position;
   const double cell = max_distance_ + skin_;
-  std::vector<std::array<long, 3>> key(n);
-  std::vector<std::int32_t> order(n);
-  for (std::size_t i = 0; i < n; ++i) {
-    key[i] = {0, 0, 0};
-    for (int k = 0; k < D; ++k) key[i][k] = static_cast<long>(std::floor(m.position[i][k] / cell));
-    order[i] = static_cast<std::int32_t>(i);
+  // the particles sorted by cell (x fastest) on a grid over their bounding box
+  std::array<long, 3> low{0, 0, 0}, extent{1, 1, 1};
+  std::vector<std::array<long, 3>> at(n);
+  if (n > 0) {
+    std::array<long, 3> high{};
+    for (int k = 0; k < D; ++k) low[k] = std::numeric_limits<long>::max(), high[k] = std::numeric_limits<long>::min();
+    for (std::size_t i = 0; i < n; ++i)
+      for (int k = 0; k < D; ++k) {
+        at[i][k] = static_cast<long>(std::floor(m.position[i][k] / cell));
+        low[k] = std::min(low[k], at[i][k]), high[k] = std::max(high[k], at[i][k]);
+      }
+    for (int k = 0; k < D; ++k) extent[k] = high[k] - low[k] + 1;
   }
-  std::sort(order.begin(), order.end(), [&](std::int32_t a, std::int32_t b) { return key[a] < key[b] || (key[a] == key[b] && a < b); });
-  std::vector<std::array<long, 3>> sorted_keys(n);
-  for (std::size_t q = 0; q < n; ++q) sorted_keys[q] = key[order[q]];
-  std::vector<std::vector<std::int32_t>> rows(n);
-#pragma omp parallel for if(rift::parallel::worth_a_team(n)) schedule(dynamic, 512)
-  for (std::size_t i = 0; i < n; ++i) {
-    const int rz = D == 3 ? 1 : 0;
-    for (long dz = -rz; dz <= rz; ++dz)
-      for (long dy = -1; dy <= 1; ++dy)
-        for (long dx = -1; dx <= 1; ++dx) {
-          std::array<long, 3> c{key[i][0] + dx, key[i][1] + dy, key[i][2] + dz};
-          auto lo = std::lower_bound(sorted_keys.begin(), sorted_keys.end(), c);
-          for (auto it = lo; it != sorted_keys.end() && *it == c; ++it) {
-            auto j = order[static_cast<std::size_t>(it - sorted_keys.begin())];
-            if (static_cast<std::size_t>(j) == i) continue;
-            const double d = 0.5 * (distance_[m.body[i]] + distance_[m.body[j]]) + skin_;
-            const Vec<D> eta = m.position[j] - m.position[i];
-            if (dot<D>(eta, eta) < d * d) rows[i].push_back(j);
+  auto key = [&](const std::array<long, 3>& c) { return (c[2] - low[2]) * extent[1] * extent[0] + (c[1] - low[1]) * extent[0] + (c[0] - low[0]); };
+  std::vector<std::pair<long, std::int32_t>> sorted(n);
+  for (std::size_t i = 0; i < n; ++i) sorted[i] = {key(at[i]), static_cast<std::int32_t>(i)};
+  std::sort(sorted.begin(), sorted.end());
+  // per thread: the pairs within d + skin that no family holds (i < j), then in rows
+  std::vector<std::vector<std::pair<std::int32_t, std::int32_t>>> found(static_cast<std::size_t>(omp_get_max_threads()));
+  const Bonds& b = m.bonds;
+#pragma omp parallel if(rift::parallel::worth_a_team(n))
+  {
+    auto& mine = found[static_cast<std::size_t>(omp_get_thread_num())];
+#pragma omp for schedule(dynamic, 1024)
+    for (std::size_t i = 0; i < n; ++i) {
+      const long rz = D == 3 ? 1 : 0;
+      for (long dz = -rz; dz <= rz; ++dz)
+        for (long dy = -1; dy <= 1; ++dy) {
+          const std::array<long, 3> c{std::max(at[i][0] - 1, low[0]), at[i][1] + dy, at[i][2] + dz};
+          if (c[1] < low[1] || c[1] >= low[1] + extent[1] || c[2] < low[2] || c[2] >= low[2] + extent[2]) continue;
+          // the cells of a row along x are one range of keys
+          const long first = key(c), last = first + std::min(at[i][0] + 1, low[0] + extent[0] - 1) - c[0];
+          for (auto it = std::lower_bound(sorted.begin(), sorted.end(), std::pair<long, std::int32_t>{first, 0});
+               it != sorted.end() && it->first <= last; ++it) {
+            const auto j = it->second;
+            if (static_cast<std::size_t>(j) <= i) continue;
+            const double d = 0.5 * (distance_[m.body[i]] + distance_[m.body[static_cast<std::size_t>(j)]]) + skin_;
+            const Vec<D> eta = m.position[static_cast<std::size_t>(j)] - m.position[i];
+            if (dot<D>(eta, eta) < d * d && (m.body[i] != m.body[static_cast<std::size_t>(j)] || !in_family(b, i, j)))
+              mine.emplace_back(static_cast<std::int32_t>(i), j);
           }
         }
-    std::sort(rows[i].begin(), rows[i].end());
+    }
   }
+  std::vector<std::pair<std::int32_t, std::int32_t>> pairs;
+  for (const auto& mine : found)
+    for (const auto& [i, j] : mine) pairs.emplace_back(i, j), pairs.emplace_back(j, i);
+  std::sort(pairs.begin(), pairs.end());
   offset_.assign(n + 1, 0);
-  for (std::size_t i = 0; i < n; ++i) offset_[i + 1] = offset_[i] + static_cast<std::int64_t>(rows[i].size());
-  pairs_.resize(static_cast<std::size_t>(offset_[n]));
-  for (std::size_t i = 0; i < n; ++i) std::copy(rows[i].begin(), rows[i].end(), pairs_.begin() + offset_[i]);
+  for (const auto& [i, j] : pairs) ++offset_[static_cast<std::size_t>(i) + 1];
+  for (std::size_t i = 0; i < n; ++i) offset_[i + 1] += offset_[i];
+  pairs_.resize(pairs.size());
+  for (std::size_t p = 0; p < pairs.size(); ++p) pairs_[p] = pairs[p].second;
 }
 
 template <int D>
@@ -83,22 +118,31 @@ void Contact<D>::add_forces(Model<D>& m) {
   for (std::size_t i = 0; i < n; ++i) {
     Vec<D> f{};
     bool any = false;
-    for (auto p = offset_[i]; p < offset_[i + 1]; ++p) {
-      const auto j = pairs_[static_cast<std::size_t>(p)];
+    auto pair = [&](std::size_t j) {
       const double d = 0.5 * (distance_[m.body[i]] + distance_[m.body[j]]);
       const Vec<D> eta = m.position[j] - m.position[i];
       const double r2 = dot<D>(eta, eta);
-      if (r2 >= d * d || r2 == 0.0) continue;
-      // skip pairs still joined by an intact bond (rows are sorted by neighbour)
-      const auto first = b.neighbor.begin() + b.offset[i], last = b.neighbor.begin() + b.offset[i + 1];
-      auto it = std::lower_bound(first, last, j);
-      if (it != last && *it == j && b.intact[static_cast<std::size_t>(it - b.neighbor.begin())]) continue;
+      if (r2 >= d * d || r2 == 0.0) return;
       const double r = std::sqrt(r2);
       const double k = 0.5 * (stiffness_[m.body[i]] + stiffness_[m.body[j]]);
-      const double scalar = -k * m.volume[static_cast<std::size_t>(j)] * (d - r) / r;
+      const double scalar = -k * m.volume[j] * (d - r) / r;
       for (int q = 0; q < D; ++q) f[q] += scalar * eta[q];
       any = true;
+    };
+    // the broken bonds of i's family and the listed pairs, merged in the order of j (rows of both
+    // are sorted by neighbour); a failed interface bond has its own contact (interface_contact.hpp)
+    auto p = offset_[i];
+    const auto listed_end = offset_[i + 1];
+    const std::uint8_t* const row = b.intact.data() + b.offset[i];
+    const auto length = static_cast<std::size_t>(b.offset[i + 1] - b.offset[i]);
+    static_assert(bond_broken == 0);  // found by memchr: most rows have none
+    for (auto at = static_cast<const std::uint8_t*>(std::memchr(row, 0, length)); at;
+         at = static_cast<const std::uint8_t*>(std::memchr(at + 1, 0, length - static_cast<std::size_t>(at + 1 - row)))) {
+      const auto j = b.neighbor[static_cast<std::size_t>(b.offset[i] + (at - row))];
+      for (; p < listed_end && pairs_[static_cast<std::size_t>(p)] < j; ++p) pair(static_cast<std::size_t>(pairs_[static_cast<std::size_t>(p)]));
+      pair(static_cast<std::size_t>(j));
     }
+    for (; p < listed_end; ++p) pair(static_cast<std::size_t>(pairs_[static_cast<std::size_t>(p)]));
     if (any)
       for (int q = 0; q < D; ++q) m.force[i][q] += f[q];
   }

@@ -2,7 +2,12 @@
 // separate bodies), so material does not interpenetrate. As LAMMPS PERI / EMU (Silling 2005,
 // EMU theory manual p. 18): when two particles come closer than d = distance * spacing, each feels
 // f = k V_j (d - r) / delta, k = stiffness * c, with c the PMB micromodulus of the body.
-// Candidates come from a Verlet list rebuilt when a particle has moved half the skin.
+// A pair of one family (bonded in the reference state) is read from its bond once the bond broke:
+// the bonds list every such pair already. Only the other pairs (separate bodies, the faces of a
+// pre-crack or a borehole, fragments carried out of their families' reach) come from a Verlet list
+// rebuilt when a particle has moved half the skin: on a lattice that list holds the pairs across
+// the cuts alone, not the 18 nearest neighbours of every particle (at the thesis-size example it
+// was 80 million pairs and its rebuild a serial sort of 4 million particles).
 #pragma once
 #include <cstdint>
 #include <vector>
@@ -30,7 +35,7 @@ class Contact {
   std::vector<double> stiffness_; // k / delta per body
   std::vector<Vec<D>> built_at_;
   std::vector<std::int64_t> offset_;
-  std::vector<std::int32_t> pairs_;
+  std::vector<std::int32_t> pairs_;  // per particle, ascending: the pairs within reach that no family holds
 };
 
 }  // namespace rift::pd
