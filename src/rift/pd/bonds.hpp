@@ -191,6 +191,8 @@ struct CrackSurface {
   double cell = 0.0, reach = 0.0;             // the grid's cell size; how far a patch reaches along its plane, m
   std::vector<std::int64_t> cell_keys;        // the grid: cell keys, ascending
   std::vector<std::uint32_t> in_cell;         // the patch of each entry of cell_keys
+  std::vector<std::int64_t> row_keys;         // the grid's rows along x that hold patches, ascending (crack_crossing.hpp)
+  std::vector<std::size_t> row_first;         // per row, its first entry of cell_keys; then their count
   bool empty() const { return planes.empty(); }
 };
 

@@ -29,6 +29,7 @@
 #include <Eigen/Dense>
 #include <algorithm>
 #include <array>
+#include <atomic>
 #include <cmath>
 #include <cstdint>
 #include <utility>
@@ -48,6 +49,19 @@ std::int64_t surface_cell_key(const std::array<std::int64_t, D>& c) {
   return k;
 }
 
+/// Cell keys divided by this give the row along x the cell is in.
+inline constexpr std::int64_t surface_row = 2097152;
+
+/// Indexes the grid's entries by row along x (CrackSurface::row_keys): a search among the rows,
+/// which stay in the cache, then among a row's entries, in place of one over the whole grid.
+inline void index_surface_rows(CrackSurface& s) {
+  s.row_keys.clear(), s.row_first.clear();
+  for (std::size_t e = 0; e < s.cell_keys.size(); ++e)
+    if (s.row_keys.empty() || s.cell_keys[e] / surface_row != s.row_keys.back())
+      s.row_keys.push_back(s.cell_keys[e] / surface_row), s.row_first.push_back(e);
+  s.row_first.push_back(s.cell_keys.size());
+}
+
 template <int D>
 std::array<std::int64_t, D> surface_cell_of(const double* x, double cell) {
   std::array<std::int64_t, D> c{};
@@ -55,29 +69,6 @@ std::array<std::int64_t, D> surface_cell_of(const double* x, double cell) {
   return c;
 }
 
-/// Calls f(patch) for every patch in the 3^D cells around x's (x fastest, then y, then z; in a
-/// cell in the grid's order) until f returns true. The three cells of a row along x are one range
-/// of keys, found by one search.
-template <int D, class F>
-void for_patches_around(const CrackSurface& s, const double* x, F&& f) {
-  const auto c = surface_cell_of<D>(x, s.cell);
-  std::array<std::int64_t, D> d{};
-  for (int q = 1; q < D; ++q) d[q] = -1;
-  while (true) {
-    std::array<std::int64_t, D> at{};
-    for (int q = 1; q < D; ++q) at[q] = c[q] + d[q];
-    at[0] = c[0] - 1;
-    const std::int64_t first = surface_cell_key<D>(at), last = first + 2;
-    for (auto e = std::lower_bound(s.cell_keys.begin(), s.cell_keys.end(), first); e != s.cell_keys.end() && *e <= last; ++e)
-      if (f(s.in_cell[static_cast<std::size_t>(e - s.cell_keys.begin())])) return;
-    int q = 1;
-    for (; q < D; ++q) {
-      if (++d[q] <= 1) break;
-      d[q] = -1;
-    }
-    if (q == D) break;
-  }
-}
 /// Calls f(patch) for every patch in the cells within `margin` of the box around a and b (x
 /// fastest: one search per row of cells along x) until f returns true.
 template <int D, class F>
@@ -91,8 +82,14 @@ void for_patches_near_segment(const CrackSurface& s, const double* a, const doub
   while (true) {
     at[0] = lo[0];
     const std::int64_t first = surface_cell_key<D>(at), last = first + (hi[0] - lo[0]);
-    for (auto e = std::lower_bound(s.cell_keys.begin(), s.cell_keys.end(), first); e != s.cell_keys.end() && *e <= last; ++e)
-      if (f(s.in_cell[static_cast<std::size_t>(e - s.cell_keys.begin())])) return;
+    // the row's entries (surface_row), then the cells' among them
+    const auto row = std::lower_bound(s.row_keys.begin(), s.row_keys.end(), first / surface_row);
+    if (row != s.row_keys.end() && *row == first / surface_row) {
+      const auto r = static_cast<std::size_t>(row - s.row_keys.begin());
+      const auto end = s.cell_keys.begin() + s.row_first[r + 1];
+      for (auto e = std::lower_bound(s.cell_keys.begin() + s.row_first[r], end, first); e != end && *e <= last; ++e)
+        if (f(s.in_cell[static_cast<std::size_t>(e - s.cell_keys.begin())])) return;
+    }
     int q = 1;
     for (; q < D; ++q) {
       if (++at[q] <= hi[q]) break;
@@ -242,6 +239,7 @@ void make_surface_grid(CrackSurface& s) {
   std::sort(entries.begin(), entries.end());
   s.cell_keys.resize(entries.size()), s.in_cell.resize(entries.size());
   for (std::size_t e = 0; e < entries.size(); ++e) s.cell_keys[e] = entries[e].first, s.in_cell[e] = entries[e].second;
+  index_surface_rows(s);
 }
 
 /// Adds the patches `found` (key and lower end, by key ascending, none of them on the surface yet)
@@ -267,6 +265,7 @@ void add_patches(const Model<D>& m, CrackSurface& s, const std::vector<std::pair
     in_cell[e] = old ? s.in_cell[a++] : entries[c++].second;
   }
   s.cell_keys = std::move(cell_keys), s.in_cell = std::move(in_cell);
+  index_surface_rows(s);
   const std::size_t before = s.sorted_patches.size();
   for (const auto& [key, lower] : found) s.sorted_patches.push_back(key);
   std::inplace_merge(s.sorted_patches.begin(), s.sorted_patches.begin() + static_cast<std::ptrdiff_t>(before), s.sorted_patches.end());
@@ -283,9 +282,10 @@ void turn_patches_around(const Model<D>& m, CrackSurface& s, const std::vector<s
     for (int q = 0; q < D; ++q) r2 += (a[q] - c[q]) * (a[q] - c[q]);
     return r2 <= short_bond * short_bond;
   };
-  for (const auto& x : points)
-    for_patches_near_segment<D>(s, x.data(), x.data(), short_bond, [&](std::uint32_t p) {
-      if (within(s.planes[p].data(), x.data())) turn[p] = 1;
+#pragma omp parallel for if(rift::parallel::worth_a_team(points.size() * 64)) schedule(dynamic, 64)
+  for (std::size_t q = 0; q < points.size(); ++q)
+    for_patches_near_segment<D>(s, points[q].data(), points[q].data(), short_bond, [&](std::uint32_t p) {
+      if (within(s.planes[p].data(), points[q].data())) std::atomic_ref<std::uint8_t>(turn[p]).store(1, std::memory_order_relaxed);
       return false;
     });
   std::vector<std::uint32_t> turned;
