@@ -196,6 +196,14 @@ struct CrackSurface {
   bool empty() const { return planes.empty(); }
 };
 
+/// What the network load reads of a particle with bonds in a fluid's network (an end of the
+/// network), under a unit uniform expansion (network_load.hpp).
+struct NetworkEnd {
+  double theta = 0.0, d_theta = 0.0;  // its dilatation with the network's bonds held intact, and their share of it
+  double a = 0.0;                     // A_dev / m
+  double held = 0.0, change = 0.0;    // its p with the network held intact, and the network's share (times d / m without the surface correction)
+};
+
 /// The fluid each pressure source has in the cracks grown from it (fluid_network.hpp); empty
 /// without pressure sources.
 struct FluidNetwork {
@@ -215,6 +223,8 @@ struct FluidNetwork {
   std::vector<std::uint8_t> load_changed_mark;  // per particle: in load_changed
   bool load_from_scratch = true;
   std::vector<std::vector<double>> network_load;         // per source: the force density on each particle per unit pressure (n x d, 1/m); empty: none (network_load.hpp)
+  std::vector<std::vector<std::int32_t>> end_slot;       // per source, per particle: its place in network_ends, -1: not an end
+  std::vector<std::vector<NetworkEnd>> network_ends;     // per source: the network's ends, as network_load was last made
   // per pressure source (the scene's cracks, then its boreholes)
   std::vector<std::uint8_t> dry;         // a crack without pressure of its own: its cut bonds carry a fluid that reaches them
   std::vector<std::uint8_t> sealed;      // a borehole whose wall has not broken down yet: the dry pre-cracks stay shut to its fluid

@@ -349,11 +349,16 @@ void update_fluid_network(Model<D>& m) {
         if (f.outer_surface[queue[q]]) f.vented[static_cast<std::size_t>(f.source[queue[q]])] = 1;
     for (std::size_t s = 0; s < f.vented.size(); ++s) f.broke_through[s] |= f.vented[s];
     mark_immersed_fragments<D>(m);
-    // what the network load must evaluate again: the particles whose fluid came, went or changed,
-    // and the ends of the failed interface bonds that opened or shut to a fluid
+    // what the network load must evaluate again: both ends of every bond that joined or left a
+    // network (those of the particles whose fluid came, went or changed, and the failed interface
+    // bonds that opened or shut to a fluid)
     if (!made) f.load_from_scratch = true;
     for (std::size_t i = 0; i < before.size(); ++i)
-      if (before[i] != f.source[i]) detail::mark_load_changed(f, i);
+      if (before[i] != f.source[i]) {
+        detail::mark_load_changed(f, i);
+        for (auto k = b.offset[i]; k < b.offset[i + 1]; ++k)
+          if (b.intact[static_cast<std::size_t>(k)] != bond_intact) detail::mark_load_changed(f, static_cast<std::size_t>(b.neighbor[k]));
+      }
     std::fill(f.has_network.begin(), f.has_network.end(), 0);
     std::vector<std::vector<std::int64_t>> open(f.dry.size());
     for (std::size_t i = 0; i < n; ++i) {
@@ -372,7 +377,8 @@ void update_fluid_network(Model<D>& m) {
       std::vector<std::int64_t> opened_or_shut;
       std::set_symmetric_difference(open[s].begin(), open[s].end(), f.open_interface_bonds[s].begin(), f.open_interface_bonds[s].end(),
                                     std::back_inserter(opened_or_shut));
-      for (const std::int64_t k : opened_or_shut) detail::mark_load_changed(f, b.row_of(k));
+      for (const std::int64_t k : opened_or_shut)
+        detail::mark_load_changed(f, b.row_of(k)), detail::mark_load_changed(f, static_cast<std::size_t>(b.neighbor[static_cast<std::size_t>(k)]));
       f.open_interface_bonds[s] = std::move(open[s]);
     }
     remake_crack_surface<D>(m);

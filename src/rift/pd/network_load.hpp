@@ -20,9 +20,10 @@
 // instantaneous (LPS) response. The pre-crack's cut bonds and a borehole's wall keep the force flux
 // (crack_pressure.hpp); the cavity volume is the work conjugate of both (fluid_network.hpp).
 // F and F^s differ only within reach of the network's bonds: on their ends, whose dilatation (and P)
-// change, and on those ends' neighbours. So g is evaluated bond by bond on those particles alone
-// (the dilatations on their neighbours too), the rest of the body untouched: the thesis-size block
-// (4 million particles) took two passes over all its 494 million directed bonds whenever a crack grew.
+// change, and on those ends' neighbours. So g is evaluated bond by bond on those particles alone,
+// the rest of the body untouched: the thesis-size block (4 million particles) took two passes over
+// all its 494 million directed bonds whenever a crack grew. What g reads of each end (NetworkEnd)
+// is kept between calls and made again only where the end's bonds changed.
 #pragma once
 #include <algorithm>
 #include <array>
@@ -51,86 +52,81 @@ inline void add_neighbours(const Bonds& b, std::vector<std::size_t>& set, std::v
     }
 }
 
-/// F_i - F^s_i on the particles `near` (no bond breaking; the VES by its LPS response) under the
-/// uniform expansion y = (1 + eps) X: F with the bonds as they are, F^s with the network's broken
-/// bonds (in_network(i, k): entry k of row i, not intact) held intact as well. The formulas of
-/// pmb.hpp and lps.hpp, summed as the difference itself: a network bond adds -f^s (its pair force
-/// in F^s); an intact bond adds the change of its pair force, which is linear in the changes of its
-/// ends' dilatation and P (lps.hpp force_state, pressure_factor), nonzero only where an end has
-/// network bonds (an `end`, slot end_slot[i] >= 0: its dilatation reads them); every other bond
-/// adds nothing and is skipped.
-/// So a particle's sum reads its network bonds and its bonds to ends alone, and F and F^s never
-/// cancel each other's rounding. `ends`: the ends among the near particles' neighbours.
+/// What the network load reads of particle i (PMB: nothing) under the unit uniform expansion
+/// y = 2 X (e = |xi|): its theta and P (lps.hpp lps_dilatation) with the network's bonds held
+/// intact, the network bonds' share of each (F^s less F), and its p of both (force_state).
 template <int D, class InNetwork>
-std::vector<Vec<D>> expansion_force_difference(const Model<D>& m, double eps, const std::vector<std::size_t>& near,
-                                               const std::vector<std::size_t>& ends, const std::vector<std::int32_t>& end_slot,
-                                               InNetwork in_network) {
+NetworkEnd network_end(const Model<D>& m, std::size_t i, InNetwork in_network) {
   const Bonds& b = m.bonds;
-  auto bond = [&](std::size_t i, std::int64_t k, Vec<D>& eta) {  // e = |y| - |xi|, eta = y_j - y_i
-    const auto j = static_cast<std::size_t>(b.neighbor[k]);
-    for (int q = 0; q < D; ++q) eta[q] = (1.0 + eps) * m.reference_position[j][q] - (1.0 + eps) * m.reference_position[i][q];
-    return norm<D>(eta) - b.length(k);
-  };
-  // per end: theta and P (lps.hpp lps_dilatation) with the network held intact, and the network
-  // bonds' share of each (F^s less F)
-  struct End {
-    double theta = 0.0, coupling = 0.0, d_theta = 0.0, d_coupling = 0.0;
-  };
-  std::vector<End> end(ends.size());
-#pragma omp parallel for if(rift::parallel::worth_a_team(ends.size())) schedule(static)
-  for (std::size_t s = 0; s < ends.size(); ++s) {
-    const std::size_t i = ends[s];
-    const auto& c = m.constants_of(i);
-    if (c.model == scene::ModelKind::pmb) continue;
-    double th = 0.0, q = 0.0, d_th = 0.0, d_q = 0.0;
-    for (auto k = b.offset[i]; k < b.offset[i + 1]; ++k) {
-      const bool intact = b.intact[static_cast<std::size_t>(k)] == bond_intact;
-      if (!intact && !in_network(i, k)) continue;
-      Vec<D> eta;
-      const double xi = b.length(k), ev = bond(i, k, eta) * b.volume(k);
-      const double w = influence(c.influence, xi, c.horizon) * xi * ev;
-      const BondFactors& g = b.factors_of(i, k);
-      const double t = c.surface_correction ? g.dilatation_weight * ev : w, u = c.surface_correction ? g.correction * w : w;
-      if (intact) th += t, q += u;
-      else d_th += t, d_q += u;
-    }
-    const double scale = c.surface_correction ? 1.0 : dilatation_scale<D>(m.weighted_volume[i]);
-    th = (th + d_th) * scale, d_th *= scale;
-    end[s] = {th, q + d_q - th * m.weighted_volume[i] / D, d_th, d_q - d_th * m.weighted_volume[i] / D};
+  const auto& c = m.constants_of(i);
+  if (c.model == scene::ModelKind::pmb) return {};
+  double th = 0.0, q = 0.0, d_th = 0.0, d_q = 0.0;
+  for (auto k = b.offset[i]; k < b.offset[i + 1]; ++k) {
+    const bool intact = b.intact[static_cast<std::size_t>(k)] == bond_intact;
+    if (!intact && !in_network(i, k)) continue;
+    const double xi = b.length(k), ev = xi * b.volume(k);
+    const double w = influence(c.influence, xi, c.horizon) * xi * ev;
+    const BondFactors& g = b.factors_of(i, k);
+    const double t = c.surface_correction ? g.dilatation_weight * ev : w, u = c.surface_correction ? g.correction * w : w;
+    if (intact) th += t, q += u;
+    else d_th += t, d_q += u;
   }
+  const double m_i = m.weighted_volume[i], scale = c.surface_correction ? 1.0 : dilatation_scale<D>(m_i);
+  th = (th + d_th) * scale, d_th *= scale;
+  NetworkEnd z;
+  z.theta = th, z.d_theta = d_th;
+  z.a = m_i > 0.0 ? c.lps_deviatoric_coefficient() / m_i : 0.0;
+  // b_ij p_i, with b_ij = omega |xi| d / m_i without the surface correction: the scale folded into p
+  z.held = pressure_factor<D>(c.kappa, th, z.a, q + d_q - th * m_i / D) * scale;
+  z.change = pressure_factor<D>(c.kappa, d_th, z.a, d_q - d_th * m_i / D) * scale;
+  return z;
+}
+
+/// F_i - F^s_i on the particles `near` (no bond breaking; the VES by its LPS response) under the
+/// unit uniform expansion y = 2 X: F with the bonds as they are, F^s with the network's broken
+/// bonds (in_network(i, k): entry k of row i, not intact) held intact as well. Every model is linear
+/// in a uniform expansion (e = eps |xi|, y / |y| = xi / |xi|), so this is the difference under any
+/// expansion eps divided by eps, and needs no positions. The formulas of pmb.hpp and lps.hpp,
+/// summed as the difference itself: a network bond adds -f^s (its pair force in F^s); an intact
+/// bond adds the change of its pair force, which is linear in the changes of its ends' dilatation
+/// and P (lps.hpp force_state, pressure_factor), nonzero only where an end has network bonds (an
+/// end: end_slot[i] >= 0, its NetworkEnd in ends); every other bond adds nothing and is skipped.
+/// So a particle's sum reads its network bonds and its bonds to ends alone, and F and F^s never
+/// cancel each other's rounding.
+template <int D, class InNetwork>
+std::vector<Vec<D>> expansion_force_difference(const Model<D>& m, const std::vector<std::size_t>& near, const std::vector<std::int32_t>& end_slot,
+                                               const std::vector<NetworkEnd>& ends, InNetwork in_network) {
+  const Bonds& b = m.bonds;
   std::vector<Vec<D>> difference(near.size(), Vec<D>{});
 #pragma omp parallel for if(rift::parallel::worth_a_team(near.size())) schedule(static)
   for (std::size_t s = 0; s < near.size(); ++s) {
     const std::size_t i = near[s];
     const auto& c = m.constants_of(i);
     const bool pmb = c.model == scene::ModelKind::pmb;
-    const double a_dev = c.lps_deviatoric_coefficient();
     Vec<D> sum{};
     for (auto k = b.offset[i]; k < b.offset[i + 1]; ++k) {
       const auto j = static_cast<std::size_t>(b.neighbor[k]);
       const bool intact = b.intact[static_cast<std::size_t>(k)] == bond_intact;
       if (intact ? pmb || (end_slot[i] < 0 && end_slot[j] < 0) : !in_network(i, k)) continue;
-      Vec<D> eta;
-      const double xi = b.length(k), e = bond(i, k, eta), r = e + xi;
-      const double omega = influence(c.influence, xi, c.horizon);
+      const FamilyOffset& family = b.family_of(k);
+      const double xi = family.length, omega = influence(c.influence, xi, c.horizon);
       double pair;  // F less F^s of this bond
       if (pmb) {
-        pair = -pmb_bond_force(c.micromodulus, omega, e / xi, b.correction(i, k), b.mirror_correction(j, k));
+        pair = -pmb_bond_force(c.micromodulus, omega, 1.0, b.correction(i, k), b.mirror_correction(j, k));
       } else {
-        const BondFactors &g_i = b.factors_of(i, k), &g_j = b.mirror_factors_of(j, k);
         // t of end x (force_state): with the network held (network bond), or its change (intact bond)
         auto t = [&](std::size_t x, const BondFactors& g) {
           if (end_slot[x] < 0) return 0.0;
-          const End& z = end[static_cast<std::size_t>(end_slot[x])];
-          const double a = m.weighted_volume[x] > 0.0 ? a_dev / m.weighted_volume[x] : 0.0;
-          const double weight = c.surface_correction ? double(g.dilatation_weight) : omega * xi * dilatation_scale<D>(m.weighted_volume[x]);
-          if (!intact) return force_state(weight, pressure_factor<D>(c.kappa, z.theta, a, z.coupling), a, g.correction, omega, e - z.theta * (xi / D));
-          return force_state(weight, pressure_factor<D>(c.kappa, z.d_theta, a, z.d_coupling), a, g.correction, omega, -z.d_theta * (xi / D));
+          const NetworkEnd& z = ends[static_cast<std::size_t>(end_slot[x])];
+          const double weight = c.surface_correction ? double(g.dilatation_weight) : omega * xi;
+          if (!intact) return weight * z.held + z.a * g.correction * omega * (xi - z.theta * (xi / D));
+          return weight * z.change - z.a * g.correction * omega * z.d_theta * (xi / D);
         };
-        pair = -(t(i, g_i) + t(j, g_j));
+        pair = -(t(i, b.factors_of(i, k)) + t(j, b.mirror_factors_of(j, k)));
       }
-      const double scale = pair * b.volume(k) / r;
-      for (int q = 0; q < D; ++q) sum[q] += scale * eta[q];
+      // along y_j - y_i, whose direction is xi's
+      const double scale = pair * family.volume * family.inverse_length;
+      for (int q = 0; q < D; ++q) sum[q] += scale * family.xi[static_cast<std::size_t>(q)];
     }
     difference[s] = sum;
   }
@@ -151,51 +147,61 @@ void update_network_load(Model<D>& m) {
   FluidNetwork& f = m.fluid_network;
   const bool scratch = f.load_from_scratch;
   if (!scratch && f.load_changed.empty()) return;
-  constexpr double expansion = 1e-6;
   const Bonds& b = m.bonds;
   const std::size_t n = m.size();
-  static thread_local std::vector<std::uint8_t> in;  // the calling thread's, kept between calls
-  static thread_local std::vector<std::int32_t> end_slot;
-  f.network_load.resize(f.dry.size());
-  in.assign(n, 0);
-  for (std::size_t s = 0; s < f.network_load.size(); ++s) {
+  static thread_local std::vector<std::uint8_t> in, is_end;  // the calling thread's, kept between calls
+  const std::size_t sources = f.dry.size();
+  f.network_load.resize(sources), f.end_slot.resize(sources), f.network_ends.resize(sources);
+  for (std::size_t s = 0; s < sources; ++s) {
     auto& g = f.network_load[s];
+    auto& end_slot = f.end_slot[s];
+    auto& ends = f.network_ends[s];
     if (s >= f.has_network.size() || !f.has_network[s]) {
-      g.clear();
+      g.clear(), end_slot.clear(), ends.clear();
       continue;
     }
     const bool all = scratch || g.empty();  // g made from scratch: every particle evaluated
-    if (g.empty()) g.assign(n * D, 0.0);
-    // the particles whose g may change: those whose bonds changed state or joined or left the
-    // network, and their neighbours (near); and those whose dilatation they read
-    std::vector<std::size_t> near;
-    std::fill(in.begin(), in.end(), 0);
+    if (all) g.assign(n * D, 0.0), end_slot.assign(n, -1), ends.clear();
+    const int source = static_cast<int>(s);
+    auto in_network = [&](std::size_t i, std::int64_t k) { return network_of_bond(f, b, i, k) == source; };
+    // the ends whose bonds changed state or joined or left the network (both ends of each are in
+    // load_changed): their NetworkEnd made again, a place given to the new ones
+    std::vector<std::size_t> changed;
     if (all) {
-      near.resize(n);
-      for (std::size_t i = 0; i < n; ++i) near[i] = i, in[i] = 1;
+      changed.resize(n);
+      for (std::size_t i = 0; i < n; ++i) changed[i] = i;
     } else {
-      for (const std::size_t i : f.load_changed)
+      changed = f.load_changed;
+    }
+    is_end.resize(n);
+    std::uint8_t* const end_flag = is_end.data();  // the team writes the calling thread's
+#pragma omp parallel for if(rift::parallel::worth_a_team(changed.size())) schedule(static)
+    for (std::size_t q = 0; q < changed.size(); ++q) {
+      const std::size_t i = changed[q];
+      std::uint8_t end = 0;
+      for (auto k = b.offset[i]; k < b.offset[i + 1] && !end; ++k) end = b.intact[static_cast<std::size_t>(k)] != bond_intact && in_network(i, k);
+      end_flag[i] = end;
+    }
+    for (const std::size_t i : changed)
+      if (!end_flag[i]) end_slot[i] = -1;
+      else if (end_slot[i] < 0) end_slot[i] = static_cast<std::int32_t>(ends.size()), ends.emplace_back();
+#pragma omp parallel for if(rift::parallel::worth_a_team(changed.size())) schedule(static)
+    for (std::size_t q = 0; q < changed.size(); ++q)
+      if (end_slot[changed[q]] >= 0) ends[static_cast<std::size_t>(end_slot[changed[q]])] = detail::network_end<D>(m, changed[q], in_network);
+    // the particles whose g may change: those and their neighbours
+    std::vector<std::size_t> near;
+    if (all) {
+      near = std::move(changed);
+    } else {
+      in.assign(n, 0);
+      for (const std::size_t i : changed)
         if (!in[i]) in[i] = 1, near.push_back(i);
       detail::add_neighbours(b, near, in);
     }
-    // the ends (particles with network bonds) among the near particles and their neighbours
-    std::vector<std::size_t> state = near;
-    detail::add_neighbours(b, state, in);
-    const int source = static_cast<int>(s);
-    auto in_network = [&](std::size_t i, std::int64_t k) { return network_of_bond(f, b, i, k) == source; };
-    end_slot.assign(n, -1);
-    std::vector<std::size_t> ends;
-    for (const std::size_t i : state)
-      for (auto k = b.offset[i]; k < b.offset[i + 1]; ++k)
-        if (b.intact[static_cast<std::size_t>(k)] != bond_intact && in_network(i, k)) {
-          end_slot[i] = static_cast<std::int32_t>(ends.size());
-          ends.push_back(i);
-          break;
-        }
-    const auto difference = detail::expansion_force_difference<D>(m, expansion, near, ends, end_slot, in_network);
+    const auto difference = detail::expansion_force_difference<D>(m, near, end_slot, ends, in_network);
     for (std::size_t q = 0; q < near.size(); ++q) {
       const std::size_t i = near[q];
-      const double scale = 1.0 / (expansion * D * m.constants_of(i).kappa);
+      const double scale = 1.0 / (D * m.constants_of(i).kappa);
       for (int r = 0; r < D; ++r) g[i * D + static_cast<std::size_t>(r)] = difference[q][r] * scale;
     }
   }
