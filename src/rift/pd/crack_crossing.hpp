@@ -288,31 +288,56 @@ void turn_patches_around(const Model<D>& m, CrackSurface& s, const std::vector<s
       if (within(s.planes[p].data(), points[q].data())) std::atomic_ref<std::uint8_t>(turn[p]).store(1, std::memory_order_relaxed);
       return false;
     });
-  std::vector<std::uint32_t> turned;
+  // the turned patches by cell: one search around a cell's patches serves them all
+  std::vector<std::pair<std::int64_t, std::uint32_t>> turned;
   for (std::size_t p = 0; p < turn.size(); ++p)
-    if (turn[p]) turned.push_back(static_cast<std::uint32_t>(p));
+    if (turn[p]) turned.emplace_back(surface_cell_key<D>(surface_cell_of<D>(s.planes[p].data(), s.cell)), static_cast<std::uint32_t>(p));
+  std::sort(turned.begin(), turned.end());
+  std::vector<std::size_t> group_first;
+  for (std::size_t t = 0; t < turned.size(); ++t)
+    if (t == 0 || turned[t].first != turned[t - 1].first) group_first.push_back(t);
+  group_first.push_back(turned.size());
+  const std::size_t groups = group_first.size() - 1;
 #pragma omp parallel if(rift::parallel::worth_a_team(turned.size() * 64))
   {
+    struct Candidate {
+      std::array<double, 3> point;
+      std::int64_t key;
+    };
+    std::vector<Candidate> candidates;
     std::vector<std::int64_t> near;
-#pragma omp for schedule(dynamic, 64)
-    for (std::size_t t = 0; t < turned.size(); ++t) {
-      auto& plane = s.planes[turned[t]];
-      near.clear();
-      for_patches_near_segment<D>(s, plane.data(), plane.data(), short_bond, [&](std::uint32_t o) {
-        if (within(s.planes[o].data(), plane.data())) near.push_back(s.patches[o]);
+#pragma omp for schedule(dynamic, 16)
+    for (std::size_t g = 0; g < groups; ++g) {
+      // the patches within 1.5 spacings of the box around the group's points
+      std::array<double, 3> low{}, high{};
+      for (int q = 0; q < D; ++q) low[static_cast<std::size_t>(q)] = 1e300, high[static_cast<std::size_t>(q)] = -1e300;
+      for (std::size_t t = group_first[g]; t < group_first[g + 1]; ++t)
+        for (int q = 0; q < D; ++q) {
+          const double x = s.planes[turned[t].second][static_cast<std::size_t>(q)];
+          low[static_cast<std::size_t>(q)] = std::min(low[static_cast<std::size_t>(q)], x), high[static_cast<std::size_t>(q)] = std::max(high[static_cast<std::size_t>(q)], x);
+        }
+      candidates.clear();
+      for_patches_near_segment<D>(s, low.data(), high.data(), short_bond, [&](std::uint32_t o) {
+        candidates.push_back({{s.planes[o][0], s.planes[o][1], s.planes[o][2]}, s.patches[o]});
         return false;
       });
-      std::sort(near.begin(), near.end());
-      Eigen::Matrix<double, D, D> sum = Eigen::Matrix<double, D, D>::Zero();
-      for (const std::int64_t key : near) {
-        const auto direction = patch_direction<D>(m, key);
-        Eigen::Matrix<double, D, 1> v;
-        for (int q = 0; q < D; ++q) v[q] = direction[static_cast<std::size_t>(q)];
-        sum += v * v.transpose();
+      for (std::size_t t = group_first[g]; t < group_first[g + 1]; ++t) {
+        auto& plane = s.planes[turned[t].second];
+        near.clear();
+        for (const Candidate& c : candidates)
+          if (within(c.point.data(), plane.data())) near.push_back(c.key);
+        std::sort(near.begin(), near.end());
+        Eigen::Matrix<double, D, D> sum = Eigen::Matrix<double, D, D>::Zero();
+        for (const std::int64_t key : near) {
+          const auto direction = patch_direction<D>(m, key);
+          Eigen::Matrix<double, D, 1> v;
+          for (int q = 0; q < D; ++q) v[q] = direction[static_cast<std::size_t>(q)];
+          sum += v * v.transpose();
+        }
+        const Eigen::SelfAdjointEigenSolver<Eigen::Matrix<double, D, D>> eigen(sum);
+        const auto v = eigen.eigenvectors().col(D - 1);  // the largest eigenvalue's
+        for (int q = 0; q < 3; ++q) plane[static_cast<std::size_t>(3 + q)] = q < D ? v[q] : 0.0;
       }
-      const Eigen::SelfAdjointEigenSolver<Eigen::Matrix<double, D, D>> eigen(sum);
-      const auto v = eigen.eigenvectors().col(D - 1);  // the largest eigenvalue's
-      for (int q = 0; q < 3; ++q) plane[static_cast<std::size_t>(3 + q)] = q < D ? v[q] : 0.0;
     }
   }
 }
