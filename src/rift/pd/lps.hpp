@@ -68,7 +68,7 @@ void dilatation_pass(Model<D>& m, const BodyInfo& body, double* coupling, double
 }
 
 /// The dilatation pass's bonds in runs (bond_runs.hpp, lps_runs.hpp), the stretch criterion: the
-/// same terms as the rows of dilatation_pass. A run that may break a bond is taken bond by bond.
+/// same terms as the rows of dilatation_pass. The bonds of a run that may break are taken one by one.
 template <int D, scene::Influence Omega, bool Coupling, bool Corrected>
 void dilatation_runs(Model<D>& m, const BodyInfo& body, double* coupling, double* smallest,
                      std::vector<std::pair<std::size_t, std::int64_t>>& broken, std::vector<std::pair<std::size_t, std::int64_t>>& crossing) {
@@ -127,7 +127,7 @@ void dilatation_runs(Model<D>& m, const BodyInfo& body, double* coupling, double
     }
     const FamilyOffset& family = v.families[run.family];
     alignas(64) double alive[max_run_length], weight_a[max_run_length], weight_b[max_run_length], correction_a[max_run_length],
-        correction_b[max_run_length];
+        correction_b[max_run_length], flagged[max_run_length];
     const bool masked = mask_run(b, run, whole, alive);
     if constexpr (Corrected)
       for (std::size_t t = 0; t < length; ++t) {
@@ -152,6 +152,7 @@ void dilatation_runs(Model<D>& m, const BodyInfo& body, double* coupling, double
     if constexpr (Coupling) a.coupling_a = coupling + i, a.coupling_b = coupling + j;
     a.smallest_a = smallest + i, a.smallest_b = smallest + j;
     a.breakable = c.breakable;
+    a.may_break = flagged;
     bool may_break;
     if (pore)
       may_break = masked ? vector_clone<DilatationRunKernel<D, Corrected, Coupling, true, true>, DilatationRun>(isa)(a)
@@ -159,8 +160,14 @@ void dilatation_runs(Model<D>& m, const BodyInfo& body, double* coupling, double
     else
       may_break = masked ? vector_clone<DilatationRunKernel<D, Corrected, Coupling, false, true>, DilatationRun>(isa)(a)
                          : vector_clone<DilatationRunKernel<D, Corrected, Coupling, false, false>, DilatationRun>(isa)(a);
-    if (may_break)
-      for (std::size_t t = 0; t < length; ++t) settle.template operator()<Wet>(run, t);
+    if (!may_break) return;
+    // the bonds that may break one by one; the rest of the run again in the vector form, without
+    // them (each bond of a run has its own two ends, so the order of their terms does not matter)
+    for (std::size_t t = 0; t < length; ++t) alive[t] = flagged[t] != 0.0 ? 0.0 : masked ? alive[t] : 1.0;
+    const bool again = pore ? vector_clone<DilatationRunKernel<D, Corrected, Coupling, true, true>, DilatationRun>(isa)(a)
+                            : vector_clone<DilatationRunKernel<D, Corrected, Coupling, false, true>, DilatationRun>(isa)(a);
+    for (std::size_t t = 0; t < length; ++t)
+      if (again || flagged[t] != 0.0) settle.template operator()<Wet>(run, t);
   };
   if (wet)
     for_each_run_by_slabs(body, [&](const BondRun& r) { run_terms.template operator()<true>(r); });

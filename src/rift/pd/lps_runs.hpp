@@ -27,6 +27,7 @@ struct DilatationRun {
   double shift_scale = 1.0, bond_length = 0.0, inverse_length = 0.0, volume = 0.0, omega_length = 0.0;  // omega |xi|
   double *theta_a = nullptr, *theta_b = nullptr, *coupling_a = nullptr, *coupling_b = nullptr;
   double *smallest_a = nullptr, *smallest_b = nullptr;
+  double* may_break = nullptr;  // where a run that may break a bond leaves which (1: may break), for the caller
   bool breakable = false;
 };
 
@@ -81,7 +82,10 @@ struct DilatationRunKernel {
         a.length, a.xa, a.ya, a.za, a.xb, a.yb, a.zb, a.limit_a, a.limit_b, a.pore_a, a.pore_b, a.shift_scale, a.alive, a.weight_a,
         a.weight_b, a.correction_a, a.correction_b, a.bond_length, a.inverse_length, a.volume, a.omega_length, wa, wb, qa, qb, stretch,
         past);
-    if (a.breakable && may_break) return true;
+    if (a.breakable && may_break) {
+      for (std::size_t t = 0; t < a.length; ++t) a.may_break[t] = past[t];
+      return true;
+    }
     // without the correction both ends take omega |xi| e V (and so does q)
     const double* const to_b = Corrected ? wb : wa;
     add_to_run_ends(a.theta_a, wa, a.length);

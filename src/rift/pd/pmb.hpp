@@ -76,11 +76,12 @@ struct PmbRun {
   double shift_scale = 1.0, bond_length = 0.0, inverse_length = 0.0, coefficient = 0.0, volume = 0.0;
   double *fxa = nullptr, *fya = nullptr, *fza = nullptr, *fxb = nullptr, *fyb = nullptr, *fzb = nullptr;
   double *smallest_a = nullptr, *smallest_b = nullptr;
+  double* may_break = nullptr;  // where a run that may break a bond leaves which (1: may break), for the caller
   bool breakable = false;
 };
 
-/// A run's pair forces added to its ends, unless a bond of it may break (returns true: the caller
-/// then takes the run bond by bond).
+/// A run's pair forces added to its ends, unless a bond of it may break (returns true, and which
+/// in may_break: the caller takes those bond by bond and the rest again without them).
 template <int D, bool Corrected, bool Shifted, bool Masked>
 struct PmbRunKernel {
   [[gnu::always_inline]] static bool run(const PmbRun& a) {
@@ -88,7 +89,10 @@ struct PmbRunKernel {
     const bool may_break = pmb_run_pair_forces<D, Corrected, Shifted, Masked>(
         a.length, a.xa, a.ya, a.za, a.xb, a.yb, a.zb, a.limit_a, a.limit_b, a.pore_a, a.pore_b, a.shift_scale, a.alive, a.factor,
         a.bond_length, a.inverse_length, a.coefficient, a.volume, g[0], g[1], g[2], stretch, past);
-    if (a.breakable && may_break) return true;
+    if (a.breakable && may_break) {
+      for (std::size_t t = 0; t < a.length; ++t) a.may_break[t] = past[t];
+      return true;
+    }
     add_pair_forces_to_run_ends<D>(a, g);
     lower_to_run_stretches(a.smallest_a, stretch, a.length);
     lower_to_run_stretches(a.smallest_b, stretch, a.length);
@@ -165,7 +169,7 @@ void pmb_forces(Model<D>& m, const BodyInfo& body) {
       return;
     }
     const FamilyOffset& family = v.families[run.family];
-    alignas(64) double alive[max_run_length], factor[max_run_length];
+    alignas(64) double alive[max_run_length], factor[max_run_length], flagged[max_run_length];
     // the bonds' states (in their lower ends' rows) only where a row is not whole (bond_runs.hpp)
     const bool masked = mask_run(b, run, whole, alive);
     if constexpr (Corrected)
@@ -186,13 +190,19 @@ void pmb_forces(Model<D>& m, const BodyInfo& body) {
     a.coefficient = micromodulus * influence(Omega, family.length, horizon);
     a.smallest_a = smallest + i, a.smallest_b = smallest + j;
     a.breakable = breakable;
+    a.may_break = flagged;
     bool may_break;
     if (pore)
       may_break = masked ? pmb_run_kernel<D, Corrected, true, true>(isa)(a) : pmb_run_kernel<D, Corrected, true, false>(isa)(a);
     else
       may_break = masked ? pmb_run_kernel<D, Corrected, false, true>(isa)(a) : pmb_run_kernel<D, Corrected, false, false>(isa)(a);
-    if (may_break)
-      for (std::size_t t = 0; t < length; ++t) settle.template operator()<Wet, Corrected>(run, t);
+    if (!may_break) return;
+    // the bonds that may break one by one; the rest of the run again in the vector form, without
+    // them (each bond of a run has its own two ends, so the order of their forces does not matter)
+    for (std::size_t t = 0; t < length; ++t) alive[t] = flagged[t] != 0.0 ? 0.0 : masked ? alive[t] : 1.0;
+    const bool again = pore ? pmb_run_kernel<D, Corrected, true, true>(isa)(a) : pmb_run_kernel<D, Corrected, false, true>(isa)(a);
+    for (std::size_t t = 0; t < length; ++t)
+      if (again || flagged[t] != 0.0) settle.template operator()<Wet, Corrected>(run, t);
   };
   auto runs = [&]<bool Wet>() {
     if (c.surface_correction)
