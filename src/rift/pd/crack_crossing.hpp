@@ -22,9 +22,10 @@
 // crack): a mark per bond, remade around each new patch, made hf_injection_rate's cube (diffuse
 // damage, a network change every time step) several times slower. While the networks only grow,
 // the patches of the bonds that joined them are added (extend_crack_surface), otherwise the set is
-// made again and compared (remake_crack_surface); either way a normal is made again only where a
-// patch within 1.5 spacings came or went, summed in the order of the patches' bonds, so the surface
-// does not depend on the order the patches came in.
+// made again and compared (remake_crack_surface). Each patch keeps its sum of n n^T in whole
+// numbers (a lattice bond's n n^T is in halves): a patch that comes or goes adds or takes its own
+// from those within 1.5 spacings, whose normals alone are made again, and the sums, so the
+// surface, do not depend on the order the patches came in.
 #pragma once
 #include <Eigen/Dense>
 #include <algorithm>
@@ -271,75 +272,83 @@ void add_patches(const Model<D>& m, CrackSurface& s, const std::vector<std::pair
   std::inplace_merge(s.sorted_patches.begin(), s.sorted_patches.begin() + static_cast<std::ptrdiff_t>(before), s.sorted_patches.end());
 }
 
-/// Makes again the normal of every patch within 1.5 spacings of `points`: the principal direction
-/// (the largest eigenvector of the sum of n n^T, sign-free) of the short broken bonds within 1.5
-/// spacings of it, summed in the order of their keys (the same normal however the patches came).
+/// The units of CrackSurface::moments: n n^T of a lattice bond (nearest or diagonal neighbour) is
+/// in halves, so its entries times this are whole and their sums exact in any order.
+inline constexpr double moment_unit = 8388608.0;  // 2^23: 127 patches within 1.5 spacings sum below 2^31
+
+/// n n^T of a patch's bond in moment_unit, rounded (exact for a lattice bond).
 template <int D>
-void turn_patches_around(const Model<D>& m, CrackSurface& s, const std::vector<std::array<double, 3>>& points, double short_bond) {
-  std::vector<std::uint8_t> turn(s.planes.size(), 0);
-  auto within = [&](const double* a, const double* c) {
-    double r2 = 0.0;
-    for (int q = 0; q < D; ++q) r2 += (a[q] - c[q]) * (a[q] - c[q]);
-    return r2 <= short_bond * short_bond;
-  };
-#pragma omp parallel for if(rift::parallel::worth_a_team(points.size() * 64)) schedule(dynamic, 64)
-  for (std::size_t q = 0; q < points.size(); ++q)
-    for_patches_near_segment<D>(s, points[q].data(), points[q].data(), short_bond, [&](std::uint32_t p) {
-      if (within(s.planes[p].data(), points[q].data())) std::atomic_ref<std::uint8_t>(turn[p]).store(1, std::memory_order_relaxed);
-      return false;
-    });
-  // the turned patches by cell: one search around a cell's patches serves them all
-  std::vector<std::pair<std::int64_t, std::uint32_t>> turned;
-  for (std::size_t p = 0; p < turn.size(); ++p)
-    if (turn[p]) turned.emplace_back(surface_cell_key<D>(surface_cell_of<D>(s.planes[p].data(), s.cell)), static_cast<std::uint32_t>(p));
-  std::sort(turned.begin(), turned.end());
-  std::vector<std::size_t> group_first;
-  for (std::size_t t = 0; t < turned.size(); ++t)
-    if (t == 0 || turned[t].first != turned[t - 1].first) group_first.push_back(t);
-  group_first.push_back(turned.size());
-  const std::size_t groups = group_first.size() - 1;
-#pragma omp parallel if(rift::parallel::worth_a_team(turned.size() * 64))
+std::array<std::int32_t, 6> patch_moment(const Model<D>& m, std::int64_t key) {
+  const auto n = patch_direction<D>(m, key);
+  auto whole = [](double v) { return static_cast<std::int32_t>(std::llround(v * moment_unit)); };
+  return {whole(n[0] * n[0]), whole(n[1] * n[1]), whole(n[2] * n[2]), whole(n[0] * n[1]), whole(n[1] * n[2]), whole(n[0] * n[2])};
+}
+
+/// Adds `sign` times moment `add` to patch p's, from any thread (whole numbers: the sum does not
+/// depend on the order).
+inline void add_moment(CrackSurface& s, std::size_t p, const std::array<std::int32_t, 6>& add, int sign) {
+  for (std::size_t q = 0; q < 6; ++q) std::atomic_ref<std::int32_t>(s.moments[p][q]).fetch_add(sign * add[q], std::memory_order_relaxed);
+}
+
+/// Whether two points lie within `reach` of each other.
+template <int D>
+bool within_reach(const double* a, const double* c, double reach) {
+  double r2 = 0.0;
+  for (int q = 0; q < D; ++q) r2 += (a[q] - c[q]) * (a[q] - c[q]);
+  return r2 <= reach * reach;
+}
+
+/// Patch p's normal: the principal direction (the largest eigenvector, sign-free) of its moment.
+template <int D>
+void make_normal(CrackSurface& s, std::size_t p) {
+  const auto& mo = s.moments[p];
+  Eigen::Matrix<double, D, D> sum;
+  if constexpr (D == 2) {
+    sum << mo[0], mo[3], mo[3], mo[1];
+  } else {
+    sum << mo[0], mo[3], mo[5], mo[3], mo[1], mo[4], mo[5], mo[4], mo[2];
+  }
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix<double, D, D>> eigen(sum);
+  const auto v = eigen.eigenvectors().col(D - 1);  // the largest eigenvalue's
+  for (int q = 0; q < 3; ++q) s.planes[p][static_cast<std::size_t>(3 + q)] = q < D ? v[q] : 0.0;
+}
+
+/// Takes the patches from `first` on (just added) into the moments, and makes the normals again
+/// where a moment changed: each new patch's moment is the sum of n n^T of the patches within 1.5
+/// spacings of it (itself included), and it adds its own to the older patches within that reach.
+/// `turned` (ascending): older patches whose moment changed already (patches removed near them).
+/// The moments are whole numbers (moment_unit), so a patch's normal is the same however and in
+/// whatever order the patches came: the surface made from scratch.
+template <int D>
+void take_new_patches(const Model<D>& m, CrackSurface& s, std::size_t first, std::vector<std::uint32_t> turned, double short_bond) {
+  const std::size_t count = s.planes.size();
+  s.moments.resize(count);
+  std::vector<std::array<std::int32_t, 6>> own(count - first);
+  for (std::size_t p = first; p < count; ++p) own[p - first] = patch_moment<D>(m, s.patches[p]), s.moments[p] = {};
+#pragma omp parallel if(rift::parallel::worth_a_team((count - first) * 64))
   {
-    struct Candidate {
-      std::array<double, 3> point;
-      std::int64_t key;
-    };
-    std::vector<Candidate> candidates;
-    std::vector<std::int64_t> near;
-#pragma omp for schedule(dynamic, 16)
-    for (std::size_t g = 0; g < groups; ++g) {
-      // the patches within 1.5 spacings of the box around the group's points
-      std::array<double, 3> low{}, high{};
-      for (int q = 0; q < D; ++q) low[static_cast<std::size_t>(q)] = 1e300, high[static_cast<std::size_t>(q)] = -1e300;
-      for (std::size_t t = group_first[g]; t < group_first[g + 1]; ++t)
-        for (int q = 0; q < D; ++q) {
-          const double x = s.planes[turned[t].second][static_cast<std::size_t>(q)];
-          low[static_cast<std::size_t>(q)] = std::min(low[static_cast<std::size_t>(q)], x), high[static_cast<std::size_t>(q)] = std::max(high[static_cast<std::size_t>(q)], x);
-        }
-      candidates.clear();
-      for_patches_near_segment<D>(s, low.data(), high.data(), short_bond, [&](std::uint32_t o) {
-        candidates.push_back({{s.planes[o][0], s.planes[o][1], s.planes[o][2]}, s.patches[o]});
+    std::vector<std::uint32_t> mine;  // the older patches this thread's new ones reached
+#pragma omp for schedule(dynamic, 64)
+    for (std::size_t p = first; p < count; ++p) {
+      std::array<std::int32_t, 6> sum{};
+      const double* point = s.planes[p].data();
+      for_patches_near_segment<D>(s, point, point, short_bond, [&](std::uint32_t o) {
+        if (!within_reach<D>(s.planes[o].data(), point, short_bond)) return false;
+        const auto moment = o >= first ? own[o - first] : patch_moment<D>(m, s.patches[o]);
+        for (std::size_t q = 0; q < 6; ++q) sum[q] += moment[q];
+        if (o < first) add_moment(s, o, own[p - first], 1), mine.push_back(o);
         return false;
       });
-      for (std::size_t t = group_first[g]; t < group_first[g + 1]; ++t) {
-        auto& plane = s.planes[turned[t].second];
-        near.clear();
-        for (const Candidate& c : candidates)
-          if (within(c.point.data(), plane.data())) near.push_back(c.key);
-        std::sort(near.begin(), near.end());
-        Eigen::Matrix<double, D, D> sum = Eigen::Matrix<double, D, D>::Zero();
-        for (const std::int64_t key : near) {
-          const auto direction = patch_direction<D>(m, key);
-          Eigen::Matrix<double, D, 1> v;
-          for (int q = 0; q < D; ++q) v[q] = direction[static_cast<std::size_t>(q)];
-          sum += v * v.transpose();
-        }
-        const Eigen::SelfAdjointEigenSolver<Eigen::Matrix<double, D, D>> eigen(sum);
-        const auto v = eigen.eigenvectors().col(D - 1);  // the largest eigenvalue's
-        for (int q = 0; q < 3; ++q) plane[static_cast<std::size_t>(3 + q)] = q < D ? v[q] : 0.0;
-      }
+      s.moments[p] = sum;
     }
+#pragma omp critical(rift_turned_patches)
+    turned.insert(turned.end(), mine.begin(), mine.end());
   }
+  std::sort(turned.begin(), turned.end());
+  turned.erase(std::unique(turned.begin(), turned.end()), turned.end());
+  for (std::size_t p = first; p < count; ++p) turned.push_back(static_cast<std::uint32_t>(p));
+#pragma omp parallel for if(rift::parallel::worth_a_team(turned.size() * 16)) schedule(static)
+  for (std::size_t t = 0; t < turned.size(); ++t) make_normal<D>(s, turned[t]);
 }
 
 }  // namespace detail
@@ -364,17 +373,28 @@ void remake_crack_surface(Model<D>& m) {
   std::vector<std::int64_t> added, removed;
   std::set_difference(keys.begin(), keys.end(), surface.sorted_patches.begin(), surface.sorted_patches.end(), std::back_inserter(added));
   std::set_difference(surface.sorted_patches.begin(), surface.sorted_patches.end(), keys.begin(), keys.end(), std::back_inserter(removed));
-  std::vector<std::array<double, 3>> around;  // where the normals turn
+  std::vector<std::uint32_t> turned;  // the kept patches whose moment lost a removed patch's
   if (!removed.empty()) {
+    // the removed patches' moments out of those within 1.5 spacings of them that stay
+    std::vector<std::uint8_t> gone(surface.patches.size(), 0), turn(surface.patches.size(), 0);
+    for (std::size_t p = 0; p < surface.patches.size(); ++p) gone[p] = std::binary_search(removed.begin(), removed.end(), surface.patches[p]);
+    for (std::size_t p = 0; p < surface.patches.size(); ++p) {
+      if (!gone[p]) continue;
+      const auto moment = detail::patch_moment<D>(m, surface.patches[p]);
+      const double* point = surface.planes[p].data();
+      detail::for_patches_near_segment<D>(surface, point, point, short_bond, [&](std::uint32_t o) {
+        if (!gone[o] && detail::within_reach<D>(surface.planes[o].data(), point, short_bond)) detail::add_moment(surface, o, moment, -1), turn[o] = 1;
+        return false;
+      });
+    }
     CrackSurface kept;
     kept.made = true, kept.cell = surface.cell, kept.reach = surface.reach;
     for (std::size_t p = 0; p < surface.patches.size(); ++p) {
-      if (std::binary_search(removed.begin(), removed.end(), surface.patches[p])) {
-        around.push_back({surface.planes[p][0], surface.planes[p][1], surface.planes[p][2]});
-        continue;
-      }
+      if (gone[p]) continue;
+      if (turn[p]) turned.push_back(static_cast<std::uint32_t>(kept.patches.size()));
       kept.patches.push_back(surface.patches[p]);
       kept.planes.push_back(surface.planes[p]);
+      kept.moments.push_back(surface.moments[p]);
     }
     std::set_difference(surface.sorted_patches.begin(), surface.sorted_patches.end(), removed.begin(), removed.end(),
                         std::back_inserter(kept.sorted_patches));
@@ -384,8 +404,7 @@ void remake_crack_surface(Model<D>& m) {
   std::erase_if(found, [&](const auto& p) { return !std::binary_search(added.begin(), added.end(), p.first); });
   const std::size_t first = surface.planes.size();
   detail::add_patches<D>(m, surface, found);
-  for (std::size_t p = first; p < surface.planes.size(); ++p) around.push_back({surface.planes[p][0], surface.planes[p][1], surface.planes[p][2]});
-  detail::turn_patches_around<D>(m, surface, around, short_bond);
+  detail::take_new_patches<D>(m, surface, first, std::move(turned), short_bond);
 }
 
 /// Adds to the crack surface the patches of the bonds of `changed` (the particles whose bonds broke
@@ -404,9 +423,7 @@ void extend_crack_surface(Model<D>& m, const std::vector<std::size_t>& changed) 
   if (found.empty()) return;
   const std::size_t first = surface.planes.size();
   detail::add_patches<D>(m, surface, found);
-  std::vector<std::array<double, 3>> around;
-  for (std::size_t p = first; p < surface.planes.size(); ++p) around.push_back({surface.planes[p][0], surface.planes[p][1], surface.planes[p][2]});
-  detail::turn_patches_around<D>(m, surface, around, short_bond);
+  detail::take_new_patches<D>(m, surface, first, {}, short_bond);
 }
 
 /// Keeps the bonds just broken that crossed the crack (pairs (i, k): row i's entry k), both entries.
