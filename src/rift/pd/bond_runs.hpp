@@ -74,23 +74,45 @@ inline void make_bond_runs(const Bonds& b, BodyInfo& body) {
   for (std::size_t q = 0; q < slabs; ++q) body.slab_runs[q + 1] += body.slab_runs[q];
 }
 
-/// Per particle of the body: 1 where every bond of its row is intact (the bonds' states are 1 or
-/// less for a broken bond, 2 for a failed interface bond: their AND is 1 only when all are 1). A run
-/// of whole rows needs no look at its bonds' states. One read of the states per pass, a small part
-/// of a pass that reads every bond's neighbour.
-inline const std::uint8_t* whole_rows(const Bonds& b, const BodyInfo& body) {
+/// Which bonds of each row are intact, for the runs' masks (mask_run): per particle of the body,
+/// whether its row is whole (every bond intact: the bonds' states are 1 or less for a broken bond, 2
+/// for a failed interface bond, so their AND is 1 only when all are 1; a run of whole rows needs no
+/// look at its bonds' states), and for the rows that are not, a bit per family offset of the body
+/// (where it has at most 128: a horizon of 3 spacings has 122 in 3D), set where that bond is intact.
+/// One read of the states per pass, a small part of a pass that reads every bond's neighbour.
+struct RowStates {
+  const std::uint8_t* whole = nullptr;
+  const std::uint64_t* intact = nullptr;  // two words per particle; null: the body has more offsets
+  std::size_t first_family = 0;
+};
+
+inline RowStates whole_rows(const Bonds& b, const BodyInfo& body) {
   static thread_local std::vector<std::uint8_t> whole;
+  static thread_local std::vector<std::uint64_t> intact;
   whole.resize(b.offset.size());
+  const bool bits = body.family_count <= 128;
+  intact.resize(bits ? 2 * b.offset.size() : 0);
   std::uint8_t* const out = whole.data();
+  std::uint64_t* const words = intact.data();
   const std::int64_t* const offset = b.offset.data();
   const std::uint8_t* const state = b.intact.data();
+  const std::uint16_t* const family = b.family.data();
+  const std::size_t first_family = body.first_family;
 #pragma omp parallel for if(rift::parallel::worth_a_team(body.last - body.first)) schedule(static)
   for (std::size_t i = body.first; i < body.last; ++i) {
     std::uint8_t all = bond_intact;
     for (auto k = offset[i]; k < offset[i + 1]; ++k) all &= state[k];
     out[i] = all;
+    if (!bits || all == bond_intact) continue;
+    std::uint64_t word[2] = {0, 0};
+    for (auto k = offset[i]; k < offset[i + 1]; ++k)
+      if (state[k] == bond_intact) {
+        const std::size_t f = family[k] - first_family;
+        word[f >> 6] |= std::uint64_t{1} << (f & 63);
+      }
+    words[2 * i] = word[0], words[2 * i + 1] = word[1];
   }
-  return out;
+  return {out, bits ? words : nullptr, first_family};
 }
 
 /// Whether the rows [i, i + length) are whole (whole_rows).
@@ -108,32 +130,21 @@ inline std::int64_t run_bond(const Bonds& b, const BondRun& run, std::size_t t) 
   return std::lower_bound(first, last, static_cast<std::int32_t>(run.j + static_cast<std::int32_t>(t))) - b.neighbor.begin();
 }
 
-/// Whether the run has a row that is not whole (`whole` from whole_rows); then alive[t] is 1 for
-/// its intact bonds and 0 for the others, for the kernels' Masked form.
-/// Where the bonds' place in their rows varies (rows a surface cuts), each bond's place is found
-/// from the last one's: the rows of neighbouring sites lose their bonds to the same few sites, so
-/// the place moves by a step or two, where a binary search in each row took a fifth of the bond
-/// passes in the damaged rows around the thesis-size perforation.
-inline bool mask_run(const Bonds& b, const BondRun& run, const std::uint8_t* whole, double* alive) {
-  if (whole_run(whole + run.i, run.length)) return false;
-  const std::uint8_t* const state = b.intact.data();
-  const std::int64_t* const offset = b.offset.data() + run.i;
-  if (run.position != BondRun::varies) {
-    for (std::size_t t = 0; t < run.length; ++t) alive[t] = state[offset[t] + run.position] == bond_intact ? 1.0 : 0.0;
+/// Whether the run has a row that is not whole (RowStates); then alive[t] is 1 for its intact
+/// bonds and 0 for the others, for the kernels' Masked form. The bits of the rows' intact offsets
+/// are read one row after the next; each row's own states (and where the rows do not share the
+/// bonds' place, its neighbours, to find it) would take a cache line per bond, in the damaged
+/// rows around the thesis-size perforation a fifth of the bond passes.
+inline bool mask_run(const Bonds& b, const BondRun& run, const RowStates& rows, double* alive) {
+  const std::uint8_t* const whole = rows.whole + run.i;
+  if (whole_run(whole, run.length)) return false;
+  if (rows.intact) {
+    const std::size_t f = run.family - rows.first_family, word = f >> 6, bit = f & 63;
+    const std::uint64_t* const words = rows.intact + 2 * static_cast<std::size_t>(run.i) + word;
+    for (std::size_t t = 0; t < run.length; ++t) alive[t] = whole[t] || (words[2 * t] >> bit & 1) ? 1.0 : 0.0;
     return true;
   }
-  const std::int32_t* const neighbor = b.neighbor.data();
-  std::int64_t place = static_cast<std::int64_t>(run_bond(b, run, 0)) - offset[0];
-  for (std::size_t t = 0; t < run.length; ++t) {
-    // the first entry of row i + t whose neighbour is not below j + t (std::lower_bound), from `place`
-    const std::int64_t first = offset[t], last = offset[t + 1];
-    const auto target = static_cast<std::int32_t>(run.j + static_cast<std::int32_t>(t));
-    std::int64_t k = std::min(first + place, last);
-    while (k > first && neighbor[k - 1] >= target) --k;
-    while (k < last && neighbor[k] < target) ++k;
-    place = k - first;
-    alive[t] = state[k] == bond_intact ? 1.0 : 0.0;
-  }
+  for (std::size_t t = 0; t < run.length; ++t) alive[t] = b.intact[static_cast<std::size_t>(run_bond(b, run, t))] == bond_intact ? 1.0 : 0.0;
   return true;
 }
 

@@ -92,13 +92,13 @@ void strain_energy_densities(const Model<D>& m, const BodyInfo& body, double* w)
 #pragma omp parallel for if(rift::parallel::worth_a_team(body.last - body.first)) schedule(static)
   for (std::size_t i = body.first; i < body.last; ++i) w[i] = 0.0;
   const auto x = positions_by_component<D>(m.position, body);
-  const std::uint8_t* const whole = whole_rows(b, body);
+  const RowStates rows = whole_rows(b, body);
   const VectorIsa isa = vector_isa();
   for_each_run_by_slabs(body, [&](const BondRun& run) {
     const std::size_t length = run.length, i = static_cast<std::size_t>(run.i), j = static_cast<std::size_t>(run.j);
     const FamilyOffset& family = b.families[run.family];
     alignas(64) double alive[max_run_length], correction_a[max_run_length], correction_b[max_run_length];
-    const bool masked = mask_run(b, run, whole, alive);
+    const bool masked = mask_run(b, run, rows, alive);
     if constexpr (Corrected)
       for (std::size_t t = 0; t < length; ++t) {
         correction_a[t] = b.factors[static_cast<std::size_t>(b.factor_row[i + t] + run.family)].correction;

@@ -79,7 +79,7 @@ void dilatation_runs(Model<D>& m, const BodyInfo& body, double* coupling, double
   const auto x = positions_by_component<D>(m.position, body);
   const double* const limits = m.stretch_limit.data();
   double* const theta = m.dilatation.data();
-  const std::uint8_t* const whole = whole_rows(b, body);
+  const RowStates rows = whole_rows(b, body);
   const VectorIsa isa = vector_isa();
   // bond t of a run, as a row takes it
   auto settle = [&]<bool Wet>(const BondRun& run, std::size_t t) {
@@ -128,7 +128,7 @@ void dilatation_runs(Model<D>& m, const BodyInfo& body, double* coupling, double
     const FamilyOffset& family = v.families[run.family];
     alignas(64) double alive[max_run_length], weight_a[max_run_length], weight_b[max_run_length], correction_a[max_run_length],
         correction_b[max_run_length], flagged[max_run_length];
-    const bool masked = mask_run(b, run, whole, alive);
+    const bool masked = mask_run(b, run, rows, alive);
     if constexpr (Corrected)
       for (std::size_t t = 0; t < length; ++t) {
         const BondFactors& own = v.factors[v.factor_row[i + t] + run.family];
@@ -314,7 +314,7 @@ void state_based_forces(Model<D>& m, const BodyInfo& body, double history_dt) {
     pressure[j] = p_j, coefficient[j] = a_j;
     for (int q = 0; q < D; ++q) f[q][j] = 0.0;
   }
-  const std::uint8_t* const whole = whole_rows(b, body);
+  const RowStates rows = whole_rows(b, body);
   const VectorIsa isa = vector_isa();
   // bond t of a run, as a row takes it
   auto settle = [&](const BondRun& run, std::size_t t) {
@@ -364,7 +364,7 @@ void state_based_forces(Model<D>& m, const BodyInfo& body, double history_dt) {
     const FamilyOffset& family = b.families[run.family];
     alignas(64) double alive[max_run_length], weight_a[max_run_length], weight_b[max_run_length], correction_a[max_run_length],
         correction_b[max_run_length];
-    const bool masked = mask_run(b, run, whole, alive);
+    const bool masked = mask_run(b, run, rows, alive);
     if constexpr (Corrected)
       for (std::size_t t = 0; t < length; ++t) {
         const BondFactors& own = b.factors[static_cast<std::size_t>(b.factor_row[i + t] + run.family)];

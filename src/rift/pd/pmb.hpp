@@ -128,7 +128,7 @@ void pmb_forces(Model<D>& m, const BodyInfo& body) {
   std::vector<std::pair<std::size_t, std::int64_t>> broken, crossing;  // (i, k) of the bonds broken here, and of those across the crack
   const BondView v = b.view();
   const double* const limits = m.stretch_limit.data();
-  const std::uint8_t* const whole = whole_rows(b, body);
+  const RowStates rows = whole_rows(b, body);
   const VectorIsa isa = vector_isa();
   // bond t of a run, one at a time, as a row would take it: for a run that may break a bond
   auto settle = [&]<bool Wet, bool Corrected>(const BondRun& run, std::size_t t) {
@@ -171,7 +171,7 @@ void pmb_forces(Model<D>& m, const BodyInfo& body) {
     const FamilyOffset& family = v.families[run.family];
     alignas(64) double alive[max_run_length], factor[max_run_length], flagged[max_run_length];
     // the bonds' states (in their lower ends' rows) only where a row is not whole (bond_runs.hpp)
-    const bool masked = mask_run(b, run, whole, alive);
+    const bool masked = mask_run(b, run, rows, alive);
     if constexpr (Corrected)
       for (std::size_t t = 0; t < length; ++t)
         factor[t] = 0.5f * (v.factors[v.factor_row[i + t] + run.family].correction +
