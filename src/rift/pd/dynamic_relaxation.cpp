@@ -3,6 +3,8 @@
 #include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <limits>
 
 #include "rift/parallel/ordered_sum.hpp"
 #include "rift/pd/effective_stretch.hpp"
@@ -26,9 +28,65 @@ DynamicRelaxation<D>::DynamicRelaxation(const Model<D>& m) {
         sum += std::max(1.0f, m.bonds.correction(i, k)) * c.equivalent_micromodulus * influence(c.influence, xi, c.horizon) / xi *
                m.bonds.volume(k);
       }
-      fictitious_density_[i] = 0.25 * 5.0 * sum;
+      fictitious_density_[i] = 0.25 * row_sum_factor * sum;
     }
   }
+}
+
+template <int D>
+double DynamicRelaxation<D>::measure_fictitious_density(Model<D>& m, const load::Boundaries<D>& loads, Contact<D>* contact, double t,
+                                                        int iterations, double safety) {
+  const std::size_t n = m.size();
+  if (n == 0) return row_sum_factor;
+  // the row-sum bound of eq. 10, lambda_i / row_sum_factor
+  std::vector<double> bound(n);
+  for (std::size_t i = 0; i < n; ++i) bound[i] = fictitious_density_[i] / row_sum_factor;
+  double shortest = std::numeric_limits<double>::max();
+  for (const auto& f : m.bonds.families) shortest = std::min(shortest, f.length);
+  if (!(shortest < std::numeric_limits<double>::max())) return row_sum_factor;
+  const std::vector<Vec<D>> start = m.position;
+  auto total_force = [&] {  // internal and external force density at the current positions
+    compute_forces<D>(m, contact);
+    loads.apply_body_forces(m, t);
+    std::vector<Vec<D>> f(n);
+    for (std::size_t i = 0; i < n; ++i) f[i] = m.force[i] + m.body_force[i];
+    return f;
+  };
+  const std::vector<Vec<D>> at_start = total_force();
+  // a start with every mode in it: a fixed pseudo-random sign per component (splitmix64 of i d + q)
+  std::vector<Vec<D>> v(n);
+  for (std::size_t i = 0; i < n; ++i)
+    for (int q = 0; q < D; ++q) {
+      std::uint64_t z = (i * D + static_cast<std::size_t>(q) + 1) * 0x9e3779b97f4a7c15ull;
+      z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ull, z = (z ^ (z >> 27)) * 0x94d049bb133111ebull, z ^= z >> 31;
+      v[i][q] = m.constrained[i] >> q & 1 ? 0.0 : ((z & 1) ? 1.0 : -1.0);
+    }
+  const double probe = 1e-6 * shortest;  // the largest component of a probe's displacement
+  double mu = 0.0;
+  for (int it = 0; it < iterations; ++it) {
+    for (std::size_t i = 0; i < n; ++i) m.position[i] = start[i] + probe * v[i];
+    const std::vector<Vec<D>> moved = total_force();
+    // w = K v / bound (K v = -(F(x + probe v) - F(x)) / probe); Rayleigh's quotient in the bound's metric
+    double num = 0.0, den = 0.0, largest = 0.0;
+    for (std::size_t i = 0; i < n; ++i)
+      for (int q = 0; q < D; ++q) {
+        const double kv = m.constrained[i] >> q & 1 ? 0.0 : -(moved[i][q] - at_start[i][q]) / probe;
+        num += m.volume[i] * v[i][q] * kv;
+        den += m.volume[i] * bound[i] * v[i][q] * v[i][q];
+        v[i][q] = bound[i] > 0.0 ? kv / bound[i] : 0.0;
+        largest = std::max(largest, std::abs(v[i][q]));
+      }
+    if (den > 0.0) mu = num / den;
+    if (!(largest > 0.0) || !std::isfinite(largest)) break;
+    for (auto& x : v) x = (1.0 / largest) * x;
+  }
+  m.position = start;
+  compute_forces<D>(m, contact);
+  loads.apply_body_forces(m, t);
+  if (!(mu > 0.0) || !std::isfinite(mu)) return row_sum_factor;
+  const double factor = safety * mu / 4.0;
+  for (std::size_t i = 0; i < n; ++i) fictitious_density_[i] = factor * bound[i];
+  return factor;
 }
 
 // The rigid-body part of the iterations' accelerations F_i / lambda_i, A + alpha x (x - c), from the

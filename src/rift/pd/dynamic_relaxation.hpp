@@ -14,7 +14,12 @@ struct RelaxationResult {
   double residual = 0.0;  // ||internal + external force|| / ||load||
   bool converged = false;
   int breaking_passes = 1;  // equilibria of the load step (relax_breaking_at_equilibrium)
+  double density_factor = 0.0;  // the fictitious density over the row-sum bound, where measured
 };
+
+/// The factor over the PMB row-sum bound of the fictitious density (eq. 10) that covers the LPS
+/// coupling through the dilatation and the surface correction, where it is not measured.
+inline constexpr double row_sum_factor = 5.0;
 
 template <int D>
 class DynamicRelaxation {
@@ -23,6 +28,13 @@ class DynamicRelaxation {
   /// Relax to equilibrium for the loads at time t (positions of displacement BCs set first).
   RelaxationResult relax(Model<D>& m, const load::Boundaries<D>& loads, Contact<D>* contact, double t,
                          int max_iterations, double tolerance);
+  /// Measures the largest eigenvalue mu of the stiffness over the row-sum bound (eq. 10 without its
+  /// factor) by power iteration at the current state, and sets the fictitious density to
+  /// `safety` mu / 4 times that bound (stable for dt = 1 where mu / 4 is the largest). Returns the
+  /// factor. Call with the bonds held (HeldBreaking): the probes move the particles by a millionth
+  /// of a bond.
+  double measure_fictitious_density(Model<D>& m, const load::Boundaries<D>& loads, Contact<D>* contact, double t, int iterations = 50,
+                                    double safety = 1.25);
   /// Damping from Rayleigh's quotient of the displacement since the start of each relax call
   /// instead of since the reference state (in_situ_strain.hpp: a start already near equilibrium).
   void measure_damping_from_start(bool on) { damping_from_start_ = on; }

@@ -43,7 +43,10 @@ struct Simulation {
       pd::apply_in_situ_strain<D>(model, in_situ);
       dr.measure_damping_from_start(true);
     }
+    // the stage's iterations go as the square root of the fictitious density: measured, not bounded
+    const double factor = dr.measure_fictitious_density(model, loads, contact_ptr(), 0.0);
     auto r = dr.relax(model, loads, contact_ptr(), 0.0, in_situ.max_iterations, in_situ.tolerance);
+    r.density_factor = factor;
     model.velocity = initial_velocity;
     return r;
   }
