@@ -35,6 +35,8 @@ class DynamicRelaxation {
   /// of a bond.
   double measure_fictitious_density(Model<D>& m, const load::Boundaries<D>& loads, Contact<D>* contact, double t, int iterations = 50,
                                     double safety = 1.25);
+  /// lambda_i per particle (eq. 10, time step 1), per unit volume.
+  const std::vector<double>& fictitious_density() const { return fictitious_density_; }
   /// Damping from Rayleigh's quotient of the displacement since the start of each relax call
   /// instead of since the reference state (in_situ_strain.hpp: a start already near equilibrium).
   void measure_damping_from_start(bool on) { damping_from_start_ = on; }

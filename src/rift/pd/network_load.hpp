@@ -161,6 +161,15 @@ void add_end_changes(const Model<D>& m, const std::vector<std::size_t>& changed,
   for (std::size_t q = 0; q < changed.size(); ++q)
     if (!same_end(now(q), before[q])) moved.push_back(q);
   if (moved.empty()) return;
+  // how far a bond of theirs reaches in particle numbers (rows are sorted by neighbour)
+  std::size_t reach = 0;
+  for (const std::size_t q : moved) {
+    const std::size_t x = changed[q];
+    if (b.offset[x + 1] == b.offset[x]) continue;
+    const auto low = static_cast<std::size_t>(b.neighbor[static_cast<std::size_t>(b.offset[x])]);
+    const auto high = static_cast<std::size_t>(b.neighbor[static_cast<std::size_t>(b.offset[x + 1] - 1)]);
+    reach = std::max({reach, x > low ? x - low : 0, high > x ? high - x : 0});
+  }
 #pragma omp parallel if(rift::parallel::worth_a_team(moved.size() * 64))
   {
 #ifdef _OPENMP
@@ -169,7 +178,11 @@ void add_end_changes(const Model<D>& m, const std::vector<std::size_t>& changed,
     const std::size_t id = 0, threads = 1;
 #endif
     const std::size_t lo = n * id / threads, hi = n * (id + 1) / threads;
-    for (const std::size_t q : moved) {
+    // the ends that can reach the range [lo, hi): `changed` is ascending
+    const auto from = std::lower_bound(moved.begin(), moved.end(), lo > reach ? lo - reach : 0,
+                                       [&](std::size_t q, std::size_t i) { return changed[q] < i; });
+    for (auto it = from; it != moved.end() && changed[*it] < hi + reach; ++it) {
+      const std::size_t q = *it;
       const std::size_t x = changed[q];
       const NetworkEnd z = now(q), old = before[q];
       for (auto k = b.offset[x]; k < b.offset[x + 1]; ++k) {
