@@ -126,7 +126,8 @@ TEST(Viscoelastic, ForcesMatchAnIndependentEvaluationOverSteps) {
 // pass over them: over five steps of a changing deformation, on the surface-corrected lattice and on
 // LAMMPS's, with bonds broken between the steps (both directions, as the passes break them) and
 // bonds the pass itself breaks, it equals the sum over every intact bond of g omega |xi| V (e_d -
-// lambda e_b) with e_d at the step's positions and the back extensions as stored. Tolerance 1e-6 of
+// lambda e_b) with e_d at the step's positions and the back extensions as stored (the pass's own broken
+// bonds are taken out of the sums term by term, ves.hpp take_out_of_viscous_sums). Tolerance 1e-6 of
 // the sum of the terms' magnitudes per particle: the back extensions are stored in single precision
 // (6e-8 each), the sums are not.
 TEST(Viscoelastic, CouplingFromSumsEqualsTheSumOverTheHistories) {

@@ -187,7 +187,7 @@ struct CrackSurface {
   bool made = false;                          // made once at least (before: a scene's initial state)
   std::vector<std::int64_t> patches;          // per patch, in the order they came: a broken bond's entry in its lower end's row, or -1 - a cut bond's
   std::vector<std::array<double, 6>> planes;  // per patch: its point and unit normal (z = 0 in 2D)
-  std::vector<std::array<std::int32_t, 6>> moments;  // per patch: the sum of n n^T (xx yy zz xy yz xz) around it, in 2^-23 (crack_crossing.hpp)
+  std::vector<std::array<std::int32_t, 6>> moments;  // per patch: the sum of n n^T (xx yy zz xy yz xz) around it, in 2^-20 (crack_crossing.hpp)
   std::vector<std::int64_t> sorted_patches;   // the patches' bonds, ascending (which bonds have one)
   double cell = 0.0, reach = 0.0;             // the grid's cell size; how far a patch reaches along its plane, m
   std::vector<std::int64_t> cell_keys;        // the grid: cell keys, ascending

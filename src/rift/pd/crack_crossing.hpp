@@ -274,7 +274,9 @@ void add_patches(const Model<D>& m, CrackSurface& s, const std::vector<std::pair
 
 /// The units of CrackSurface::moments: n n^T of a lattice bond (nearest or diagonal neighbour) is
 /// in halves, so its entries times this are whole and their sums exact in any order.
-inline constexpr double moment_unit = 8388608.0;  // 2^23: 127 patches within 1.5 spacings sum below 2^31
+/// 2^20: within 1.5 spacings of a patch lie at most 139 others on one lattice (their sum stays
+/// below 2^28), and up to 2047 where a finer body meets the coarsest (its spacing sets the reach).
+inline constexpr double moment_unit = 1048576.0;
 
 /// n n^T of a patch's bond in moment_unit, rounded (exact for a lattice bond).
 template <int D>
@@ -316,7 +318,7 @@ void make_normal(CrackSurface& s, std::size_t p) {
 /// Takes the patches from `first` on (just added) into the moments, and makes the normals again
 /// where a moment changed: each new patch's moment is the sum of n n^T of the patches within 1.5
 /// spacings of it (itself included), and it adds its own to the older patches within that reach.
-/// `turned` (ascending): older patches whose moment changed already (patches removed near them).
+/// `turned`: older patches whose moment changed already (patches removed near them).
 /// The moments are whole numbers (moment_unit), so a patch's normal is the same however and in
 /// whatever order the patches came: the surface made from scratch.
 template <int D>

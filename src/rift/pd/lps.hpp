@@ -57,14 +57,17 @@ double pressure_factor(double kappa, double theta, double a, double coupling) {
 /// normal_stress_failure.hpp) and sums over the rest theta_i = sum b_ij e V (into
 /// m.dilatation), with Coupling also q_i = sum sigma_ij e |xi| V (into `coupling`), and the smallest
 /// stretch of each particle (into `smallest`, none: no intact bond). e = |y| - |xi| is the same seen
-/// from either end; b and sigma are each end's own (surface_correction.hpp).
+/// from either end; b and sigma are each end's own (surface_correction.hpp). `broken`, where
+/// given, receives the bonds the pass broke, (i, k) of the lower end's row, in no fixed order.
 template <int D, scene::Influence Omega, bool Coupling, bool Corrected>
-void dilatation_pass(Model<D>& m, const BodyInfo& body, double* coupling, double* smallest);
+void dilatation_pass(Model<D>& m, const BodyInfo& body, double* coupling, double* smallest,
+                     std::vector<std::pair<std::size_t, std::int64_t>>* broken_out = nullptr);
 
 template <int D, scene::Influence Omega, bool Coupling>
-void dilatation_pass(Model<D>& m, const BodyInfo& body, double* coupling, double* smallest) {
-  if (body.constants.surface_correction) dilatation_pass<D, Omega, Coupling, true>(m, body, coupling, smallest);
-  else dilatation_pass<D, Omega, Coupling, false>(m, body, coupling, smallest);
+void dilatation_pass(Model<D>& m, const BodyInfo& body, double* coupling, double* smallest,
+                     std::vector<std::pair<std::size_t, std::int64_t>>* broken_out = nullptr) {
+  if (body.constants.surface_correction) dilatation_pass<D, Omega, Coupling, true>(m, body, coupling, smallest, broken_out);
+  else dilatation_pass<D, Omega, Coupling, false>(m, body, coupling, smallest, broken_out);
 }
 
 /// The dilatation pass's bonds in runs (bond_runs.hpp, lps_runs.hpp), the stretch criterion: the
@@ -176,7 +179,8 @@ void dilatation_runs(Model<D>& m, const BodyInfo& body, double* coupling, double
 }
 
 template <int D, scene::Influence Omega, bool Coupling, bool Corrected>
-void dilatation_pass(Model<D>& m, const BodyInfo& body, double* coupling, double* smallest) {
+void dilatation_pass(Model<D>& m, const BodyInfo& body, double* coupling, double* smallest,
+                     std::vector<std::pair<std::size_t, std::int64_t>>* broken_out) {
   const auto& c = body.constants;
   Bonds& b = m.bonds;
   constexpr double none = std::numeric_limits<double>::max();
@@ -261,6 +265,7 @@ void dilatation_pass(Model<D>& m, const BodyInfo& body, double* coupling, double
   }
   for (const auto& [i, k] : broken) break_mirror_bond(b, body, i, k);
   record_crossing_breaks<D>(m, crossing);
+  if (broken_out) *broken_out = std::move(broken);
   if constexpr (!Corrected) {
 #pragma omp parallel for if(rift::parallel::worth_a_team(body.last - body.first)) schedule(static)
     for (std::size_t i = body.first; i < body.last; ++i) m.dilatation[i] *= dilatation_scale<D>(m.weighted_volume[i]);
