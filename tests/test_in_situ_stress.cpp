@@ -18,14 +18,12 @@
 
 namespace {
 
-// The 40 x 40 mm block, 1 mm spacing, under sigma_H = -10 MPa and sigma_h = -2 MPa, relaxed
-// to 1e-9; material_keys go to the rock, in_situ_keys to [in_situ_stress].
-std::string block_scene(const std::string& material_keys, const std::string& in_situ_keys) {
-  return rift::test::plane_strain_rock(material_keys) + R"([regions.block]
-shape = "box"
-min = [-0.02, -0.02]
-max = [0.02, 0.02]
-[bodies.block]
+// The 40 x 40 mm block (or 2 half_size across), 1 mm spacing, under sigma_H = -10 MPa and
+// sigma_h = -2 MPa, relaxed to 1e-9; material_keys go to the rock, in_situ_keys to [in_situ_stress].
+std::string block_scene(const std::string& material_keys, const std::string& in_situ_keys, double half_size = 0.02) {
+  const std::string h = std::to_string(half_size);
+  return rift::test::plane_strain_rock(material_keys) + "[regions.block]\nshape = \"box\"\nmin = [-" + h + ", -" + h + "]\nmax = [" + h +
+         ", " + h + "]\n" + R"([bodies.block]
 material = "rock"
 region = "block"
 spacing = 0.001
@@ -167,7 +165,7 @@ TEST(InSituStress, UniformStrainStartReachesTheSameEquilibriumSooner) {
 // iteration on the forces, and 1.25 mu / 4 times that bound. Here mu is checked against the dense
 // generalized eigenproblem K v = mu B v, K the stiffness (volume times the force density's
 // derivative, by central differences of the forces) and B the bound times the volume, within 1%,
-// on a 2D LPS block (12 x 12 sites) and a 3D VES cube (6^3, the thesis example's material) at
+// on a 2D LPS block (12 x 12 mm) and a 3D VES cube (6^3, the thesis example's material) at
 // their in-situ strain.
 template <int D>
 void check_measured_density(const std::string& text) {
@@ -212,21 +210,7 @@ void check_measured_density(const std::string& text) {
 }
 
 TEST(InSituStress, MeasuredFictitiousDensityIsTheStiffnessLargestEigenvalue) {
-  check_measured_density<2>(rift::test::plane_strain_rock() + R"([regions.block]
-shape = "box"
-min = [-0.006, -0.006]
-max = [0.006, 0.006]
-[bodies.block]
-material = "rock"
-region = "block"
-spacing = 0.001
-horizon = 3.015
-[in_situ_stress]
-sigma_H = -10e6
-sigma_h = -2e6
-[solver]
-type = "dynamic_relaxation"
-)");
+  check_measured_density<2>(block_scene("", "", 0.006));
   check_measured_density<3>(R"([scene]
 dimension = 3
 [materials.shale]
