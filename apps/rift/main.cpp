@@ -60,6 +60,7 @@ int main(int argc, char** argv) {
                            : fmt::format("{:.4g} M bonds/s", 1e-6 * r.bond_updates * per_second);
     std::printf("rift: loop time %.6g s (%.4g s per step, %d threads; %s)\n", r.loop_seconds, r.loop_seconds / double(std::max(1L, r.steps)),
                 omp_get_max_threads(), rate.c_str());
+    if (!r.phases.empty()) std::printf("rift: by phase: %s\n", r.phases.c_str());
     // peak resident memory of the process (getrusage: kilobytes on Linux), for the memory targets
     rusage usage{};
     getrusage(RUSAGE_SELF, &usage);

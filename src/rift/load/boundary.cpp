@@ -2,6 +2,7 @@
 
 #include <algorithm>
 
+#include "rift/core/phase_times.hpp"
 #include "rift/geometry/region.hpp"
 #include "rift/load/time_function.hpp"
 #include "rift/load/traction_layer.hpp"
@@ -112,8 +113,15 @@ void Boundaries<D>::apply_body_forces(pd::Model<D>& m, double t) const {
   }
   if (m.crack_bonds.neighbor.empty()) return;
   // the fluid of each source also fills the cracks grown from it
-  pd::update_fluid_network<D>(m);
-  pd::update_network_load<D>(m);
+  PhaseClock clock(Phase::fluid_pressure);
+  {
+    PhaseClock network_clock(Phase::fluid_network);
+    pd::update_fluid_network<D>(m);
+  }
+  {
+    PhaseClock load_clock(Phase::network_load);
+    pd::update_network_load<D>(m);
+  }
   auto& fluid = m.fluid_network;
   fluid.pressure.assign(pressure_sources_.size(), 0.0);
   fluid.cavity_volume.resize(pressure_sources_.size(), 0.0);

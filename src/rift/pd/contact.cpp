@@ -29,6 +29,14 @@ Contact<D>::Contact(const scene::Contact& settings, const Model<D>& m) {
     min_spacing = std::min(min_spacing, c.spacing);
   }
   skin_ = 0.5 * min_spacing;
+  // s_f: half the smallest gap between a body's shortest bond and d (none: no gap, every row read)
+  double gap = std::numeric_limits<double>::max();
+  for (std::size_t q = 0; q < m.bodies.size(); ++q) {
+    const auto& body = m.bodies[q];
+    for (std::size_t f = body.first_family; f < body.first_family + body.family_count; ++f)
+      gap = std::min(gap, m.bonds.families[f].length - distance_[q]);
+  }
+  family_skin_ = gap > 0.0 && gap < std::numeric_limits<double>::max() ? 0.5 * gap : 0.0;
   rebuild(m);
 }
 
@@ -103,16 +111,48 @@ void Contact<D>::rebuild(const Model<D>& m) {
 }
 
 template <int D>
+void Contact<D>::look_at_family_rows(const Model<D>& m) {
+  const std::size_t n = m.size();
+  const Bonds& b = m.bonds;
+  family_looked_at_.resize(n);
+  family_near_.resize(n);
+#pragma omp parallel for if(rift::parallel::worth_a_team(n)) schedule(static)
+  for (std::size_t i = 0; i < n; ++i) {
+    const Vec<D> u = m.displacement(i);
+    for (int q = 0; q < D; ++q) family_looked_at_[i][q] = static_cast<float>(u[q]);
+    // bonds join particles of one body
+    const double reach = distance_[m.body[i]] + family_skin_, reach2 = reach * reach;
+    std::uint8_t near = 0;
+    for (auto k = b.offset[i]; k < b.offset[i + 1]; ++k) {
+      const Vec<D> eta = m.position[static_cast<std::size_t>(b.neighbor[k])] - m.position[i];
+      near |= !(dot<D>(eta, eta) >= reach2);  // a NaN position counts as near
+    }
+    family_near_[i] = near;
+  }
+}
+
+template <int D>
 void Contact<D>::add_forces(Model<D>& m) {
   if (!enabled_) return;
-  double moved2 = 0.0;
+  double moved2 = 0.0, family_moved2 = 0.0;
   const std::size_t n = m.size();
-#pragma omp parallel for if(rift::parallel::worth_a_team(n)) reduction(max : moved2) schedule(static)
+  const bool family_rows = family_skin_ > 0.0 && family_near_.size() == n;
+#pragma omp parallel for if(rift::parallel::worth_a_team(n)) reduction(max : moved2, family_moved2) schedule(static)
   for (std::size_t i = 0; i < n; ++i) {
     const Vec<D> d = m.position[i] - built_at_[i];
     moved2 = std::max(moved2, dot<D>(d, d));
+    if (family_rows) {
+      const Vec<D> u = m.displacement(i);
+      double e2 = 0.0;
+      for (int q = 0; q < D; ++q) e2 += (u[q] - family_looked_at_[i][q]) * (u[q] - family_looked_at_[i][q]);
+      family_moved2 = std::max(family_moved2, e2);
+    }
   }
   if (4.0 * moved2 > skin_ * skin_) rebuild(m);
+  // looked at again before a particle has moved s_f / 2: 0.45 leaves room for the float
+  // displacements' rounding (a relative 6e-8 of displacements far below a spacing)
+  if (family_skin_ > 0.0 && (!family_rows || !(family_moved2 <= 0.45 * 0.45 * family_skin_ * family_skin_))) look_at_family_rows(m);
+  const std::uint8_t* const near = family_skin_ > 0.0 ? family_near_.data() : nullptr;
   const Bonds& b = m.bonds;
 #pragma omp parallel for if(rift::parallel::worth_a_team(n)) schedule(static)
   for (std::size_t i = 0; i < n; ++i) {
@@ -136,7 +176,7 @@ void Contact<D>::add_forces(Model<D>& m) {
     const std::uint8_t* const row = b.intact.data() + b.offset[i];
     const auto length = static_cast<std::size_t>(b.offset[i + 1] - b.offset[i]);
     static_assert(bond_broken == 0);  // found by memchr: most rows have none
-    for (auto at = static_cast<const std::uint8_t*>(std::memchr(row, 0, length)); at;
+    for (auto at = near && !near[i] ? nullptr : static_cast<const std::uint8_t*>(std::memchr(row, 0, length)); at;
          at = static_cast<const std::uint8_t*>(std::memchr(at + 1, 0, length - static_cast<std::size_t>(at + 1 - row)))) {
       const auto j = b.neighbor[static_cast<std::size_t>(b.offset[i] + (at - row))];
       for (; p < listed_end && pairs_[static_cast<std::size_t>(p)] < j; ++p) pair(static_cast<std::size_t>(pairs_[static_cast<std::size_t>(p)]));

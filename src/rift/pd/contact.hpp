@@ -8,7 +8,13 @@
 // rebuilt when a particle has moved half the skin: on a lattice that list holds the pairs across
 // the cuts alone, not the 18 nearest neighbours of every particle (at the thesis-size example it
 // was 80 million pairs and its rebuild a serial sort of 4 million particles).
+// The broken bonds are read only in the rows that may touch: those with a bond of any state
+// shorter than d + s_f when last looked at, s_f a skin under the gap between d and the shortest
+// bond, looked at again once a particle has moved s_f / 2 (the same Verlet argument; Allen and
+// Tildesley, Computer Simulation of Liquids, section 5.3). A broken bond is stretched, so around a
+// crack hardly a row is read: reading every broken bond was a tenth of a step at a third broken.
 #pragma once
+#include <array>
 #include <cstdint>
 #include <vector>
 
@@ -29,6 +35,7 @@ class Contact {
 
  private:
   void rebuild(const Model<D>& m);
+  void look_at_family_rows(const Model<D>& m);
   bool enabled_ = false;
   double skin_ = 0.0, max_distance_ = 0.0;
   std::vector<double> distance_;  // per body
@@ -36,6 +43,9 @@ class Contact {
   std::vector<Vec<D>> built_at_;
   std::vector<std::int64_t> offset_;
   std::vector<std::int32_t> pairs_;  // per particle, ascending: the pairs within reach that no family holds
+  double family_skin_ = 0.0;  // s_f; 0: every row's broken bonds are read
+  std::vector<std::array<float, D>> family_looked_at_;  // the displacements when the rows were looked at
+  std::vector<std::uint8_t> family_near_;  // per particle: a bond shorter than d + s_f then
 };
 
 }  // namespace rift::pd

@@ -21,6 +21,7 @@
 #include <iterator>
 #include <vector>
 
+#include "rift/core/phase_times.hpp"
 #include "rift/pd/crack_junction.hpp"
 #include "rift/pd/effective_stretch.hpp"
 #include "rift/pd/influence.hpp"
@@ -314,12 +315,16 @@ void update_fluid_network(Model<D>& m) {
     // a closed piece or a particle that lost a direction has a bond that broke or a fluid that came
     std::vector<std::size_t> starts = changed;
     starts.insert(starts.end(), queue.begin(), queue.end());
-    detail::immerse_fragments<D>(m, starts, starts);
+    {
+      PhaseClock clock(Phase::fragments);
+      detail::immerse_fragments<D>(m, starts, starts);
+    }
     for (const std::size_t i : starts)
       if (f.source[i] >= 0 && !f.has_network[static_cast<std::size_t>(f.source[i])])
         for (auto k = b.offset[i]; k < b.offset[i + 1]; ++k)
           if (b.intact[static_cast<std::size_t>(k)] == bond_broken && f.source[static_cast<std::size_t>(b.neighbor[k])] == f.source[i])
             f.has_network[static_cast<std::size_t>(f.source[i])] = 1;
+    PhaseClock clock(Phase::crack_surface);
     extend_crack_surface<D>(m, starts);
   } else {
     f.relabel = false;
@@ -348,7 +353,10 @@ void update_fluid_network(Model<D>& m) {
       for (std::size_t q = next_to_source; q < queue.size(); ++q)
         if (f.outer_surface[queue[q]]) f.vented[static_cast<std::size_t>(f.source[queue[q]])] = 1;
     for (std::size_t s = 0; s < f.vented.size(); ++s) f.broke_through[s] |= f.vented[s];
-    mark_immersed_fragments<D>(m);
+    {
+      PhaseClock clock(Phase::fragments);
+      mark_immersed_fragments<D>(m);
+    }
     // what the network load must evaluate again: both ends of every bond that joined or left a
     // network (those of the particles whose fluid came, went or changed, and the failed interface
     // bonds that opened or shut to a fluid)
@@ -381,6 +389,7 @@ void update_fluid_network(Model<D>& m) {
         detail::mark_load_changed(f, b.row_of(k)), detail::mark_load_changed(f, static_cast<std::size_t>(b.neighbor[static_cast<std::size_t>(k)]));
       f.open_interface_bonds[s] = std::move(open[s]);
     }
+    PhaseClock clock(Phase::crack_surface);
     remake_crack_surface<D>(m);
   }
   mark_bonds_across_crack<D>(m);  // the contact of the failed interface bonds at a junction

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <limits>
 
+#include "rift/core/phase_times.hpp"
 #include "rift/parallel/ordered_sum.hpp"
 #include "rift/pd/energy_runs.hpp"
 #include "rift/pd/interface_contact.hpp"
@@ -18,6 +19,7 @@ namespace rift::pd {
 template <int D>
 void compute_forces(Model<D>& m, Contact<D>* contact, double history_dt) {
   using I = scene::Influence;
+  PhaseClock clock(Phase::bond_passes);
   apply_interface_law<D>(m);  // bonds across pre-existing fractures, with the last stresses
   if (!m.failure_strain.empty()) update_failure_strain<D>(m);  // what the first pass breaks on
   for (const auto& body : m.bodies) {
@@ -46,7 +48,10 @@ void compute_forces(Model<D>& m, Contact<D>* contact, double history_dt) {
     }
   }
   add_interface_contact<D>(m, history_dt > 0.0);  // failed bonds across pre-existing fractures
-  if (contact) contact->add_forces(m);
+  if (contact) {
+    PhaseClock contact_clock(Phase::contact);
+    contact->add_forces(m);
+  }
 }
 
 template <int D>

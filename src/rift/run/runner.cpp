@@ -10,6 +10,7 @@
 #include <filesystem>
 #include <ostream>
 
+#include "rift/core/phase_times.hpp"
 #include "rift/core/progress.hpp"
 #include "rift/io/damage_histogram.hpp"
 #include "rift/io/damage_image.hpp"
@@ -292,6 +293,7 @@ Result run_dim(const scene::Scene& s, const Options& o) {
     }
   }
   const auto loop_start = std::chrono::steady_clock::now();
+  PhaseTimes::run().reset();
   Progress progress(p.steps, s.solver.end_time, o.quiet);
   if (s.solver.kind == scene::SolverKind::explicit_dynamics) {
     write_snapshot<D>(fields, m, s);
@@ -302,6 +304,7 @@ Result run_dim(const scene::Scene& s, const Options& o) {
       res.bond_updates += double(m.bonds.size());
       const bool snap = step * s.output.count >= next_snapshot * p.steps;
       const bool hist = step * s.output.history_count >= next_history * p.steps;
+      PhaseClock output_clock(Phase::output);
       if (hist) {
         auto e = history_row(step, {});
         progress.update(step, m.time, e.broken_fraction);
@@ -321,6 +324,7 @@ Result run_dim(const scene::Scene& s, const Options& o) {
       res.bond_updates += double(r.iterations) * double(m.bonds.size());
       std::vector<double> extra{double(r.iterations), r.residual};
       if (at_equilibrium) extra.push_back(double(r.breaking_passes));
+      PhaseClock output_clock(Phase::output);
       auto e = history_row(step, extra);
       write_snapshot<D>(fields, m, s);
       progress.update(step, m.time, e.broken_fraction, true);
@@ -335,6 +339,7 @@ Result run_dim(const scene::Scene& s, const Options& o) {
     }
   }
   res.loop_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - loop_start).count();
+  res.phases = phase_summary(PhaseTimes::run(), res.loop_seconds);
   res.final_energy = pd::summarize<D>(m);
   pd::update_damage<D>(m);
   for (double d : m.damage) res.max_damage = std::max(res.max_damage, d);

@@ -33,6 +33,7 @@ struct Result {
   long steps = 0;
   double time = 0.0;
   double loop_seconds = 0.0;  // wall time of the step loop (with outputs)
+  std::string phases;         // PD: the loop's time by phase (core/phase_times.hpp)
   /// Work done in the loop: PD, directed bonds times force evaluations (steps, or dynamic relaxation
   /// iterations); MPM, material points times steps.
   double bond_updates = 0.0, particle_steps = 0.0;

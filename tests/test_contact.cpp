@@ -1,0 +1,108 @@
+// Short-range contact (pd/contact.hpp): the force on every particle equals the direct sum over every
+// other particle that no intact bond joins to it, f = k V_j (d - r) / delta along the pair for
+// r < d (Silling 2005, EMU theory manual p. 18; k = 15 c, d = 0.9 spacings, the defaults). The
+// contact reads the broken bonds only in the rows that may touch and looks at the rows again as the
+// particles move (a Verlet skin); the test moves the particles so that broken pairs come into reach
+// long after the rows were first looked at.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <random>
+
+#include "cases/homogeneous.hpp"
+#include "rift/pd/contact.hpp"
+#include "rift/pd/discretize.hpp"
+#include "rift/pd/material_constants.hpp"
+#include "rift/scene/parse.hpp"
+
+namespace {
+
+using rift::operator-;
+
+// The direct sum over all pairs: j ascending, as the contact adds them, so the sums agree to the
+// last bit but for the order of two floating-point operations (1e-12 of the largest force asserted).
+template <int D>
+std::vector<rift::Vec<D>> all_pairs_contact(const rift::pd::Model<D>& m, double distance, double k) {
+  const auto& b = m.bonds;
+  std::vector<rift::Vec<D>> force(m.size(), rift::Vec<D>{});
+  for (std::size_t i = 0; i < m.size(); ++i) {
+    for (std::size_t j = 0; j < m.size(); ++j) {
+      if (j == i) continue;
+      const auto first = b.neighbor.begin() + b.offset[i], last = b.neighbor.begin() + b.offset[i + 1];
+      const auto at = std::lower_bound(first, last, static_cast<std::int32_t>(j));
+      if (at != last && *at == static_cast<std::int32_t>(j) && b.intact[static_cast<std::size_t>(at - b.neighbor.begin())] != rift::pd::bond_broken)
+        continue;  // joined by an intact bond
+      const rift::Vec<D> eta = m.position[j] - m.position[i];
+      const double r = std::sqrt(rift::dot<D>(eta, eta));
+      if (r >= distance) continue;
+      for (int q = 0; q < D; ++q) force[i][q] += -k * m.volume[j] * (distance - r) / r * eta[q];
+    }
+  }
+  return force;
+}
+
+template <int D>
+void contact_is_the_sum_over_all_unbonded_pairs() {
+  const auto s = rift::scene::parse_string(
+      rift::validation::box_scene(D, "pmb", 0.25, "", D == 2 ? "max = [0.014, 0.014]" : "max = [0.008, 0.008, 0.008]"), "c.toml");
+  auto m = rift::pd::discretize<D>(s);
+  const auto& c = m.bodies[0].constants;
+  // c of the contact: the constant-influence PMB micromodulus of the body's P-wave modulus (its bulk
+  // modulus 5/9 of it in 3D, 2/3 in 2D, where the PMB's Poisson's ratio is 1/4 and 1/3)
+  const double kappa = (D == 3 ? 5.0 / 9.0 : 2.0 / 3.0) * c.p_wave_modulus();
+  const double spacing = 0.001, distance = 0.9 * spacing,
+               k = 15.0 * rift::pd::pmb_micromodulus(D, kappa, c.horizon, c.thickness, rift::scene::Influence::constant) / c.horizon;
+  // half the bonds broken at random, each pair both ways
+  std::mt19937 rng(11);
+  auto& b = m.bonds;
+  for (std::size_t i = 0; i < m.size(); ++i)
+    for (auto q = b.offset[i]; q < b.offset[i + 1]; ++q) {
+      const auto j = static_cast<std::size_t>(b.neighbor[q]);
+      if (j < i || rng() % 2) continue;
+      b.intact[static_cast<std::size_t>(q)] = rift::pd::bond_broken;
+      const auto first = b.neighbor.begin() + b.offset[j], last = b.neighbor.begin() + b.offset[j + 1];
+      b.intact[static_cast<std::size_t>(std::lower_bound(first, last, static_cast<std::int32_t>(i)) - b.neighbor.begin())] = rift::pd::bond_broken;
+    }
+  rift::pd::Contact<D> contact(s.contact, m);
+  // a compression wave along x of up to 20% strain and a jitter of 0.03 spacings, grown over the steps
+  std::vector<rift::Vec<D>> jitter(m.size());
+  std::uniform_real_distribution<double> unit(-1.0, 1.0);
+  for (auto& u : jitter)
+    for (int q = 0; q < D; ++q) u[q] = 0.03 * spacing * unit(rng);
+  const double length = D == 2 ? 0.014 : 0.008, amplitude = 0.2 * length / (2.0 * M_PI);
+  const int steps = 120;
+  std::size_t touching_most = 0;
+  double worst = 0.0;
+  for (int step = 1; step <= steps; ++step) {
+    const double t = double(step) / steps;
+    for (std::size_t i = 0; i < m.size(); ++i) {
+      const auto& x = m.reference_position[i];
+      m.position[i] = x;
+      m.position[i][0] += t * amplitude * std::sin(2.0 * M_PI * x[0] / length);
+      for (int q = 0; q < D; ++q) m.position[i][q] += t * jitter[i][q];
+      m.force[i] = rift::Vec<D>{};
+    }
+    contact.add_forces(m);
+    const auto expected = all_pairs_contact<D>(m, distance, k);
+    double largest = 0.0, difference = 0.0;
+    std::size_t touching = 0;
+    for (std::size_t i = 0; i < m.size(); ++i) {
+      largest = std::max(largest, std::sqrt(rift::dot<D>(expected[i], expected[i])));
+      const rift::Vec<D> e = m.force[i] - expected[i];
+      difference = std::max(difference, std::sqrt(rift::dot<D>(e, e)));
+      touching += rift::dot<D>(expected[i], expected[i]) > 0.0;
+    }
+    touching_most = std::max(touching_most, touching);
+    if (largest > 0.0) worst = std::max(worst, difference / largest);
+  }
+  std::printf("%dD contact: at most %zu of %zu particles touching, largest difference %.2e of the largest force\n", D, touching_most, m.size(),
+              worst);
+  EXPECT_GT(touching_most, m.size() / 10);  // the wave pressed many broken pairs into reach
+  EXPECT_LT(worst, 1e-12);
+}
+
+TEST(Contact, IsTheSumOverAllUnbondedPairsTwoD) { contact_is_the_sum_over_all_unbonded_pairs<2>(); }
+TEST(Contact, IsTheSumOverAllUnbondedPairsThreeD) { contact_is_the_sum_over_all_unbonded_pairs<3>(); }
+
+}  // namespace
