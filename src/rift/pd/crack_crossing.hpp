@@ -231,6 +231,26 @@ void patches_of_particle(const Model<D>& m, std::size_t i, double short_bond, bo
   }
 }
 
+/// The patches of the particles `particles` (patches_of_particle), sorted by key and without
+/// repeats: the particles taken by the team, each thread's finds joined and sorted, so the list
+/// does not depend on the threads.
+template <int D>
+std::vector<std::pair<std::int64_t, std::size_t>> patches_of_particles(const Model<D>& m, const std::vector<std::size_t>& particles,
+                                                                       double short_bond, bool lower_only) {
+  std::vector<std::pair<std::int64_t, std::size_t>> found;
+#pragma omp parallel if(rift::parallel::worth_a_team(particles.size() * 16))
+  {
+    std::vector<std::pair<std::int64_t, std::size_t>> mine;
+#pragma omp for schedule(dynamic, 256) nowait
+    for (std::size_t q = 0; q < particles.size(); ++q) patches_of_particle<D>(m, particles[q], short_bond, lower_only, mine);
+#pragma omp critical(rift_found_patches)
+    found.insert(found.end(), mine.begin(), mine.end());
+  }
+  std::sort(found.begin(), found.end());
+  found.erase(std::unique(found.begin(), found.end()), found.end());
+  return found;
+}
+
 /// The grid of the patches' points, made from scratch.
 template <int D>
 void make_surface_grid(CrackSurface& s) {
@@ -364,10 +384,9 @@ void remake_crack_surface(Model<D>& m) {
   CrackSurface& surface = f.crack_surface;
   const std::size_t n = m.size();
   const double spacing = detail::surface_spacing<D>(m), short_bond = 1.5 * spacing;
-  std::vector<std::pair<std::int64_t, std::size_t>> found;
-  if (f.source.size() == n)
-    for (std::size_t i = 0; i < n; ++i) detail::patches_of_particle<D>(m, i, short_bond, true, found);
-  std::sort(found.begin(), found.end());
+  std::vector<std::size_t> all(f.source.size() == n ? n : 0);
+  for (std::size_t i = 0; i < all.size(); ++i) all[i] = i;
+  auto found = detail::patches_of_particles<D>(m, all, short_bond, true);
   std::vector<std::int64_t> keys(found.size());
   for (std::size_t q = 0; q < found.size(); ++q) keys[q] = found[q].first;
   surface.made = true;
@@ -417,10 +436,7 @@ template <int D>
 void extend_crack_surface(Model<D>& m, const std::vector<std::size_t>& changed) {
   CrackSurface& surface = m.fluid_network.crack_surface;
   const double short_bond = 1.5 * detail::surface_spacing<D>(m);
-  std::vector<std::pair<std::int64_t, std::size_t>> found;
-  for (const std::size_t i : changed) detail::patches_of_particle<D>(m, i, short_bond, false, found);
-  std::sort(found.begin(), found.end());
-  found.erase(std::unique(found.begin(), found.end()), found.end());
+  auto found = detail::patches_of_particles<D>(m, changed, short_bond, false);
   std::erase_if(found, [&](const auto& p) { return std::binary_search(surface.sorted_patches.begin(), surface.sorted_patches.end(), p.first); });
   if (found.empty()) return;
   const std::size_t first = surface.planes.size();

@@ -199,14 +199,29 @@ void immerse_fragments(Model<D>& m, const std::vector<std::size_t>& starts, std:
   // left is the same whatever the order: each round decides on every candidate from the last
   // round's flags, in parallel, and the next round looks again only at the wet neighbours of what
   // it peeled.
+  // the shape tensor sum n n^T over the intact bonds to particles not immersed, n = xi / |xi| of
+  // the bond's family offset (its entries from a table of the offsets' n n^T, in the cache)
+  static thread_local std::vector<std::array<double, 6>> direction;
+  direction.resize(b.families.size());
+  for (std::size_t a = 0; a < b.families.size(); ++a) {
+    const FamilyOffset& o = b.families[a];
+    std::array<double, 3> n{};
+    for (int q = 0; q < D; ++q) n[static_cast<std::size_t>(q)] = o.xi[static_cast<std::size_t>(q)] * o.inverse_length;
+    direction[a] = {n[0] * n[0], n[1] * n[1], n[2] * n[2], n[0] * n[1], n[1] * n[2], n[0] * n[2]};
+  }
+  const std::array<double, 6>* const nn = direction.data();
   auto spans = [&](std::size_t i) {
-    Eigen::Matrix<double, D, D> shape = Eigen::Matrix<double, D, D>::Zero();
+    std::array<double, 6> sum{};
     for (auto k = b.offset[i]; k < b.offset[i + 1]; ++k) {
-      const auto j = static_cast<std::size_t>(b.neighbor[k]);
-      if (b.intact[k] != bond_intact || f.immersed[j]) continue;
-      Eigen::Matrix<double, D, 1> xi;
-      for (int q = 0; q < D; ++q) xi[q] = m.reference_position[j][q] - m.reference_position[i][q];
-      shape += xi * xi.transpose() / xi.squaredNorm();
+      if (b.intact[k] != bond_intact || f.immersed[static_cast<std::size_t>(b.neighbor[k])]) continue;
+      const auto& add = nn[b.family[static_cast<std::size_t>(k)]];
+      for (std::size_t q = 0; q < 6; ++q) sum[q] += add[q];
+    }
+    Eigen::Matrix<double, D, D> shape;
+    if constexpr (D == 2) {
+      shape << sum[0], sum[3], sum[3], sum[1];
+    } else {
+      shape << sum[0], sum[3], sum[5], sum[3], sum[1], sum[4], sum[5], sum[4], sum[2];
     }
     return std::abs(shape.determinant()) > 1e-6 * std::pow(shape.trace() / D, D);
   };
