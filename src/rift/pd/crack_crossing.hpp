@@ -201,22 +201,46 @@ bool makes_patch(const Model<D>& m, std::size_t i, std::size_t j, std::int64_t k
   return on_borehole_wall<D>(m, i, short_bond) || on_borehole_wall<D>(m, j, short_bond);
 }
 
+/// Whether bond entry k's bit is set in `bits`, read and set from any thread.
+inline bool bit_set(const std::vector<std::uint64_t>& bits, std::int64_t k) {
+  const auto word = std::atomic_ref<const std::uint64_t>(bits[static_cast<std::size_t>(k) >> 6]).load(std::memory_order_relaxed);
+  return word >> (static_cast<std::size_t>(k) & 63) & 1;
+}
+inline void set_bit(std::vector<std::uint64_t>& bits, std::int64_t k) {
+  std::atomic_ref<std::uint64_t>(bits[static_cast<std::size_t>(k) >> 6]).fetch_or(std::uint64_t{1} << (static_cast<std::size_t>(k) & 63),
+                                                                                 std::memory_order_relaxed);
+}
+
 /// The patches of particle i's bonds, as (key, lower end): its network bonds that make one and the
 /// short bonds a pre-crack cut where a fluid (its own or one that reached it) fills it; a pair's key
 /// is its lower end's entry. With lower_only, the pairs whose lower end is i alone.
+/// Whether a network bond makes a patch does not change once the surface is made (makes_patch), so
+/// each entry is decided once (CrackSurface::decided, a bit per bond entry, each end its own) and
+/// left alone after: the particles around a crack change again and again, and deciding their bonds
+/// again took a search of the crossing bonds each (a fifth of the crack surface's time). A whole
+/// family's short bonds sit at the same places in every row (short_places).
 template <int D>
 void patches_of_particle(const Model<D>& m, std::size_t i, double short_bond, bool lower_only,
-                         std::vector<std::pair<std::int64_t, std::size_t>>& found) {
+                         std::vector<std::pair<std::int64_t, std::size_t>>& found, std::vector<std::uint64_t>& decided,
+                         const std::vector<std::vector<std::uint32_t>>& short_places) {
   const FluidNetwork& f = m.fluid_network;
   const Bonds& b = m.bonds;
   const CrackBonds& w = m.crack_bonds;
   if (f.source[i] < 0) return;
-  for (auto k = b.offset[i]; k < b.offset[i + 1]; ++k) {
+  auto bond = [&](std::int64_t k) {
     const auto j = static_cast<std::size_t>(b.neighbor[k]);
-    if ((lower_only && j < i) || b.length(k) > short_bond || network_of_bond(f, b, i, k) < 0) continue;
+    if ((lower_only && j < i) || bit_set(decided, k) || b.length(k) > short_bond || network_of_bond(f, b, i, k) < 0) return;
     const std::int64_t entry = j > i ? k : std::lower_bound(b.neighbor.begin() + b.offset[j], b.neighbor.begin() + b.offset[j + 1],
                                                             static_cast<std::int32_t>(i)) - b.neighbor.begin();
     if (makes_patch<D>(m, std::min(i, j), std::max(i, j), entry, short_bond)) found.emplace_back(entry, std::min(i, j));
+    set_bit(decided, k);
+  };
+  const auto& body = m.bodies[m.body[i]];
+  const auto& places = short_places[m.body[i]];
+  if (static_cast<std::size_t>(b.offset[i + 1] - b.offset[i]) == body.family_count && !places.empty()) {
+    for (const std::uint32_t place : places) bond(b.offset[i] + place);
+  } else {
+    for (auto k = b.offset[i]; k < b.offset[i + 1]; ++k) bond(k);
   }
   if (w.offset.size() != m.size() + 1) return;
   for (auto k = w.offset[i]; k < w.offset[i + 1]; ++k) {
@@ -231,18 +255,25 @@ void patches_of_particle(const Model<D>& m, std::size_t i, double short_bond, bo
   }
 }
 
-/// The patches of the particles `particles` (patches_of_particle), sorted by key and without
-/// repeats: the particles taken by the team, each thread's finds joined and sorted, so the list
-/// does not depend on the threads.
+/// The patches of the particles `particles` (patches_of_particle) not yet decided, sorted by key
+/// and without repeats: the particles taken by the team, each thread's finds joined and sorted, so
+/// the list does not depend on the threads (a bond both ends find is decided the same by either).
 template <int D>
 std::vector<std::pair<std::int64_t, std::size_t>> patches_of_particles(const Model<D>& m, const std::vector<std::size_t>& particles,
-                                                                       double short_bond, bool lower_only) {
+                                                                       double short_bond, bool lower_only, std::vector<std::uint64_t>& decided) {
+  decided.resize((m.bonds.size() + 63) / 64, 0);
+  // per body, the places in a whole family's row of the bonds no longer than short_bond (a row with
+  // every offset lists them in the offsets' order)
+  std::vector<std::vector<std::uint32_t>> short_places(m.bodies.size());
+  for (std::size_t q = 0; q < m.bodies.size(); ++q)
+    for (std::size_t a = 0; a < m.bodies[q].family_count; ++a)
+      if (m.bonds.families[m.bodies[q].first_family + a].length <= short_bond) short_places[q].push_back(static_cast<std::uint32_t>(a));
   std::vector<std::pair<std::int64_t, std::size_t>> found;
 #pragma omp parallel if(rift::parallel::worth_a_team(particles.size() * 16))
   {
     std::vector<std::pair<std::int64_t, std::size_t>> mine;
 #pragma omp for schedule(dynamic, 256) nowait
-    for (std::size_t q = 0; q < particles.size(); ++q) patches_of_particle<D>(m, particles[q], short_bond, lower_only, mine);
+    for (std::size_t q = 0; q < particles.size(); ++q) patches_of_particle<D>(m, particles[q], short_bond, lower_only, mine, decided, short_places);
 #pragma omp critical(rift_found_patches)
     found.insert(found.end(), mine.begin(), mine.end());
   }
@@ -386,7 +417,9 @@ void remake_crack_surface(Model<D>& m) {
   const double spacing = detail::surface_spacing<D>(m), short_bond = 1.5 * spacing;
   std::vector<std::size_t> all(f.source.size() == n ? n : 0);
   for (std::size_t i = 0; i < all.size(); ++i) all[i] = i;
-  auto found = detail::patches_of_particles<D>(m, all, short_bond, true);
+  // every bond decided again, by the rule as it stands now (makes_patch)
+  surface.decided.assign((m.bonds.size() + 63) / 64, 0);
+  auto found = detail::patches_of_particles<D>(m, all, short_bond, true, surface.decided);
   std::vector<std::int64_t> keys(found.size());
   for (std::size_t q = 0; q < found.size(); ++q) keys[q] = found[q].first;
   surface.made = true;
@@ -410,6 +443,7 @@ void remake_crack_surface(Model<D>& m) {
     }
     CrackSurface kept;
     kept.made = true, kept.cell = surface.cell, kept.reach = surface.reach;
+    kept.decided = std::move(surface.decided);
     for (std::size_t p = 0; p < surface.patches.size(); ++p) {
       if (gone[p]) continue;
       if (turn[p]) turned.push_back(static_cast<std::uint32_t>(kept.patches.size()));
@@ -436,7 +470,7 @@ template <int D>
 void extend_crack_surface(Model<D>& m, const std::vector<std::size_t>& changed) {
   CrackSurface& surface = m.fluid_network.crack_surface;
   const double short_bond = 1.5 * detail::surface_spacing<D>(m);
-  auto found = detail::patches_of_particles<D>(m, changed, short_bond, false);
+  auto found = detail::patches_of_particles<D>(m, changed, short_bond, false, surface.decided);
   std::erase_if(found, [&](const auto& p) { return std::binary_search(surface.sorted_patches.begin(), surface.sorted_patches.end(), p.first); });
   if (found.empty()) return;
   const std::size_t first = surface.planes.size();

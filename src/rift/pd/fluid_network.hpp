@@ -16,6 +16,7 @@
 #include <Eigen/Dense>
 #include <algorithm>
 #include <array>
+#include <atomic>
 #include <cmath>
 #include <cstdint>
 #include <iterator>
@@ -309,18 +310,41 @@ void update_fluid_network(Model<D>& m) {
     f.source[j] = f.source[i];
     queue.push_back(j);
   };
-  // the fluid of i goes on across its bonds that carry fluid and the dry pre-cracks it may enter
-  auto spread = [&](std::size_t i) {
+  // the fluid of i goes on across its bonds that carry fluid and the dry pre-cracks it may enter:
+  // to(j) for each particle j it reaches
+  auto spread_from = [&](std::size_t i, auto&& to) {
     for (auto k = b.offset[i]; k < b.offset[i + 1]; ++k)
-      if (carries_fluid<D>(m, k, i, static_cast<std::size_t>(b.neighbor[k]))) reach(i, static_cast<std::size_t>(b.neighbor[k]));
+      if (carries_fluid<D>(m, k, i, static_cast<std::size_t>(b.neighbor[k]))) to(static_cast<std::size_t>(b.neighbor[k]));
     for (auto k = w.offset[i]; k < w.offset[i + 1]; ++k)
       if (f.dry[w.source[static_cast<std::size_t>(k)]] && w.neighbor[k] >= 0 && f.enters_dry_cracks(f.source[i]))
-        reach(i, static_cast<std::size_t>(w.neighbor[k]));
+        to(static_cast<std::size_t>(w.neighbor[k]));
   };
+  auto spread = [&](std::size_t i) { spread_from(i, [&](std::size_t j) { reach(i, j); }); };
   if (grows) {
-    // on from the wet particles whose bonds broke: a broken bond to a dry particle lets the fluid in
-    for (const std::size_t i : changed)
-      if (f.source[i] >= 0) spread(i);
+    // on from the wet particles whose bonds broke: a broken bond to a dry particle lets the fluid in.
+    // Those particles by the team (a step around a grown crack has tens of thousands): both ends
+    // of each bond that carries fluid are in a crack, and the dry particles reached, with the fluid
+    // that reached each (the first of `changed` to), go on in order as before
+    std::vector<std::array<std::size_t, 3>> reached;  // (particle, place in changed, source)
+#pragma omp parallel if(rift::parallel::worth_a_team(changed.size() * 16))
+    {
+      std::vector<std::array<std::size_t, 3>> mine;
+#pragma omp for schedule(dynamic, 256) nowait
+      for (std::size_t q = 0; q < changed.size(); ++q) {
+        const std::size_t i = changed[q];
+        if (f.source[i] < 0) continue;
+        spread_from(i, [&](std::size_t j) {
+          std::atomic_ref<std::uint8_t>(f.in_crack[i]).store(1, std::memory_order_relaxed);
+          std::atomic_ref<std::uint8_t>(f.in_crack[j]).store(1, std::memory_order_relaxed);
+          if (f.source[j] < 0) mine.push_back({j, q, static_cast<std::size_t>(f.source[i])});
+        });
+      }
+#pragma omp critical(rift_fluid_reached)
+      reached.insert(reached.end(), mine.begin(), mine.end());
+    }
+    std::sort(reached.begin(), reached.end());
+    for (const auto& [j, q, s] : reached)
+      if (f.source[j] < 0) f.source[j] = static_cast<int>(s), queue.push_back(j);
     for (std::size_t q = 0; q < queue.size(); ++q) spread(queue[q]);
     for (const std::size_t j : queue) {
       detail::mark_load_changed(f, j);

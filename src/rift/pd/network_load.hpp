@@ -77,13 +77,33 @@ NetworkEnd network_end(const Model<D>& m, std::size_t i, InNetwork in_network) {
   return z;
 }
 
+/// Per family offset of the model, its body's omega(|xi|) and |xi| / d: read from a table, the
+/// passes below divide by nothing per bond (a division was a sixth of their time).
+struct FamilyTerms {
+  std::vector<double> omega, length_over_d;
+};
+
+template <int D>
+FamilyTerms family_terms(const Model<D>& m) {
+  FamilyTerms t;
+  const auto& families = m.bonds.families;
+  t.omega.assign(families.size(), 0.0), t.length_over_d.assign(families.size(), 0.0);
+  for (const auto& body : m.bodies)
+    for (std::size_t a = body.first_family; a < body.first_family + body.family_count; ++a) {
+      t.omega[a] = influence(body.constants.influence, families[a].length, body.constants.horizon);
+      t.length_over_d[a] = families[a].length / D;
+    }
+  return t;
+}
+
 /// t of end z of a bond (force_state) under the unit expansion: with the network held (a network
 /// bond), or its change (an intact bond); zero where the particle is not an end (z all zero).
-template <int D>
-double end_force_state(const NetworkEnd& z, bool intact, const MaterialConstants& c, const BondFactors& g, double omega, double xi) {
+/// xi_over_d: |xi| / d.
+inline double end_force_state(const NetworkEnd& z, bool intact, const MaterialConstants& c, const BondFactors& g, double omega, double xi,
+                              double xi_over_d) {
   const double weight = c.surface_correction ? double(g.dilatation_weight) : omega * xi;
-  if (!intact) return weight * z.held + z.a * g.correction * omega * (xi - z.theta * (xi / D));
-  return weight * z.change - z.a * g.correction * omega * z.d_theta * (xi / D);
+  if (!intact) return weight * z.held + z.a * g.correction * omega * (xi - z.theta * xi_over_d);
+  return weight * z.change - z.a * g.correction * omega * z.d_theta * xi_over_d;
 }
 
 /// F_i - F^s_i on the particles `near` (no bond breaking; the VES by its LPS response) under the
@@ -99,7 +119,7 @@ double end_force_state(const NetworkEnd& z, bool intact, const MaterialConstants
 /// cancel each other's rounding.
 template <int D, class InNetwork>
 std::vector<Vec<D>> expansion_force_difference(const Model<D>& m, const std::vector<std::size_t>& near, const std::vector<std::int32_t>& end_slot,
-                                               const std::vector<NetworkEnd>& ends, InNetwork in_network) {
+                                               const std::vector<NetworkEnd>& ends, const FamilyTerms& terms, InNetwork in_network) {
   const Bonds& b = m.bonds;
   std::vector<Vec<D>> difference(near.size(), Vec<D>{});
 #pragma omp parallel for if(rift::parallel::worth_a_team(near.size())) schedule(static)
@@ -112,15 +132,16 @@ std::vector<Vec<D>> expansion_force_difference(const Model<D>& m, const std::vec
       const auto j = static_cast<std::size_t>(b.neighbor[k]);
       const bool intact = b.intact[static_cast<std::size_t>(k)] == bond_intact;
       if (intact ? pmb || (end_slot[i] < 0 && end_slot[j] < 0) : !in_network(i, k)) continue;
-      const FamilyOffset& family = b.family_of(k);
-      const double xi = family.length, omega = influence(c.influence, xi, c.horizon);
+      const std::size_t a = b.family[static_cast<std::size_t>(k)];
+      const FamilyOffset& family = b.families[a];
+      const double xi = family.length, omega = terms.omega[a];
       double pair;  // F less F^s of this bond
       if (pmb) {
         pair = -pmb_bond_force(c.micromodulus, omega, 1.0, b.correction(i, k), b.mirror_correction(j, k));
       } else {
         auto t = [&](std::size_t x, const BondFactors& g) {
           if (end_slot[x] < 0) return 0.0;
-          return end_force_state<D>(ends[static_cast<std::size_t>(end_slot[x])], intact, c, g, omega, xi);
+          return end_force_state(ends[static_cast<std::size_t>(end_slot[x])], intact, c, g, omega, xi, terms.length_over_d[a]);
         };
         pair = -(t(i, b.factors_of(i, k)) + t(j, b.mirror_factors_of(j, k)));
       }
@@ -149,7 +170,7 @@ inline bool same_end(const NetworkEnd& a, const NetworkEnd& z) {
 /// thesis-size step at 7% broken bonds).
 template <int D, class InNetwork>
 void add_end_changes(const Model<D>& m, const std::vector<std::size_t>& changed, const std::vector<NetworkEnd>& before,
-                     const std::vector<std::int32_t>& end_slot, const std::vector<NetworkEnd>& ends,
+                     const std::vector<std::int32_t>& end_slot, const std::vector<NetworkEnd>& ends, const FamilyTerms& terms,
                      const std::vector<std::uint8_t>& in_changed, InNetwork in_network, std::vector<double>& g) {
   const Bonds& b = m.bonds;
   const std::size_t n = m.size();
@@ -192,10 +213,12 @@ void add_end_changes(const Model<D>& m, const std::vector<std::size_t>& changed,
         if (c.model == scene::ModelKind::pmb) continue;  // its pair forces do not read the ends
         const bool intact = b.intact[static_cast<std::size_t>(k)] == bond_intact;
         if (!intact && !in_network(x, k)) continue;
-        const FamilyOffset& family = b.families[b.family_of(k).mirror];  // j's side, xi_jx
-        const double xi = family.length, omega = influence(c.influence, xi, c.horizon);
+        const std::size_t a = b.family_of(k).mirror;
+        const FamilyOffset& family = b.families[a];  // j's side, xi_jx
+        const double xi = family.length, omega = terms.omega[a], xi_over_d = terms.length_over_d[a];
         const BondFactors& factors = b.factors_of(x, k);  // x's side of the bond
-        const double t_change = end_force_state<D>(z, intact, c, factors, omega, xi) - end_force_state<D>(old, intact, c, factors, omega, xi);
+        const double t_change =
+            end_force_state(z, intact, c, factors, omega, xi, xi_over_d) - end_force_state(old, intact, c, factors, omega, xi, xi_over_d);
         const double scale = -t_change * family.volume * family.inverse_length / (D * c.kappa);
         for (int r = 0; r < D; ++r) g[j * D + static_cast<std::size_t>(r)] += scale * family.xi[static_cast<std::size_t>(r)];
       }
@@ -223,6 +246,7 @@ void update_network_load(Model<D>& m) {
   const std::size_t n = m.size();
   static thread_local std::vector<std::uint8_t> is_end;  // the calling thread's, kept between calls
   const std::size_t sources = f.dry.size();
+  const detail::FamilyTerms terms = detail::family_terms<D>(m);
   f.network_load.resize(sources), f.end_slot.resize(sources), f.network_ends.resize(sources);
   for (std::size_t s = 0; s < sources; ++s) {
     auto& g = f.network_load[s];
@@ -266,13 +290,13 @@ void update_network_load(Model<D>& m) {
     for (std::size_t q = 0; q < changed.size(); ++q)
       if (end_slot[changed[q]] >= 0) ends[static_cast<std::size_t>(end_slot[changed[q]])] = detail::network_end<D>(m, changed[q], in_network);
     // g of those made again; their neighbours' changed by the changes of their ends
-    const auto difference = detail::expansion_force_difference<D>(m, changed, end_slot, ends, in_network);
+    const auto difference = detail::expansion_force_difference<D>(m, changed, end_slot, ends, terms, in_network);
     for (std::size_t q = 0; q < changed.size(); ++q) {
       const std::size_t i = changed[q];
       const double scale = 1.0 / (D * m.constants_of(i).kappa);
       for (int r = 0; r < D; ++r) g[i * D + static_cast<std::size_t>(r)] = difference[q][r] * scale;
     }
-    if (!all) detail::add_end_changes<D>(m, changed, before, end_slot, ends, f.load_changed_mark, in_network, g);
+    if (!all) detail::add_end_changes<D>(m, changed, before, end_slot, ends, terms, f.load_changed_mark, in_network, g);
   }
   f.load_from_scratch = false;
   for (const std::size_t i : f.load_changed) f.load_changed_mark[i] = 0;
