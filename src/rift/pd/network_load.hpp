@@ -50,15 +50,21 @@ namespace detail {
 /// What the network load reads of particle i (PMB: nothing) under the unit uniform expansion
 /// y = 2 X (e = |xi|): its theta and P (lps.hpp lps_dilatation) with the network's bonds held
 /// intact, the network bonds' share of each (F^s less F), and its p of both (force_state).
+/// `is_end`: whether i has a bond in the network (an end), found in the same pass.
 template <int D, class InNetwork>
-NetworkEnd network_end(const Model<D>& m, std::size_t i, InNetwork in_network) {
+NetworkEnd network_end(const Model<D>& m, std::size_t i, InNetwork in_network, bool& is_end) {
   const Bonds& b = m.bonds;
   const auto& c = m.constants_of(i);
-  if (c.model == scene::ModelKind::pmb) return {};
+  is_end = false;
+  if (c.model == scene::ModelKind::pmb) {
+    for (auto k = b.offset[i]; k < b.offset[i + 1] && !is_end; ++k) is_end = b.intact[static_cast<std::size_t>(k)] != bond_intact && in_network(i, k);
+    return {};
+  }
   double th = 0.0, q = 0.0, d_th = 0.0, d_q = 0.0;
   for (auto k = b.offset[i]; k < b.offset[i + 1]; ++k) {
     const bool intact = b.intact[static_cast<std::size_t>(k)] == bond_intact;
     if (!intact && !in_network(i, k)) continue;
+    is_end |= !intact;
     const double xi = b.length(k), ev = xi * b.volume(k);
     const double w = influence(c.influence, xi, c.horizon) * xi * ev;
     const BondFactors& g = b.factors_of(i, k);
@@ -206,11 +212,11 @@ void add_end_changes(const Model<D>& m, const std::vector<std::size_t>& changed,
       const std::size_t q = *it;
       const std::size_t x = changed[q];
       const NetworkEnd z = now(q), old = before[q];
+      const auto& c = m.constants_of(x);  // and of every j: bonds join particles of one body
+      if (c.model == scene::ModelKind::pmb) continue;  // its pair forces do not read the ends
       for (auto k = b.offset[x]; k < b.offset[x + 1]; ++k) {
         const auto j = static_cast<std::size_t>(b.neighbor[k]);
         if (j < lo || j >= hi || in_changed[j]) continue;
-        const auto& c = m.constants_of(j);
-        if (c.model == scene::ModelKind::pmb) continue;  // its pair forces do not read the ends
         const bool intact = b.intact[static_cast<std::size_t>(k)] == bond_intact;
         if (!intact && !in_network(x, k)) continue;
         const std::size_t a = b.family_of(k).mirror;
@@ -244,7 +250,6 @@ void update_network_load(Model<D>& m) {
   if (!scratch && f.load_changed.empty()) return;
   const Bonds& b = m.bonds;
   const std::size_t n = m.size();
-  static thread_local std::vector<std::uint8_t> is_end;  // the calling thread's, kept between calls
   const std::size_t sources = f.dry.size();
   const detail::FamilyTerms terms = detail::family_terms<D>(m);
   f.network_load.resize(sources), f.end_slot.resize(sources), f.network_ends.resize(sources);
@@ -274,21 +279,30 @@ void update_network_load(Model<D>& m) {
       for (std::size_t q = 0; q < changed.size(); ++q)
         if (end_slot[changed[q]] >= 0) before[q] = ends[static_cast<std::size_t>(end_slot[changed[q]])];
     }
-    is_end.resize(n);
-    std::uint8_t* const end_flag = is_end.data();  // the team writes the calling thread's
-#pragma omp parallel for if(rift::parallel::worth_a_team(changed.size())) schedule(static)
-    for (std::size_t q = 0; q < changed.size(); ++q) {
-      const std::size_t i = changed[q];
-      std::uint8_t end = 0;
-      for (auto k = b.offset[i]; k < b.offset[i + 1] && !end; ++k) end = b.intact[static_cast<std::size_t>(k)] != bond_intact && in_network(i, k);
-      end_flag[i] = end;
+    // in one pass each: whether it is an end, and its NetworkEnd (kept for the ends alone)
+    std::vector<std::pair<std::size_t, NetworkEnd>> made;  // (place in changed, NetworkEnd) of the ends
+#pragma omp parallel if(rift::parallel::worth_a_team(changed.size()))
+    {
+      std::vector<std::pair<std::size_t, NetworkEnd>> mine;
+#pragma omp for schedule(static) nowait
+      for (std::size_t q = 0; q < changed.size(); ++q) {
+        bool is_end = false;
+        const NetworkEnd z = detail::network_end<D>(m, changed[q], in_network, is_end);
+        if (is_end) mine.emplace_back(q, z);
+      }
+#pragma omp critical(rift_network_ends)
+      made.insert(made.end(), mine.begin(), mine.end());
     }
-    for (const std::size_t i : changed)
-      if (!end_flag[i]) end_slot[i] = -1;
-      else if (end_slot[i] < 0) end_slot[i] = static_cast<std::int32_t>(ends.size()), ends.emplace_back();
-#pragma omp parallel for if(rift::parallel::worth_a_team(changed.size())) schedule(static)
-    for (std::size_t q = 0; q < changed.size(); ++q)
-      if (end_slot[changed[q]] >= 0) ends[static_cast<std::size_t>(end_slot[changed[q]])] = detail::network_end<D>(m, changed[q], in_network);
+    std::sort(made.begin(), made.end(), [](const auto& x, const auto& y) { return x.first < y.first; });
+    for (std::size_t q = 0, e = 0; q < changed.size(); ++q) {
+      const std::size_t i = changed[q];
+      if (e == made.size() || made[e].first != q) {
+        end_slot[i] = -1;
+        continue;
+      }
+      if (end_slot[i] < 0) end_slot[i] = static_cast<std::int32_t>(ends.size()), ends.emplace_back();
+      ends[static_cast<std::size_t>(end_slot[i])] = made[e++].second;
+    }
     // g of those made again; their neighbours' changed by the changes of their ends
     const auto difference = detail::expansion_force_difference<D>(m, changed, end_slot, ends, terms, in_network);
     for (std::size_t q = 0; q < changed.size(); ++q) {
