@@ -57,8 +57,8 @@ double pressure_factor(double kappa, double theta, double a, double coupling) {
 /// normal_stress_failure.hpp) and sums over the rest theta_i = sum b_ij e V (into
 /// m.dilatation), with Coupling also q_i = sum sigma_ij e |xi| V (into `coupling`), and the smallest
 /// stretch of each particle (into `smallest`, none: no intact bond). e = |y| - |xi| is the same seen
-/// from either end; b and sigma are each end's own (surface_correction.hpp). `broken`, where
-/// given, receives the bonds the pass broke, (i, k) of the lower end's row, in no fixed order.
+/// from either end; b and sigma are each end's own (surface_correction.hpp). `broken_out`,
+/// where given, receives the bonds the pass broke, (i, k) of the lower end's row, in no fixed order.
 template <int D, scene::Influence Omega, bool Coupling, bool Corrected>
 void dilatation_pass(Model<D>& m, const BodyInfo& body, double* coupling, double* smallest,
                      std::vector<std::pair<std::size_t, std::int64_t>>* broken_out = nullptr);

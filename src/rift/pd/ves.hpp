@@ -50,6 +50,19 @@ void prepare_viscous_history(Model<D>& m) {
   m.bonds.summed_bonds.assign(m.size(), -1);
 }
 
+/// Bond k of row i's terms in its row's sums (sum_viscous_history): g omega |xi| V times e_d(n),
+/// e_b(n) and |xi|.
+struct ViscousTerms {
+  double deviatoric, back, weighted_volume;
+};
+template <int D, scene::Influence Omega>
+ViscousTerms viscous_terms(const Bonds& b, const BodyInfo& body, std::size_t i, std::int64_t k) {
+  const double xi = b.length(k);
+  const double w = b.correction(i, k) * influence(Omega, xi, body.constants.horizon) * xi * b.volume(k);  // g omega |xi| V
+  const std::size_t h = history_slot(b, body, i, k);
+  return {w * last_deviatoric_extension<D>(b, h, i, xi), w * b.back_extension[h], w * xi};
+}
+
 /// The sums of particle i's row over its intact bonds (bonds.hpp deviatoric_sum, back_sum,
 /// intact_weighted_volume, summed_bonds), from the history.
 template <int D, scene::Influence Omega>
@@ -58,12 +71,8 @@ void sum_viscous_history(Model<D>& m, const BodyInfo& body, std::size_t i, std::
   double deviatoric = 0.0, back = 0.0, weighted_volume = 0.0;
   for (auto k = b.offset[i]; k < b.offset[i + 1]; ++k) {
     if (b.intact[static_cast<std::size_t>(k)] != bond_intact) continue;
-    const double xi = b.length(k);
-    const double w = b.correction(i, k) * influence(Omega, xi, body.constants.horizon) * xi * b.volume(k);  // g omega |xi| V
-    const std::size_t h = history_slot(b, body, i, k);
-    deviatoric += w * last_deviatoric_extension<D>(b, h, i, xi);
-    back += w * b.back_extension[h];
-    weighted_volume += w * xi;
+    const ViscousTerms t = viscous_terms<D, Omega>(b, body, i, k);
+    deviatoric += t.deviatoric, back += t.back, weighted_volume += t.weighted_volume;
   }
   b.deviatoric_sum[i] = deviatoric, b.back_sum[i] = back, b.intact_weighted_volume[i] = weighted_volume;
   b.summed_bonds[i] = intact_bonds;
@@ -80,12 +89,8 @@ void take_out_of_viscous_sums(Model<D>& m, const BodyInfo& body, std::vector<std
   std::sort(broken.begin(), broken.end());
   auto take_out = [&](std::size_t i, std::int64_t k) {
     if (b.summed_bonds[i] < 0) return;  // not summed yet
-    const double xi = b.length(k);
-    const double w = b.correction(i, k) * influence(Omega, xi, body.constants.horizon) * xi * b.volume(k);  // g omega |xi| V
-    const std::size_t h = history_slot(b, body, i, k);
-    b.deviatoric_sum[i] -= w * last_deviatoric_extension<D>(b, h, i, xi);
-    b.back_sum[i] -= w * b.back_extension[h];
-    b.intact_weighted_volume[i] -= w * xi;
+    const ViscousTerms t = viscous_terms<D, Omega>(b, body, i, k);
+    b.deviatoric_sum[i] -= t.deviatoric, b.back_sum[i] -= t.back, b.intact_weighted_volume[i] -= t.weighted_volume;
     --b.summed_bonds[i];
   };
   for (const auto& [i, k] : broken) {
