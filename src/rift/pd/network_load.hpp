@@ -24,7 +24,7 @@
 // the rest of the body untouched: the thesis-size block (4 million particles) took two passes over
 // all its 494 million directed bonds whenever a crack grew. What g reads of each end (NetworkEnd)
 // is kept between calls and made again only where the end's bonds changed; the particles around an
-// end whose NetworkEnd changed take the change of its terms alone (add_end_changes).
+// end whose NetworkEnd changed take the change of its terms alone (changed_rows_pass).
 #pragma once
 #include <algorithm>
 #include <array>
@@ -112,124 +112,118 @@ inline double end_force_state(const NetworkEnd& z, bool intact, const MaterialCo
   return weight * z.change - z.a * g.correction * omega * z.d_theta * xi_over_d;
 }
 
-/// F_i - F^s_i on the particles `near` (no bond breaking; the VES by its LPS response) under the
-/// unit uniform expansion y = 2 X: F with the bonds as they are, F^s with the network's broken
-/// bonds (in_network(i, k): entry k of row i, not intact) held intact as well. Every model is linear
-/// in a uniform expansion (e = eps |xi|, y / |y| = xi / |xi|), so this is the difference under any
-/// expansion eps divided by eps, and needs no positions. The formulas of pmb.hpp and lps.hpp,
-/// summed as the difference itself: a network bond adds -f^s (its pair force in F^s); an intact
-/// bond adds the change of its pair force, which is linear in the changes of its ends' dilatation
-/// and P (lps.hpp force_state, pressure_factor), nonzero only where an end has network bonds (an
-/// end: end_slot[i] >= 0, its NetworkEnd in ends); every other bond adds nothing and is skipped.
-/// So a particle's sum reads its network bonds and its bonds to ends alone, and F and F^s never
-/// cancel each other's rounding.
-template <int D, class InNetwork>
-std::vector<Vec<D>> expansion_force_difference(const Model<D>& m, const std::vector<std::size_t>& near, const std::vector<std::int32_t>& end_slot,
-                                               const std::vector<NetworkEnd>& ends, const FamilyTerms& terms, InNetwork in_network) {
-  const Bonds& b = m.bonds;
-  std::vector<Vec<D>> difference(near.size(), Vec<D>{});
-#pragma omp parallel for if(rift::parallel::worth_a_team(near.size())) schedule(static)
-  for (std::size_t s = 0; s < near.size(); ++s) {
-    const std::size_t i = near[s];
-    const auto& c = m.constants_of(i);
-    const bool pmb = c.model == scene::ModelKind::pmb;
-    Vec<D> sum{};
-    for (auto k = b.offset[i]; k < b.offset[i + 1]; ++k) {
-      const auto j = static_cast<std::size_t>(b.neighbor[k]);
-      const bool intact = b.intact[static_cast<std::size_t>(k)] == bond_intact;
-      if (intact ? pmb || (end_slot[i] < 0 && end_slot[j] < 0) : !in_network(i, k)) continue;
-      const std::size_t a = b.family[static_cast<std::size_t>(k)];
-      const FamilyOffset& family = b.families[a];
-      const double xi = family.length, omega = terms.omega[a];
-      double pair;  // F less F^s of this bond
-      if (pmb) {
-        pair = -pmb_bond_force(c.micromodulus, omega, 1.0, b.correction(i, k), b.mirror_correction(j, k));
-      } else {
-        auto t = [&](std::size_t x, const BondFactors& g) {
-          if (end_slot[x] < 0) return 0.0;
-          return end_force_state(ends[static_cast<std::size_t>(end_slot[x])], intact, c, g, omega, xi, terms.length_over_d[a]);
-        };
-        pair = -(t(i, b.factors_of(i, k)) + t(j, b.mirror_factors_of(j, k)));
-      }
-      // along y_j - y_i, whose direction is xi's
-      const double scale = pair * family.volume * family.inverse_length;
-      for (int q = 0; q < D; ++q) sum[q] += scale * family.xi[static_cast<std::size_t>(q)];
-    }
-    difference[s] = sum;
-  }
-  return difference;
-}
-
 /// Whether two NetworkEnd hold the same values (an end's change reaches its neighbours only then).
 inline bool same_end(const NetworkEnd& a, const NetworkEnd& z) {
   return a.theta == z.theta && a.d_theta == z.d_theta && a.a == z.a && a.held == z.held && a.change == z.change;
 }
 
-/// Adds to g (of one source; g_j = (F_j - F^s_j) / (d kappa_j)) the change that the ends `changed`
-/// (ascending; marked in `in_changed`) make on their neighbours that are not among them. Such a
-/// neighbour j keeps its own bonds' states and memberships (both ends of a bond that changed are in
-/// `changed`) and its own NetworkEnd, so of its sum only the terms of its bonds to a changed end x
-/// change, and in them only t_x (end_force_state): by -(t_x now - t_x before) along xi_jx. Each
-/// thread takes the neighbours in its own range of particles, adding the terms in the order of
-/// `changed`, so the result does not depend on the number of threads. The work follows the changed
-/// ends' bonds, not the particles around them (each of those read all its bonds: 15% of a
-/// thesis-size step at 7% broken bonds).
+/// One pass over the rows of the particles `changed` (ascending; marked in `in_changed`) that
+/// makes, for one source:
+/// - F_x - F^s_x of each of them (returned, in the order of `changed`; no bond breaking, the VES by
+///   its LPS response) under the unit uniform expansion y = 2 X: F with the bonds as they are, F^s
+///   with the network's broken bonds (in_network(i, k): entry k of row i, not intact) held intact as
+///   well. Every model is linear in a uniform expansion (e = eps |xi|, y / |y| = xi / |xi|), so this
+///   is the difference under any expansion eps divided by eps, and needs no positions. The formulas
+///   of pmb.hpp and lps.hpp, summed as the difference itself: a network bond adds -f^s (its pair
+///   force in F^s); an intact bond adds the change of its pair force, which is linear in the
+///   changes of its ends' dilatation and P (lps.hpp force_state, pressure_factor), nonzero only
+///   where an end has network bonds (an end: end_slot[i] >= 0, its NetworkEnd in ends); every other
+///   bond adds nothing and is skipped. So a particle's sum reads its network bonds and its bonds to
+///   ends alone, and F and F^s never cancel each other's rounding.
+/// - With `before` (their NetworkEnd as g was last made; empty: g made from scratch, nothing to
+///   correct), the change their ends make on the neighbours that are not among them, added to g
+///   (g_j = (F_j - F^s_j) / (d kappa_j)). Such a neighbour j keeps its own bonds' states and
+///   memberships (both ends of a bond that changed are in `changed`) and its own NetworkEnd, so of
+///   its sum only the terms of its bonds to a changed end x change, and in them only t_x
+///   (end_force_state): by -(t_x now - t_x before) along xi_jx.
+/// Each thread owns a range of particles (split at equal counts of `changed`): it sums the rows of
+/// the changed particles in it, and adds the corrections to the neighbours in it, in the order of
+/// `changed`, from the ends within a bond's reach of it. So the result does not depend on the
+/// number of threads, and each changed row is read once for both (they were two passes, a third of
+/// the network load each).
 template <int D, class InNetwork>
-void add_end_changes(const Model<D>& m, const std::vector<std::size_t>& changed, const std::vector<NetworkEnd>& before,
-                     const std::vector<std::int32_t>& end_slot, const std::vector<NetworkEnd>& ends, const FamilyTerms& terms,
-                     const std::vector<std::uint8_t>& in_changed, InNetwork in_network, std::vector<double>& g) {
+std::vector<Vec<D>> changed_rows_pass(const Model<D>& m, const std::vector<std::size_t>& changed, const std::vector<NetworkEnd>& before,
+                                      const std::vector<std::int32_t>& end_slot, const std::vector<NetworkEnd>& ends, const FamilyTerms& terms,
+                                      const std::vector<std::uint8_t>& in_changed, InNetwork in_network, std::vector<double>& g) {
   const Bonds& b = m.bonds;
-  const std::size_t n = m.size();
+  const std::size_t n = m.size(), count = changed.size();
+  std::vector<Vec<D>> difference(count, Vec<D>{});
+  if (count == 0) return difference;
   auto now = [&](std::size_t q) {
     const std::int32_t slot = end_slot[changed[q]];
     return slot >= 0 ? ends[static_cast<std::size_t>(slot)] : NetworkEnd{};
   };
-  std::vector<std::size_t> moved;  // the entries of `changed` whose NetworkEnd changed
-  for (std::size_t q = 0; q < changed.size(); ++q)
-    if (!same_end(now(q), before[q])) moved.push_back(q);
-  if (moved.empty()) return;
-  // how far a bond of theirs reaches in particle numbers (rows are sorted by neighbour)
+  // the entries whose NetworkEnd changed, and how far a bond of theirs reaches in particle numbers
+  // (rows are sorted by neighbour)
+  std::vector<std::uint8_t> moved(count, 0);
   std::size_t reach = 0;
-  for (const std::size_t q : moved) {
-    const std::size_t x = changed[q];
-    if (b.offset[x + 1] == b.offset[x]) continue;
-    const auto low = static_cast<std::size_t>(b.neighbor[static_cast<std::size_t>(b.offset[x])]);
-    const auto high = static_cast<std::size_t>(b.neighbor[static_cast<std::size_t>(b.offset[x + 1] - 1)]);
-    reach = std::max({reach, x > low ? x - low : 0, high > x ? high - x : 0});
-  }
-#pragma omp parallel if(rift::parallel::worth_a_team(moved.size() * 64))
+  if (!before.empty())
+    for (std::size_t q = 0; q < count; ++q) {
+      const std::size_t x = changed[q];
+      if (same_end(now(q), before[q]) || b.offset[x + 1] == b.offset[x]) continue;
+      moved[q] = 1;
+      const auto low = static_cast<std::size_t>(b.neighbor[static_cast<std::size_t>(b.offset[x])]);
+      const auto high = static_cast<std::size_t>(b.neighbor[static_cast<std::size_t>(b.offset[x + 1] - 1)]);
+      reach = std::max({reach, x > low ? x - low : 0, high > x ? high - x : 0});
+    }
+#pragma omp parallel if(rift::parallel::worth_a_team(count))
   {
 #ifdef _OPENMP
     const auto id = static_cast<std::size_t>(omp_get_thread_num()), threads = static_cast<std::size_t>(omp_get_num_threads());
 #else
     const std::size_t id = 0, threads = 1;
 #endif
-    const std::size_t lo = n * id / threads, hi = n * (id + 1) / threads;
-    // the ends that can reach the range [lo, hi): `changed` is ascending
-    const auto from = std::lower_bound(moved.begin(), moved.end(), lo > reach ? lo - reach : 0,
-                                       [&](std::size_t q, std::size_t i) { return changed[q] < i; });
-    for (auto it = from; it != moved.end() && changed[*it] < hi + reach; ++it) {
-      const std::size_t q = *it;
+    const std::size_t lo = id == 0 ? 0 : changed[count * id / threads], hi = id + 1 == threads ? n : changed[count * (id + 1) / threads];
+    // the changed particles in [lo, hi) and the ends that can reach it: `changed` is ascending
+    for (auto q = static_cast<std::size_t>(std::lower_bound(changed.begin(), changed.end(), lo > reach ? lo - reach : 0) - changed.begin());
+         q < count && changed[q] < hi + reach; ++q) {
       const std::size_t x = changed[q];
-      const NetworkEnd z = now(q), old = before[q];
-      const auto& c = m.constants_of(x);  // and of every j: bonds join particles of one body
-      if (c.model == scene::ModelKind::pmb) continue;  // its pair forces do not read the ends
+      const auto& c = m.constants_of(x);  // and of every neighbour: bonds join particles of one body
+      const bool pmb = c.model == scene::ModelKind::pmb;
+      const bool own = x >= lo && x < hi, correct = moved[q] && !pmb;  // a PMB's pair forces do not read the ends
+      if (!own && !correct) continue;
+      const NetworkEnd z = now(q), old = correct ? before[q] : NetworkEnd{};
+      Vec<D> sum{};
       for (auto k = b.offset[x]; k < b.offset[x + 1]; ++k) {
         const auto j = static_cast<std::size_t>(b.neighbor[k]);
-        if (j < lo || j >= hi || in_changed[j]) continue;
         const bool intact = b.intact[static_cast<std::size_t>(k)] == bond_intact;
+        const bool corrects = correct && j >= lo && j < hi && !in_changed[j];
+        const bool sums = own && (intact ? !pmb && (end_slot[x] >= 0 || end_slot[j] >= 0) : true);
+        if (!corrects && !sums) continue;
         if (!intact && !in_network(x, k)) continue;
-        const std::size_t a = b.family_of(k).mirror;
-        const FamilyOffset& family = b.families[a];  // j's side, xi_jx
-        const double xi = family.length, omega = terms.omega[a], xi_over_d = terms.length_over_d[a];
-        const BondFactors& factors = b.factors_of(x, k);  // x's side of the bond
-        const double t_change =
-            end_force_state(z, intact, c, factors, omega, xi, xi_over_d) - end_force_state(old, intact, c, factors, omega, xi, xi_over_d);
-        const double scale = -t_change * family.volume * family.inverse_length / (D * c.kappa);
-        for (int r = 0; r < D; ++r) g[j * D + static_cast<std::size_t>(r)] += scale * family.xi[static_cast<std::size_t>(r)];
+        const std::size_t a = b.family[static_cast<std::size_t>(k)];
+        if (sums) {
+          const FamilyOffset& family = b.families[a];
+          const double xi = family.length, omega = terms.omega[a];
+          double pair;  // F less F^s of this bond
+          if (pmb) {
+            pair = -pmb_bond_force(c.micromodulus, omega, 1.0, b.correction(x, k), b.mirror_correction(j, k));
+          } else {
+            auto t = [&](std::size_t e, const BondFactors& f) {
+              if (end_slot[e] < 0) return 0.0;
+              return end_force_state(ends[static_cast<std::size_t>(end_slot[e])], intact, c, f, omega, xi, terms.length_over_d[a]);
+            };
+            pair = -(t(x, b.factors_of(x, k)) + t(j, b.mirror_factors_of(j, k)));
+          }
+          // along y_j - y_i, whose direction is xi's
+          const double scale = pair * family.volume * family.inverse_length;
+          for (int r = 0; r < D; ++r) sum[r] += scale * family.xi[static_cast<std::size_t>(r)];
+        }
+        if (corrects) {
+          const std::size_t mirror = b.families[a].mirror;
+          const FamilyOffset& family = b.families[mirror];  // j's side, xi_jx
+          const double xi = family.length, omega = terms.omega[mirror], xi_over_d = terms.length_over_d[mirror];
+          const BondFactors& factors = b.factors_of(x, k);  // x's side of the bond
+          const double t_change =
+              end_force_state(z, intact, c, factors, omega, xi, xi_over_d) - end_force_state(old, intact, c, factors, omega, xi, xi_over_d);
+          const double scale = -t_change * family.volume * family.inverse_length / (D * c.kappa);
+          for (int r = 0; r < D; ++r) g[j * D + static_cast<std::size_t>(r)] += scale * family.xi[static_cast<std::size_t>(r)];
+        }
       }
+      if (own) difference[q] = sum;
     }
   }
+  return difference;
 }
 
 }  // namespace detail
@@ -240,7 +234,7 @@ void add_end_changes(const Model<D>& m, const std::vector<std::size_t>& changed,
 /// where a bond of i or of a neighbour changed state or joined or left the network since the last
 /// call (FluidNetwork::load_changed, which update_fluid_network keeps). g of those particles is
 /// evaluated again by the same sum as from scratch; on their neighbours the terms of the changed
-/// ends are corrected by what changed (add_end_changes), which equals g made from scratch up to
+/// ends are corrected by what changed (changed_rows_pass), which equals g made from scratch up to
 /// the rounding of the corrections (1e-16 of the largest |g| per correction; within 1e-13 in
 /// tests/test_network_load.cpp).
 template <int D>
@@ -304,13 +298,12 @@ void update_network_load(Model<D>& m) {
       ends[static_cast<std::size_t>(end_slot[i])] = made[e++].second;
     }
     // g of those made again; their neighbours' changed by the changes of their ends
-    const auto difference = detail::expansion_force_difference<D>(m, changed, end_slot, ends, terms, in_network);
+    const auto difference = detail::changed_rows_pass<D>(m, changed, before, end_slot, ends, terms, f.load_changed_mark, in_network, g);
     for (std::size_t q = 0; q < changed.size(); ++q) {
       const std::size_t i = changed[q];
       const double scale = 1.0 / (D * m.constants_of(i).kappa);
       for (int r = 0; r < D; ++r) g[i * D + static_cast<std::size_t>(r)] = difference[q][r] * scale;
     }
-    if (!all) detail::add_end_changes<D>(m, changed, before, end_slot, ends, terms, f.load_changed_mark, in_network, g);
   }
   f.load_from_scratch = false;
   for (const std::size_t i : f.load_changed) f.load_changed_mark[i] = 0;
