@@ -324,7 +324,7 @@ void update_fluid_network(Model<D>& m) {
     // on from the wet particles whose bonds broke: a broken bond to a dry particle lets the fluid in.
     // Those particles by the team (a step around a grown crack has tens of thousands): both ends
     // of each bond that carries fluid are in a crack, and the dry particles reached, with the fluid
-    // that reached each (the first of `changed` to), go on in order as before
+    // that reached each (from the first of `changed` to reach it), go on in order as before
     std::vector<std::array<std::size_t, 3>> reached;  // (particle, place in changed, source)
 #pragma omp parallel if(rift::parallel::worth_a_team(changed.size() * 16))
     {
