@@ -189,7 +189,7 @@ struct CrackSurface {
   std::vector<std::array<double, 6>> planes;  // per patch: its point and unit normal (z = 0 in 2D)
   std::vector<std::array<std::int32_t, 6>> moments;  // per patch: the sum of n n^T (xx yy zz xy yz xz) around it, in 2^-20 (crack_crossing.hpp)
   std::vector<std::int64_t> sorted_patches;   // the patches' bonds, ascending (which bonds have one)
-  std::vector<std::uint64_t> decided;         // a bit per bond entry: a short network bond's lower entry whose patch (or none) is decided
+  std::vector<std::uint64_t> decided;         // a bit per bond entry: a short network bond's entry (each end its own) whose patch, or none, is decided
   double cell = 0.0, reach = 0.0;             // the grid's cell size; how far a patch reaches along its plane, m
   std::vector<std::int64_t> cell_keys;        // the grid: cell keys, ascending
   std::vector<std::uint32_t> in_cell;         // the patch of each entry of cell_keys

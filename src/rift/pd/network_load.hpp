@@ -118,9 +118,8 @@ inline bool same_end(const NetworkEnd& a, const NetworkEnd& z) {
 }
 
 /// One pass over the rows of the particles `changed` (ascending; marked in `in_changed`) that
-/// makes, for one source:
-/// - F_x - F^s_x of each of them (returned, in the order of `changed`; no bond breaking, the VES by
-///   its LPS response) under the unit uniform expansion y = 2 X: F with the bonds as they are, F^s
+/// makes, for one source, into g (g_i = (F_i - F^s_i) / (d kappa_i)):
+/// - F_x - F^s_x of each of them (no bond breaking, the VES by its LPS response) under the unit uniform expansion y = 2 X: F with the bonds as they are, F^s
 ///   with the network's broken bonds (in_network(i, k): entry k of row i, not intact) held intact as
 ///   well. Every model is linear in a uniform expansion (e = eps |xi|, y / |y| = xi / |xi|), so this
 ///   is the difference under any expansion eps divided by eps, and needs no positions. The formulas
@@ -131,24 +130,23 @@ inline bool same_end(const NetworkEnd& a, const NetworkEnd& z) {
 ///   bond adds nothing and is skipped. So a particle's sum reads its network bonds and its bonds to
 ///   ends alone, and F and F^s never cancel each other's rounding.
 /// - With `before` (their NetworkEnd as g was last made; empty: g made from scratch, nothing to
-///   correct), the change their ends make on the neighbours that are not among them, added to g
-///   (g_j = (F_j - F^s_j) / (d kappa_j)). Such a neighbour j keeps its own bonds' states and
+///   correct), the change their ends make on the neighbours that are not among them, added to
+///   their g. Such a neighbour j keeps its own bonds' states and
 ///   memberships (both ends of a bond that changed are in `changed`) and its own NetworkEnd, so of
 ///   its sum only the terms of its bonds to a changed end x change, and in them only t_x
 ///   (end_force_state): by -(t_x now - t_x before) along xi_jx.
 /// Each thread owns a range of particles (split at equal counts of `changed`): it sums the rows of
-/// the changed particles in it, and adds the corrections to the neighbours in it, in the order of
+/// the changed particles in it (their g made again), and adds the corrections to the neighbours in it, in the order of
 /// `changed`, from the ends within a bond's reach of it. So the result does not depend on the
 /// number of threads, and each changed row is read once for both (they were two passes, a third of
 /// the network load each).
 template <int D, class InNetwork>
-std::vector<Vec<D>> changed_rows_pass(const Model<D>& m, const std::vector<std::size_t>& changed, const std::vector<NetworkEnd>& before,
+void changed_rows_pass(const Model<D>& m, const std::vector<std::size_t>& changed, const std::vector<NetworkEnd>& before,
                                       const std::vector<std::int32_t>& end_slot, const std::vector<NetworkEnd>& ends, const FamilyTerms& terms,
                                       const std::vector<std::uint8_t>& in_changed, InNetwork in_network, std::vector<double>& g) {
   const Bonds& b = m.bonds;
   const std::size_t n = m.size(), count = changed.size();
-  std::vector<Vec<D>> difference(count, Vec<D>{});
-  if (count == 0) return difference;
+  if (count == 0) return;
   auto now = [&](std::size_t q) {
     const std::int32_t slot = end_slot[changed[q]];
     return slot >= 0 ? ends[static_cast<std::size_t>(slot)] : NetworkEnd{};
@@ -220,10 +218,11 @@ std::vector<Vec<D>> changed_rows_pass(const Model<D>& m, const std::vector<std::
           for (int r = 0; r < D; ++r) g[j * D + static_cast<std::size_t>(r)] += scale * family.xi[static_cast<std::size_t>(r)];
         }
       }
-      if (own) difference[q] = sum;
+      if (!own) continue;
+      const double scale = 1.0 / (D * c.kappa);
+      for (int r = 0; r < D; ++r) g[x * D + static_cast<std::size_t>(r)] = sum[r] * scale;
     }
   }
-  return difference;
 }
 
 }  // namespace detail
@@ -298,12 +297,7 @@ void update_network_load(Model<D>& m) {
       ends[static_cast<std::size_t>(end_slot[i])] = made[e++].second;
     }
     // g of those made again; their neighbours' changed by the changes of their ends
-    const auto difference = detail::changed_rows_pass<D>(m, changed, before, end_slot, ends, terms, f.load_changed_mark, in_network, g);
-    for (std::size_t q = 0; q < changed.size(); ++q) {
-      const std::size_t i = changed[q];
-      const double scale = 1.0 / (D * m.constants_of(i).kappa);
-      for (int r = 0; r < D; ++r) g[i * D + static_cast<std::size_t>(r)] = difference[q][r] * scale;
-    }
+    detail::changed_rows_pass<D>(m, changed, before, end_slot, ends, terms, f.load_changed_mark, in_network, g);
   }
   f.load_from_scratch = false;
   for (const std::size_t i : f.load_changed) f.load_changed_mark[i] = 0;
