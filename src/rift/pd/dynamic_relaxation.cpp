@@ -1,6 +1,5 @@
 #include "rift/pd/dynamic_relaxation.hpp"
 
-#include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
@@ -10,6 +9,7 @@
 #include "rift/pd/effective_stretch.hpp"
 #include "rift/pd/forces.hpp"
 #include "rift/pd/influence.hpp"
+#include "rift/pd/rigid_motion.hpp"
 #include "rift/parallel/team.hpp"
 
 namespace rift::pd {
@@ -89,60 +89,20 @@ double DynamicRelaxation<D>::measure_fictitious_density(Model<D>& m, const load:
   return factor;
 }
 
-// The rigid-body part of the iterations' accelerations F_i / lambda_i, A + alpha x (x - c), from the
-// net force and torque of F over the fictitious masses lambda_i V_i (c their centre). For a body held
-// by tractions alone (a block under in-situ stress, as in a tri-axial frame) the equilibrium is one
-// up to a rigid motion, and what the loads leave of force and torque cannot be taken up by any
-// deformation: a compressed free body's rotation has a negative geometric stiffness under dead loads
-// (a face's force keeps its direction while its point turns), so the iterations let it grow:
-// Zhou's 2-7 block (hf_zhou_crossing) turned about its centre once its interface slipped, the
-// residual stalled at 1.1e-5 and grew, and a load step took 36,621 iterations (2,333 without the
-// turn); a square block turned by 0.02 rad before its in-situ stage turned on to 180 degrees, where
-// the compressive tractions pull (tests/test_in_situ_stress.cpp). The iterations move the body with
-// F less this part and measure their residual on it.
-template <int D>
-struct RigidAcceleration {
-  Eigen::Vector3d centre = Eigen::Vector3d::Zero(), linear = Eigen::Vector3d::Zero(), angular = Eigen::Vector3d::Zero();
-  Vec<D> at(const Vec<D>& x) const {
-    Eigen::Vector3d r = Eigen::Vector3d::Zero();
-    for (int k = 0; k < D; ++k) r[k] = x[k] - centre[k];
-    const Eigen::Vector3d a = linear + angular.cross(r);
-    Vec<D> out;
-    for (int k = 0; k < D; ++k) out[k] = a[k];
-    return out;
-  }
-};
-
+// The iterations move a free body with F less its rigid-body part (rigid_motion.hpp) and measure
+// their residual on it: Zhou's 2-7 block (hf_zhou_crossing) turned about its centre once its
+// interface slipped, the residual stalled at 1.1e-5 and grew, and a load step took 36,621 iterations
+// (2,333 without the turn); a square block turned by 0.02 rad before its in-situ stage turned on to
+// 180 degrees, where the compressive tractions pull (tests/test_in_situ_stress.cpp).
 template <int D>
 RigidAcceleration<D> rigid_acceleration(const Model<D>& m, const std::vector<double>& mass) {
-  const std::size_t n = m.size();
-  RigidAcceleration<D> out;
-  auto first = parallel::ordered_sums<1 + 2 * D>(n, [&](std::size_t i, std::array<double, 1 + 2 * D>& acc) {
-    const double w = mass[i] * m.volume[i];
-    acc[0] += w;
-    for (int k = 0; k < D; ++k) acc[1 + k] += w * m.position[i][k], acc[1 + D + k] += (m.force[i][k] + m.body_force[i][k]) * m.volume[i];
-  });
-  if (!(first[0] > 0.0)) return out;
-  for (int k = 0; k < D; ++k) out.centre[k] = first[1 + k] / first[0], out.linear[k] = first[1 + D + k] / first[0];
-  // torque of F (3) and inertia tensor (6) of the masses about the centre
-  auto second = parallel::ordered_sums<9>(n, [&](std::size_t i, std::array<double, 9>& acc) {
-    const double w = mass[i] * m.volume[i];
-    Eigen::Vector3d r = Eigen::Vector3d::Zero(), f = r;
-    for (int k = 0; k < D; ++k) r[k] = m.position[i][k] - out.centre[k], f[k] = (m.force[i][k] + m.body_force[i][k]) * m.volume[i];
-    const Eigen::Vector3d torque = r.cross(f);
-    for (int k = 0; k < 3; ++k) acc[k] += torque[k];
-    const double r2 = r.squaredNorm();
-    acc[3] += w * (r2 - r[0] * r[0]), acc[4] += w * (r2 - r[1] * r[1]), acc[5] += w * (r2 - r[2] * r[2]);
-    acc[6] -= w * r[0] * r[1], acc[7] -= w * r[1] * r[2], acc[8] -= w * r[0] * r[2];
-  });
-  if constexpr (D == 2) {
-    if (second[5] > 0.0) out.angular[2] = second[2] / second[5];
-  } else {
-    Eigen::Matrix3d inertia;
-    inertia << second[3], second[6], second[8], second[6], second[4], second[7], second[8], second[7], second[5];
-    out.angular = inertia.ldlt().solve(Eigen::Vector3d(second[0], second[1], second[2]));
-  }
-  return out;
+  return rigid_acceleration<D>(
+      m.position, [&](std::size_t i) { return mass[i] * m.volume[i]; },
+      [&](std::size_t i) {
+        Vec<D> f;
+        for (int k = 0; k < D; ++k) f[k] = (m.force[i][k] + m.body_force[i][k]) * m.volume[i];
+        return f;
+      });
 }
 
 template <int D>

@@ -267,10 +267,13 @@ Result run_dim(const scene::Scene& s, const Options& o) {
 
   if (s.in_situ.enabled) {
     const auto r = p.equilibrate_in_situ(s.in_situ);
-    res.notes.push_back(fmt::format("in-situ stage: {} in {} iterations of dynamic relaxation (residual {:.3g}, tolerance {:g}; "
-                                    "fictitious density {:.3g} times the row-sum bound, measured)",
-                                    r.converged ? "equilibrium" : "NOT converged", r.iterations, r.residual, s.in_situ.tolerance,
-                                    r.density_factor));
+    const bool cg = p.uses_conjugate_gradients(s.in_situ);
+    const std::string how = !(r.density_factor > 0.0) ? std::string("force evaluations of preconditioned conjugate gradients")
+                            : fmt::format("{} (fictitious density {:.3g} times the row-sum bound, measured)",
+                                          cg ? "force evaluations, conjugate gradients then dynamic relaxation" : "iterations of dynamic relaxation",
+                                          r.density_factor);
+    res.notes.push_back(fmt::format("in-situ stage: {} in {} {} (residual {:.3g}, tolerance {:g})", r.converged ? "equilibrium" : "NOT converged",
+                                    r.iterations, how, r.residual, s.in_situ.tolerance));
     if (!r.converged && !o.quiet)
       std::fprintf(stderr, "rift: warning: the in-situ stage did not converge in %d iterations (residual %.3g > %.3g)\n", r.iterations,
                    r.residual, s.in_situ.tolerance);

@@ -6,6 +6,7 @@
 #include "rift/pd/discretize.hpp"
 #include "rift/pd/dynamic_relaxation.hpp"
 #include "rift/pd/in_situ_strain.hpp"
+#include "rift/pd/static_equilibrium.hpp"
 #include "rift/pd/forces.hpp"
 #include "rift/pd/velocity_verlet.hpp"
 #include "rift/run/time_step.hpp"
@@ -22,7 +23,8 @@ struct Simulation {
   long steps = 0;  // explicit: time steps to end_time; relaxation: load steps
 
   /// Every scene error is raised here, before anything is written.
-  explicit Simulation(const scene::Scene& s) : model(pd::discretize<D>(s)), loads(s, model), contact(s.contact, model) {
+  explicit Simulation(const scene::Scene& s)
+      : model(pd::discretize<D>(s)), loads(s, model), contact(s.contact, model), cracks_(s.cracks.size()), interfaces_(s.interfaces.size()) {
     stable_dt = pd::stable_time_step<D>(model);
     if (s.solver.kind == scene::SolverKind::explicit_dynamics) {
       const auto plan = explicit_steps(s.solver, stable_dt, "Silling and Askari 2005, eq. 29");
@@ -43,12 +45,31 @@ struct Simulation {
       pd::apply_in_situ_strain<D>(model, in_situ);
       dr.measure_damping_from_start(true);
     }
-    // the stage's iterations go as the square root of the fictitious density: measured, not bounded
+    pd::RelaxationResult cg;
+    if (uses_conjugate_gradients(in_situ)) {
+      const auto start = model.position;
+      cg = pd::solve_static_equilibrium<D>(model, loads, contact_ptr(), 0.0, dr.fictitious_density(), in_situ.max_iterations,
+                                           in_situ.tolerance);
+      if (cg.converged || cg.iterations >= in_situ.max_iterations) {
+        model.velocity = initial_velocity;
+        return cg;
+      }
+      model.position = start;  // stopped short: dynamic relaxation from the start
+    }
+    // its iterations go as the square root of the fictitious density: measured, not bounded
     const double factor = dr.measure_fictitious_density(model, loads, contact_ptr(), 0.0);
-    auto r = dr.relax(model, loads, contact_ptr(), 0.0, in_situ.max_iterations, in_situ.tolerance);
+    auto r = dr.relax(model, loads, contact_ptr(), 0.0, in_situ.max_iterations - cg.iterations, in_situ.tolerance);
+    r.iterations += cg.iterations;
     r.density_factor = factor;
     model.velocity = initial_velocity;
     return r;
+  }
+  /// [in_situ_stress] solver: automatic takes the conjugate gradients where the forces are smooth:
+  /// pre-cracks' faces in contact and interfaces' friction switch, and the iterations then stall.
+  bool uses_conjugate_gradients(const scene::InSituStress& in_situ) const {
+    using S = scene::InSituStress::Solver;
+    if (in_situ.solver != S::automatic) return in_situ.solver == S::conjugate_gradient;
+    return cracks_ == 0 && interfaces_ == 0;
   }
   /// Forces and loads of the initial state (call once before the first step).
   void start() {
@@ -63,6 +84,9 @@ struct Simulation {
                                               solver.max_breaking_passes);
     return dr.relax(model, loads, contact_ptr(), t, solver.max_iterations, solver.tolerance);
   }
+
+ private:
+  std::size_t cracks_ = 0, interfaces_ = 0;  // the scene's pre-cracks and interfaces
 };
 
 }  // namespace rift::run

@@ -456,7 +456,11 @@ void parse_in_situ_stress(R& root, Scene& s) {
   if (auto tol = r.number("tolerance")) v.tolerance = r.positive("tolerance", *tol);
   if (auto start = r.choice("start", {"reference", "uniform_strain"}))
     v.start = *start == "uniform_strain" ? InSituStress::Start::uniform_strain : InSituStress::Start::reference;
-  r.finish({"sigma_H", "sigma_h", "sigma_v", "sigma_H_axis", "faces", "max_iterations", "tolerance", "start"});
+  if (auto solver = r.choice("solver", {"automatic", "conjugate_gradient", "dynamic_relaxation"}))
+    v.solver = *solver == "dynamic_relaxation"   ? InSituStress::Solver::dynamic_relaxation
+               : *solver == "conjugate_gradient" ? InSituStress::Solver::conjugate_gradient
+                                                 : InSituStress::Solver::automatic;
+  r.finish({"sigma_H", "sigma_h", "sigma_v", "sigma_H_axis", "faces", "max_iterations", "tolerance", "start", "solver"});
 }
 
 void parse_initial_velocity(R& root, Scene& s) {

@@ -158,6 +158,10 @@ struct InSituStress {
   // where the relaxation starts: the reference lattice, or the uniform strain of the far-field
   // stresses (pd/in_situ_strain.hpp), which saves it the interior's share of the iterations
   enum class Start { reference, uniform_strain } start = Start::reference;
+  // how the equilibrium is found: preconditioned conjugate gradients (pd/static_equilibrium.hpp), or
+  // adaptive dynamic relaxation; automatic: the conjugate gradients where the forces are smooth (no
+  // pre-crack whose faces may touch, no interface's friction), else dynamic relaxation
+  enum class Solver { automatic, conjugate_gradient, dynamic_relaxation } solver = Solver::automatic;
   /// Stress tensor component along axis k (principal axes = coordinate axes).
   double principal(int k) const { return k == 2 ? sigma_v : (k == sigma_H_axis ? sigma_H : sigma_h); }
 };

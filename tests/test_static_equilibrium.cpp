@@ -1,0 +1,186 @@
+// The in-situ stage's conjugate gradients (pd/static_equilibrium.hpp) against dynamic relaxation
+// (Kilic and Madenci 2010), the solver it replaced: both find the one static equilibrium of a held
+// body, so at a tolerance of 1e-9 their displacements agree to a millionth of the largest one, and the
+// forces evaluated afresh at the conjugate gradients' positions meet the tolerance. Cases: a 3D VES
+// block (the thesis example's shale) with a borehole, held by tractions alone (its rigid motions
+// projected out), and a 2D block with a borehole between rigid platens (a platen one unknown).
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <string>
+#include <vector>
+
+#include "rift/pd/forces.hpp"
+#include "rift/pd/held_breaking.hpp"
+#include "rift/pd/rigid_motion.hpp"
+#include "rift/run/simulation.hpp"
+#include "rift/scene/parse.hpp"
+#include "rock_scene.hpp"
+
+namespace {
+
+// 12 x 12 x 8 mm of the thesis' shale at 1 mm, a 4 mm borehole along z through it, under
+// sigma_v = -1.5, sigma_H = -1.0, sigma_h = -0.75 MPa
+std::string shale_block(const std::string& solver) {
+  return R"([scene]
+dimension = 3
+[materials.shale]
+model = "ves"
+density = 2500.0
+bulk_modulus = 10.6e9
+shear_modulus = 1.0e9
+critical_stretch = 5e-4
+alpha = 0.1
+viscous_fraction = 0.5
+relaxation_time = 1e-4
+surface_correction = false
+[regions.block]
+shape = "box"
+min = [-0.006, -0.006, -0.004]
+max = [0.006, 0.006, 0.004]
+[regions.hole]
+shape = "cylinder"
+center = [0.0, 0.0, -0.004]
+axis = [0.0, 0.0, 0.008]
+radius = 0.002
+[regions.rock]
+shape = "difference"
+of = ["block", "hole"]
+[bodies.block]
+material = "shale"
+region = "rock"
+spacing = 0.001
+horizon = 3.0
+[[boreholes]]
+region = "hole"
+pressure = 0.5e6
+[in_situ_stress]
+sigma_v = -1.5e6
+sigma_H = -1.0e6
+sigma_h = -0.75e6
+start = "uniform_strain"
+tolerance = 1e-9
+solver = ")" + solver + R"("
+[solver]
+type = "explicit"
+end_time = 1e-6
+)";
+}
+
+// a 20 x 40 mm block of the tests' rock between platens, a 6 mm borehole at 1 MPa in its middle,
+// sigma_H = -10 MPa along y and sigma_h = -2 MPa along x
+std::string block_between_platens(const std::string& solver) {
+  return rift::test::plane_strain_rock() + R"([regions.block]
+shape = "box"
+min = [-0.01, -0.02]
+max = [0.01, 0.02]
+[regions.hole]
+shape = "cylinder"
+center = [0.0, 0.0]
+radius = 0.003
+[regions.rock]
+shape = "difference"
+of = ["block", "hole"]
+[bodies.block]
+material = "rock"
+region = "rock"
+spacing = 0.001
+horizon = 3.015
+[[boreholes]]
+region = "hole"
+pressure = 1e6
+[in_situ_stress]
+sigma_H = -10e6
+sigma_h = -2e6
+sigma_H_axis = "y"
+faces = "platens"
+tolerance = 1e-9
+solver = ")" + solver + R"("
+[solver]
+type = "dynamic_relaxation"
+)";
+}
+
+// The residual of relax's measure, from a fresh evaluation of the forces at the particles' positions:
+// free components less a free body's rigid part, a platen's net force, over the loads and reactions.
+template <int D>
+double fresh_residual(rift::run::Simulation<D>& sim) {
+  auto& m = sim.model;
+  rift::pd::HeldBreaking<D> held(m);
+  rift::pd::compute_forces<D>(m, sim.contact_ptr());
+  sim.loads.apply_body_forces(m, 0.0);
+  const std::size_t n = m.size();
+  const bool free_body = std::none_of(m.constrained.begin(), m.constrained.end(), [](std::uint8_t c) { return c != 0; });
+  auto total = [&](std::size_t i) {
+    rift::Vec<D> f;
+    for (int k = 0; k < D; ++k) f[k] = (m.force[i][k] + m.body_force[i][k]) * m.volume[i];
+    return f;
+  };
+  const rift::pd::DynamicRelaxation<D> dr(m);  // its bound, as the weight of the rigid part
+  const auto rigid = rift::pd::rigid_acceleration<D>(
+      m.position, [&](std::size_t i) { return dr.fictitious_density()[i] * m.volume[i]; }, total);
+  std::vector<std::uint8_t> on_platen(n, 0);
+  for (const auto& p : m.platens)
+    for (const auto i : p.particles) on_platen[i] |= std::uint8_t(1u << p.axis);
+  double squared = 0.0, load = 0.0, reaction = 0.0;
+  for (std::size_t i = 0; i < n; ++i)
+    for (int k = 0; k < D; ++k) {
+      const double b = m.body_force[i][k] * m.volume[i], f = m.force[i][k] * m.volume[i];
+      load += b * b;
+      if (m.constrained[i] >> k & 1) {
+        reaction += f * f;
+        continue;
+      }
+      if (on_platen[i] >> k & 1) continue;
+      const double r = total(i)[k] - (free_body ? dr.fictitious_density()[i] * m.volume[i] * rigid.at(m.position[i])[k] : 0.0);
+      squared += r * r;
+    }
+  for (const auto& p : m.platens) {
+    double net = 0.0;
+    for (const auto i : p.particles) net += total(i)[p.axis];
+    squared += net * net;
+  }
+  return std::sqrt(squared) / (std::sqrt(load) + std::sqrt(reaction));
+}
+
+template <int D, class Scene>
+void check_same_equilibrium(Scene scene, const char* name) {
+  std::vector<rift::Vec<D>> displacement[2];
+  int iterations[2] = {};
+  for (int solver = 0; solver < 2; ++solver) {
+    auto s = rift::scene::parse_string(scene(solver == 0 ? "conjugate_gradient" : "dynamic_relaxation"), name);
+    rift::run::Simulation<D> sim(s);
+    const auto r = sim.equilibrate_in_situ(s.in_situ);
+    ASSERT_TRUE(r.converged) << name << " solver " << solver << ": residual " << r.residual;
+    iterations[solver] = r.iterations + (solver == 1 ? 50 : 0);  // and dynamic relaxation's 50 power iterations
+    if (solver == 0) {
+      EXPECT_EQ(r.density_factor, 0.0) << "the conjugate gradients needed dynamic relaxation to finish";
+      EXPECT_LT(fresh_residual<D>(sim), 1e-9) << name;
+    }
+    for (std::size_t i = 0; i < sim.model.size(); ++i) displacement[solver].push_back(sim.model.displacement(i));
+  }
+  double largest = 0.0, difference = 0.0;
+  for (std::size_t i = 0; i < displacement[0].size(); ++i)
+    for (int k = 0; k < D; ++k) {
+      largest = std::max(largest, std::abs(displacement[1][i][k]));
+      difference = std::max(difference, std::abs(displacement[0][i][k] - displacement[1][i][k]));
+    }
+  EXPECT_GT(largest, 0.0);
+  EXPECT_LT(difference, 1e-6 * largest) << name;
+  EXPECT_LT(iterations[0], iterations[1]) << name;
+  std::printf("%s: %d force evaluations of conjugate gradients, %d of dynamic relaxation (with its power iterations); "
+              "displacements differ by %.2g of the largest\n",
+              name, iterations[0], iterations[1], difference / largest);
+}
+
+TEST(StaticEquilibrium, ConjugateGradientsFindDynamicRelaxationsEquilibriumOfAFreeBlockWithABorehole) {
+  check_same_equilibrium<3>(shale_block, "shale_block.toml");
+}
+
+TEST(StaticEquilibrium, ConjugateGradientsFindDynamicRelaxationsEquilibriumBetweenPlatens) {
+  check_same_equilibrium<2>(block_between_platens, "block_platens.toml");
+}
+
+}  // namespace
