@@ -115,6 +115,8 @@ const Case cases[] = {
     {"in-situ stress without sigma_h", "", "\n[in_situ_stress]\nsigma_H = -10e6\n", "in_situ_stress.sigma_h", "[in_situ_stress]"},
     {"in-situ sigma_H along z", "", "\n[in_situ_stress]\nsigma_H = -10e6\nsigma_h = -5e6\nsigma_H_axis = \"z\"\n",
      "in_situ_stress.sigma_H_axis", "sigma_H_axis"},
+    {"in-situ stage by an unknown solver", "", "\n[in_situ_stress]\nsigma_H = -10e6\nsigma_h = -5e6\nsolver = \"newton\"\n",
+     "in_situ_stress.solver", "solver = \"newton\""},
     {"injection without the fluid's bulk modulus", "", "\n[regions.well]\nshape = \"cylinder\"\ncenter = [0.005, 0.005]\nradius = 0.002\n[[boreholes]]\nregion = \"well\"\ninjection_rate = 1e-9\n",
      "boreholes[0].fluid_bulk_modulus", "[[boreholes]]"},
     {"injection with a pressure time function", "", "\n[regions.well]\nshape = \"cylinder\"\ncenter = [0.005, 0.005]\nradius = 0.002\n[[boreholes]]\nregion = \"well\"\ninjection_rate = 1e-9\nfluid_bulk_modulus = 2e9\ntime = { function = \"ramp\", end = 1.0 }\n",

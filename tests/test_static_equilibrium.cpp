@@ -6,14 +6,18 @@
 // projected out), and a 2D block with a borehole between rigid platens (a platen one unknown).
 #include <gtest/gtest.h>
 
+#include <Eigen/Dense>
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <string>
 #include <vector>
 
+#include "rift/pd/coarse_space.hpp"
 #include "rift/pd/forces.hpp"
 #include "rift/pd/held_breaking.hpp"
+#include "rift/pd/in_situ_strain.hpp"
 #include "rift/pd/rigid_motion.hpp"
 #include "rift/run/simulation.hpp"
 #include "rift/scene/parse.hpp"
@@ -175,12 +179,121 @@ void check_same_equilibrium(Scene scene, const char* name) {
               name, iterations[0], iterations[1], difference / largest);
 }
 
+// a 64 x 64 mm block of the tests' rock held by tractions, an 8 mm borehole at 2 MPa in its middle,
+// sigma_H = -10 MPa along x and sigma_h = -5 MPa: nine aggregates of 7.03 mm on each axis
+std::string large_free_block(const std::string& solver) {
+  return rift::test::plane_strain_rock() + R"([regions.block]
+shape = "box"
+min = [-0.032, -0.032]
+max = [0.032, 0.032]
+[regions.hole]
+shape = "cylinder"
+center = [0.0, 0.0]
+radius = 0.004
+[regions.rock]
+shape = "difference"
+of = ["block", "hole"]
+[bodies.block]
+material = "rock"
+region = "rock"
+spacing = 0.001
+horizon = 3.015
+[[boreholes]]
+region = "hole"
+pressure = 2e6
+[in_situ_stress]
+sigma_H = -10e6
+sigma_h = -5e6
+start = "uniform_strain"
+tolerance = 1e-9
+solver = ")" + solver + R"("
+[solver]
+type = "dynamic_relaxation"
+)";
+}
+
 TEST(StaticEquilibrium, ConjugateGradientsFindDynamicRelaxationsEquilibriumOfAFreeBlockWithABorehole) {
   check_same_equilibrium<3>(shale_block, "shale_block.toml");
 }
 
 TEST(StaticEquilibrium, ConjugateGradientsFindDynamicRelaxationsEquilibriumBetweenPlatens) {
   check_same_equilibrium<2>(block_between_platens, "block_platens.toml");
+}
+
+// With the coarse space of aggregates (pd/coarse_space.hpp) in play: the 64 mm block's equilibrium
+// is dynamic relaxation's, in fewer force evaluations (its probes of the coarse operator included).
+TEST(StaticEquilibrium, ConjugateGradientsWithTheCoarseSpaceFindTheSameEquilibrium) {
+  check_same_equilibrium<2>(large_free_block, "large_free_block.toml");
+}
+
+// The coarse operator that coarse_space.hpp assembles from 3^D coloured probes is the Galerkin
+// product P^T K P of the whole stiffness (up to its symmetrization and the 1e-10 of its largest
+// diagonal it adds): on an 18 x 18 LPS lattice at 1 mm at its in-situ strain (three aggregates of 7.03 mm on
+// each axis; LPS couples particles two horizons apart), K dense by central differences of the
+// forces, to 1e-9 of K_c's largest entry.
+TEST(StaticEquilibrium, CoarseOperatorFromColouredProbesIsTheGalerkinProduct) {
+  const std::string text = rift::test::plane_strain_rock() + R"([regions.block]
+shape = "box"
+min = [-0.0085, -0.0085]
+max = [0.0085, 0.0085]
+[bodies.block]
+material = "rock"
+region = "block"
+spacing = 0.001
+horizon = 3.015
+[in_situ_stress]
+sigma_H = -10e6
+sigma_h = -5e6
+[solver]
+type = "dynamic_relaxation"
+)";
+  auto s = rift::scene::parse_string(text, "coarse.toml");
+  rift::run::Simulation<2> sim(s);
+  auto& m = sim.model;
+  rift::pd::HeldBreaking<2> held_bonds(m);
+  rift::pd::apply_in_situ_strain<2>(m, s.in_situ);
+  const std::size_t n = m.size(), N = 2 * n;
+  ASSERT_EQ(n, 324u);
+  const auto start = m.position;
+  const double h = 1e-9;
+  Eigen::MatrixXd K(N, N);
+  for (std::size_t c = 0; c < N; ++c) {
+    std::vector<rift::Vec<2>> f[2];
+    for (int side = 0; side < 2; ++side) {
+      m.position = start;
+      m.position[c / 2][c % 2] += side == 0 ? h : -h;
+      rift::pd::compute_forces<2>(m, nullptr);
+      f[side] = m.force;
+    }
+    for (std::size_t r = 0; r < N; ++r)
+      K(static_cast<Eigen::Index>(r), static_cast<Eigen::Index>(c)) = -m.volume[r / 2] * (f[0][r / 2][r % 2] - f[1][r / 2][r % 2]) / (2 * h);
+  }
+  m.position = start;
+  rift::pd::CoarseSpace<2> coarse;
+  const double edge = 2.0 * m.bodies[0].constants.horizon + m.bodies[0].constants.spacing;
+  ASSERT_TRUE(coarse.make_aggregates(m.reference_position, edge));
+  ASSERT_EQ(coarse.aggregates(), 9u);
+  Eigen::VectorXd response(static_cast<Eigen::Index>(N));
+  const bool factored = coarse.assemble(n, [](std::size_t, int) { return false; }, [&](auto direction) {
+    Eigen::VectorXd u(static_cast<Eigen::Index>(N));
+    for (std::size_t i = 0; i < n; ++i)
+      for (int k = 0; k < 2; ++k) u[static_cast<Eigen::Index>(2 * i + static_cast<std::size_t>(k))] = direction(i)[k];
+    response = K * u;
+    return [&](std::size_t i) {
+      return rift::Vec<2>{response[static_cast<Eigen::Index>(2 * i)], response[static_cast<Eigen::Index>(2 * i + 1)]};
+    };
+  });
+  ASSERT_TRUE(factored);
+  const std::size_t M = 2 * coarse.aggregates();
+  Eigen::MatrixXd P = Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(N), static_cast<Eigen::Index>(M));
+  for (std::size_t i = 0; i < n; ++i)
+    for (int k = 0; k < 2; ++k)
+      P(static_cast<Eigen::Index>(2 * i + static_cast<std::size_t>(k)), static_cast<Eigen::Index>(2 * coarse.aggregate_of(i) + static_cast<std::size_t>(k))) = 1.0;
+  const Eigen::MatrixXd galerkin = P.transpose() * K * P;
+  const Eigen::MatrixXd expected = 0.5 * (galerkin + galerkin.transpose());
+  const Eigen::MatrixXd assembled = Eigen::MatrixXd(coarse.matrix());
+  const double largest = expected.cwiseAbs().maxCoeff();
+  EXPECT_LT((assembled - expected).cwiseAbs().maxCoeff(), 1e-9 * largest);
 }
 
 }  // namespace

@@ -82,14 +82,17 @@ inline void make_bond_runs(const Bonds& b, BodyInfo& body) {
 /// One read of the states per pass, a small part of a pass that reads every bond's neighbour.
 struct RowStates {
   const std::uint8_t* whole = nullptr;
-  const std::uint64_t* intact = nullptr;  // two words per particle; null: the body has more offsets
+  // offsets 0-63 of particle i at intact[i], 64-127 at intact[stride + i] (a run's rows one word
+  // after the next); null: the body has more offsets
+  const std::uint64_t* intact = nullptr;
+  std::size_t stride = 0;
   std::size_t first_family = 0;
 };
 
-/// Bit t of bits (two words) set where state[t] is bond_intact, t < count <= 128. The states are 0,
-/// 1 or 2, so bit 0 of a state says intact; eight states at a time, their bits 0 gathered into one
-/// byte by a multiply (the eight partial products land on distinct bits of the top byte), without
-/// the branch per bond that a row's random breaks mispredict.
+/// Bit t of bits (bits[0]: t < 64, bits[1]: the rest) set where state[t] is bond_intact, t < count
+/// <= 128. The states are 0, 1 or 2, so bit 0 of a state says intact; eight states at a time, their
+/// bits 0 gathered into one byte by a multiply (the eight partial products land on distinct bits of
+/// the top byte), without the branch per bond that a row's random breaks mispredict.
 inline void intact_bits(const std::uint8_t* state, std::size_t count, std::uint64_t* bits) {
   static_assert(bond_intact == 1 && bond_broken == 0 && bond_interface_failed == 2);
   constexpr std::uint64_t low_bits = 0x0101010101010101ull, gather = 0x0102040810204080ull;
@@ -107,7 +110,8 @@ inline RowStates whole_rows(const Bonds& b, const BodyInfo& body) {
   static thread_local std::vector<std::uint64_t> intact;
   whole.resize(b.offset.size());
   const bool bits = body.family_count <= 128;
-  intact.resize(bits ? 2 * b.offset.size() : 0);
+  const std::size_t stride = b.offset.size();
+  intact.resize(bits ? 2 * stride : 0);
   std::uint8_t* const out = whole.data();
   std::uint64_t* const words = intact.data();
   const std::int64_t* const offset = b.offset.data();
@@ -124,7 +128,7 @@ inline RowStates whole_rows(const Bonds& b, const BodyInfo& body) {
     if (static_cast<std::size_t>(offset[i + 1] - offset[i]) == family_count) {
       // a whole family: its rows' families ascend, so the bond's place is its offset
       intact_bits(state + offset[i], family_count, word);
-      words[2 * i] = word[0], words[2 * i + 1] = word[1];
+      words[i] = word[0], words[stride + i] = word[1];
       continue;
     }
     for (auto k = offset[i]; k < offset[i + 1]; ++k)
@@ -132,9 +136,9 @@ inline RowStates whole_rows(const Bonds& b, const BodyInfo& body) {
         const std::size_t f = family[k] - first_family;
         word[f >> 6] |= std::uint64_t{1} << (f & 63);
       }
-    words[2 * i] = word[0], words[2 * i + 1] = word[1];
+    words[i] = word[0], words[stride + i] = word[1];
   }
-  return {out, bits ? words : nullptr, first_family};
+  return {out, bits ? words : nullptr, stride, first_family};
 }
 
 /// Whether the rows [i, i + length) are whole (whole_rows).
@@ -161,9 +165,11 @@ inline bool mask_run(const Bonds& b, const BondRun& run, const RowStates& rows, 
   const std::uint8_t* const whole = rows.whole + run.i;
   if (whole_run(whole, run.length)) return false;
   if (rows.intact) {
-    const std::size_t f = run.family - rows.first_family, word = f >> 6, bit = f & 63;
-    const std::uint64_t* const words = rows.intact + 2 * static_cast<std::size_t>(run.i) + word;
-    for (std::size_t t = 0; t < run.length; ++t) alive[t] = whole[t] || (words[2 * t] >> bit & 1) ? 1.0 : 0.0;
+    const std::size_t f = run.family - rows.first_family, bit = f & 63;
+    const std::uint64_t* __restrict const words = rows.intact + (f >> 6) * rows.stride + static_cast<std::size_t>(run.i);
+    // without a branch (vector code): a whole row has every bit
+    for (std::size_t t = 0; t < run.length; ++t)
+      alive[t] = static_cast<double>(static_cast<std::int32_t>((static_cast<std::uint32_t>(words[t] >> bit) | whole[t]) & 1u));
     return true;
   }
   for (std::size_t t = 0; t < run.length; ++t) alive[t] = b.intact[static_cast<std::size_t>(run_bond(b, run, t))] == bond_intact ? 1.0 : 0.0;

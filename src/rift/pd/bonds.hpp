@@ -225,8 +225,8 @@ struct FluidNetwork {
   std::vector<std::uint8_t> load_changed_mark;  // per particle: in load_changed
   bool load_from_scratch = true;
   std::vector<std::vector<double>> network_load;         // per source: the force density on each particle per unit pressure (n x d, 1/m); empty: none (network_load.hpp)
-  std::vector<std::vector<std::int32_t>> end_slot;       // per source, per particle: its place in network_ends, -1: not an end
-  std::vector<std::vector<NetworkEnd>> network_ends;     // per source: the network's ends, as network_load was last made
+  std::vector<std::vector<std::uint8_t>> is_end;         // per source, per particle: it has a bond in the network
+  std::vector<std::vector<NetworkEnd>> network_ends;     // per source, per particle: an end's NetworkEnd as network_load was last made
   // per pressure source (the scene's cracks, then its boreholes)
   std::vector<std::uint8_t> dry;         // a crack without pressure of its own: its cut bonds carry a fluid that reaches them
   std::vector<std::uint8_t> sealed;      // a borehole whose wall has not broken down yet: the dry pre-cracks stay shut to its fluid

@@ -126,7 +126,7 @@ inline bool same_end(const NetworkEnd& a, const NetworkEnd& z) {
 ///   of pmb.hpp and lps.hpp, summed as the difference itself: a network bond adds -f^s (its pair
 ///   force in F^s); an intact bond adds the change of its pair force, which is linear in the
 ///   changes of its ends' dilatation and P (lps.hpp force_state, pressure_factor), nonzero only
-///   where an end has network bonds (an end: end_slot[i] >= 0, its NetworkEnd in ends); every other
+///   where an end has network bonds (an end: is_end[i], its NetworkEnd ends[i]); every other
 ///   bond adds nothing and is skipped. So a particle's sum reads its network bonds and its bonds to
 ///   ends alone, and F and F^s never cancel each other's rounding.
 /// - With `before` (their NetworkEnd as g was last made; empty: g made from scratch, nothing to
@@ -142,15 +142,12 @@ inline bool same_end(const NetworkEnd& a, const NetworkEnd& z) {
 /// the network load each).
 template <int D, class InNetwork>
 void changed_rows_pass(const Model<D>& m, const std::vector<std::size_t>& changed, const std::vector<NetworkEnd>& before,
-                                      const std::vector<std::int32_t>& end_slot, const std::vector<NetworkEnd>& ends, const FamilyTerms& terms,
+                                      const std::vector<std::uint8_t>& is_end, const std::vector<NetworkEnd>& ends, const FamilyTerms& terms,
                                       const std::vector<std::uint8_t>& in_changed, InNetwork in_network, std::vector<double>& g) {
   const Bonds& b = m.bonds;
   const std::size_t n = m.size(), count = changed.size();
   if (count == 0) return;
-  auto now = [&](std::size_t q) {
-    const std::int32_t slot = end_slot[changed[q]];
-    return slot >= 0 ? ends[static_cast<std::size_t>(slot)] : NetworkEnd{};
-  };
+  auto now = [&](std::size_t q) { return is_end[changed[q]] ? ends[changed[q]] : NetworkEnd{}; };
   // the entries whose NetworkEnd changed, and how far a bond of theirs reaches in particle numbers
   // (rows are sorted by neighbour)
   std::vector<std::uint8_t> moved(count, 0);
@@ -186,7 +183,7 @@ void changed_rows_pass(const Model<D>& m, const std::vector<std::size_t>& change
         const auto j = static_cast<std::size_t>(b.neighbor[k]);
         const bool intact = b.intact[static_cast<std::size_t>(k)] == bond_intact;
         const bool corrects = correct && j >= lo && j < hi && !in_changed[j];
-        const bool sums = own && (intact ? !pmb && (end_slot[x] >= 0 || end_slot[j] >= 0) : true);
+        const bool sums = own && (intact ? !pmb && (is_end[x] || is_end[j]) : true);
         if (!corrects && !sums) continue;
         if (!intact && !in_network(x, k)) continue;
         const std::size_t a = b.family[static_cast<std::size_t>(k)];
@@ -198,8 +195,8 @@ void changed_rows_pass(const Model<D>& m, const std::vector<std::size_t>& change
             pair = -pmb_bond_force(c.micromodulus, omega, 1.0, b.correction(x, k), b.mirror_correction(j, k));
           } else {
             auto t = [&](std::size_t e, const BondFactors& f) {
-              if (end_slot[e] < 0) return 0.0;
-              return end_force_state(ends[static_cast<std::size_t>(end_slot[e])], intact, c, f, omega, xi, terms.length_over_d[a]);
+              if (!is_end[e]) return 0.0;
+              return end_force_state(ends[e], intact, c, f, omega, xi, terms.length_over_d[a]);
             };
             pair = -(t(x, b.factors_of(x, k)) + t(j, b.mirror_factors_of(j, k)));
           }
@@ -245,21 +242,23 @@ void update_network_load(Model<D>& m) {
   const std::size_t n = m.size();
   const std::size_t sources = f.dry.size();
   const detail::FamilyTerms terms = detail::family_terms<D>(m);
-  f.network_load.resize(sources), f.end_slot.resize(sources), f.network_ends.resize(sources);
+  f.network_load.resize(sources), f.is_end.resize(sources), f.network_ends.resize(sources);
   for (std::size_t s = 0; s < sources; ++s) {
     auto& g = f.network_load[s];
-    auto& end_slot = f.end_slot[s];
+    auto& is_end = f.is_end[s];
     auto& ends = f.network_ends[s];
     if (s >= f.has_network.size() || !f.has_network[s]) {
-      g.clear(), end_slot.clear(), ends.clear();
+      g.clear(), is_end.clear(), ends.clear();
       continue;
     }
     const bool all = scratch || g.empty();  // g made from scratch: every particle evaluated
-    if (all) g.assign(n * D, 0.0), end_slot.assign(n, -1), ends.clear();
+    // the ends' NetworkEnd by particle: a row's neighbours' are then near each other in memory (kept
+    // in a list in the order the ends came, their reads missed the cache: a third of the pass)
+    if (all) g.assign(n * D, 0.0), is_end.assign(n, 0), ends.assign(n, NetworkEnd{});
     const int source = static_cast<int>(s);
     auto in_network = [&](std::size_t i, std::int64_t k) { return network_of_bond(f, b, i, k) == source; };
     // the ends whose bonds changed state or joined or left the network (both ends of each are in
-    // load_changed): their NetworkEnd made again, a place given to the new ones
+    // load_changed): their NetworkEnd made again
     std::vector<std::size_t> changed;
     std::vector<NetworkEnd> before;  // their NetworkEnd as g was last made (zero: not an end)
     if (all) {
@@ -270,34 +269,19 @@ void update_network_load(Model<D>& m) {
       std::sort(changed.begin(), changed.end());
       before.resize(changed.size());
       for (std::size_t q = 0; q < changed.size(); ++q)
-        if (end_slot[changed[q]] >= 0) before[q] = ends[static_cast<std::size_t>(end_slot[changed[q]])];
+        if (is_end[changed[q]]) before[q] = ends[changed[q]];
     }
-    // in one pass each: whether it is an end, and its NetworkEnd (kept for the ends alone)
-    std::vector<std::pair<std::size_t, NetworkEnd>> made;  // (place in changed, NetworkEnd) of the ends
-#pragma omp parallel if(rift::parallel::worth_a_team(changed.size()))
-    {
-      std::vector<std::pair<std::size_t, NetworkEnd>> mine;
-#pragma omp for schedule(static) nowait
-      for (std::size_t q = 0; q < changed.size(); ++q) {
-        bool is_end = false;
-        const NetworkEnd z = detail::network_end<D>(m, changed[q], in_network, is_end);
-        if (is_end) mine.emplace_back(q, z);
-      }
-#pragma omp critical(rift_network_ends)
-      made.insert(made.end(), mine.begin(), mine.end());
-    }
-    std::sort(made.begin(), made.end(), [](const auto& x, const auto& y) { return x.first < y.first; });
-    for (std::size_t q = 0, e = 0; q < changed.size(); ++q) {
+    // in one pass each: whether it is an end, and its NetworkEnd
+#pragma omp parallel for if(rift::parallel::worth_a_team(changed.size())) schedule(static)
+    for (std::size_t q = 0; q < changed.size(); ++q) {
       const std::size_t i = changed[q];
-      if (e == made.size() || made[e].first != q) {
-        end_slot[i] = -1;
-        continue;
-      }
-      if (end_slot[i] < 0) end_slot[i] = static_cast<std::int32_t>(ends.size()), ends.emplace_back();
-      ends[static_cast<std::size_t>(end_slot[i])] = made[e++].second;
+      bool end = false;
+      const NetworkEnd z = detail::network_end<D>(m, i, in_network, end);
+      is_end[i] = end ? 1 : 0;
+      ends[i] = end ? z : NetworkEnd{};
     }
     // g of those made again; their neighbours' changed by the changes of their ends
-    detail::changed_rows_pass<D>(m, changed, before, end_slot, ends, terms, f.load_changed_mark, in_network, g);
+    detail::changed_rows_pass<D>(m, changed, before, is_end, ends, terms, f.load_changed_mark, in_network, g);
   }
   f.load_from_scratch = false;
   for (const std::size_t i : f.load_changed) f.load_changed_mark[i] = 0;

@@ -8,13 +8,13 @@
 
 #include "rift/parallel/ordered_sum.hpp"
 #include "rift/parallel/team.hpp"
+#include "rift/pd/coarse_space.hpp"
 #include "rift/pd/effective_stretch.hpp"
 #include "rift/pd/forces.hpp"
 #include "rift/pd/platens.hpp"
 #include "rift/pd/rigid_motion.hpp"
 
 namespace rift::pd {
-
 
 template <int D>
 RelaxationResult solve_static_equilibrium(Model<D>& m, const load::Boundaries<D>& loads, Contact<D>* contact, double t,
@@ -34,7 +34,7 @@ RelaxationResult solve_static_equilibrium(Model<D>& m, const load::Boundaries<D>
   const std::vector<std::uint8_t> on_platen = platen_components(m);
   std::array<int, D> no_platen;
   no_platen.fill(-1);
-  std::vector<std::array<int, D>> platen_of(n, no_platen);  // the plate of each component (an edge's two)
+  std::vector<std::array<int, D>> platen_of(m.platens.empty() ? 0 : n, no_platen);  // each component's plate (an edge's two)
   std::vector<double> platen_weight(m.platens.size(), 0.0);
   for (std::size_t a = 0; a < m.platens.size(); ++a)
     for (const auto i : m.platens[a].particles)
@@ -74,10 +74,14 @@ RelaxationResult solve_static_equilibrium(Model<D>& m, const load::Boundaries<D>
     });
     reference = std::sqrt(sums[0]) + std::sqrt(sums[1]);
   };
-  // the preconditioned residual z = P M^-1 P^T r (M the diagonal, a platen one unknown, P the
-  // projection off the rigid motions) from the rigid part of r and the platens' net forces
-  RigidAcceleration<D> rigid;
+  // The preconditioned residual z = P (M^-1 + P_c K_c^-1 P_c^T) P^T r: M the diagonal (a platen one
+  // unknown), P the projection off a free body's rigid motions, P_c the coarse space of aggregates
+  // (coarse_space.hpp, where the body is large enough and has no platen). From the rigid part a of
+  // r, the platens' net forces, the coarse solution u_c of P^T r and the rigid part b of u_c:
+  // z = r / w - a + u_c - b.
+  RigidAcceleration<D> rigid, coarse_rigid;
   std::vector<double> platen_force(m.platens.size());
+  CoarseSpace<D> coarse;
   auto prepare = [&] {
     if (free_body) rigid = rigid_acceleration<D>(base, weight, [&](std::size_t i) { return r[i]; });
     for (std::size_t a = 0; a < m.platens.size(); ++a) {
@@ -85,17 +89,31 @@ RelaxationResult solve_static_equilibrium(Model<D>& m, const load::Boundaries<D>
       for (const auto i : m.platens[a].particles) net += r[i][m.platens[a].axis];
       platen_force[a] = net;
     }
+    if (!coarse.ready()) return;
+    coarse.solve(n, [&](std::size_t i) {
+      const Vec<D> rigid_i = free_body ? rigid.at(base[i]) : Vec<D>{};
+      Vec<D> y{};
+      for (int k = 0; k < D; ++k)
+        if (!held(i, k)) y[k] = r[i][k] - weight(i) * rigid_i[k];
+      return y;
+    });
+    if (free_body) coarse_rigid = rigid_acceleration<D>(base, weight, [&](std::size_t i) { return weight(i) * coarse.at(i); });
   };
   auto preconditioned = [&](std::size_t i) {
     Vec<D> z{};
     const Vec<D> rigid_i = free_body ? rigid.at(base[i]) : Vec<D>{};
+    Vec<D> coarse_i{};
+    if (coarse.ready()) {
+      coarse_i = coarse.at(i);
+      if (free_body) coarse_i = coarse_i - coarse_rigid.at(base[i]);
+    }
     for (int k = 0; k < D; ++k) {
       if (held(i, k)) continue;
       if (moves_with_platen(i, k)) {
         const auto a = static_cast<std::size_t>(platen_of[i][k]);
         z[k] = platen_weight[a] > 0.0 ? platen_force[a] / platen_weight[a] : 0.0;
       } else {
-        z[k] = r[i][k] / weight(i) - rigid_i[k];
+        z[k] = r[i][k] / weight(i) - rigid_i[k] + coarse_i[k];
       }
     }
     return z;
@@ -121,6 +139,19 @@ RelaxationResult solve_static_equilibrium(Model<D>& m, const load::Boundaries<D>
   };
 
   linearize();
+  // the coarse operator, probed at the first base: for each colour of aggregates and axis, the
+  // forces' change as that colour's aggregates move along the axis by a millionth of the shortest bond
+  double reach = 0.0, spacing = std::numeric_limits<double>::max();
+  for (const auto& body : m.bodies) reach = std::max(reach, body.constants.horizon), spacing = std::min(spacing, body.constants.spacing);
+  if (m.platens.empty() && coarse.make_aggregates(m.reference_position, 2.0 * reach + spacing)) {
+    const double probe = 1e-6 * shortest;
+    coarse.assemble(n, held, [&](auto direction) {
+#pragma omp parallel for if(rift::parallel::worth_a_team(n)) schedule(static)
+      for (std::size_t i = 0; i < n; ++i) m.position[i] = base[i] + probe * direction(i);
+      evaluate(false);
+      return [&](std::size_t i) { return (-1.0 / probe) * (force(i) - at_base[i]); };
+    });
+  }
   double rz = 0.0, previous_rz = 0.0;
   result.residual = measure(rz);
   // The linear solve at a base goes to a hundredth of the base's residual (Eisenstat and Walker

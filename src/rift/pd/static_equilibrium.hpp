@@ -3,14 +3,14 @@
 // times a direction p is the change of the forces over a probe along p, K p = -(F(x + e p) -
 // F(x)) / e, at a fixed base point x. The forces of a held body are linear in the displacements up
 // to the geometric terms (of the order of the strain, 1e-4 here), so the iterations are Newton's:
-// once the linear residual is under the tolerance, the forces are evaluated at the iterate and, if
-// that residual is not, the conjugate gradients start again from there. The preconditioner is the
-// dynamic relaxation's diagonal (Kilic and Madenci 2010, eq. 10, the row sum of the stiffness), a
-// platen (platens.hpp) is one unknown with its particles' summed diagonal, and a free body's rigid
-// motions are projected out of the preconditioned residual (rigid_motion.hpp; a deflated conjugate
-// gradient). Its iterations go as the square root of K's condition number, as dynamic relaxation's
-// at its best damping, with a smaller constant and no damping to estimate: the thesis example's
-// in-situ stage took 1,957 relaxation iterations at full size.
+// once the linear residual is under a hundredth of the base's, the forces are evaluated at the
+// iterate, which becomes the next base. The preconditioner is the dynamic relaxation's diagonal
+// (Kilic and Madenci 2010, eq. 10, the row sum of the stiffness), a platen (platens.hpp) is one
+// unknown with its particles' summed diagonal, and a free body's rigid motions are projected out of
+// the preconditioned residual (rigid_motion.hpp; a deflated conjugate gradient). The iterations go
+// as the square root of K's condition number, as dynamic relaxation's at its best damping, with a
+// smaller constant and no damping or fictitious density to estimate: the thesis example at 1 mm
+// took 510 force evaluations against dynamic relaxation's 978 and its 50 power iterations.
 #pragma once
 #include <vector>
 
@@ -24,9 +24,10 @@ namespace rift::pd {
 /// Moves the particles to the equilibrium of the internal forces and the loads at time t, the
 /// residual ||F + b|| measured as dynamic relaxation measures it (relax). diagonal[i]: the
 /// preconditioner per unit volume (DynamicRelaxation::fictitious_density). Call with the bonds
-/// held (HeldBreaking). Returns converged = false where the iterations run out or K p is not
-/// positive along a direction (a contact or a fluid that switched on), the particles where the
-/// iterations stopped: relax on from there.
+/// held (HeldBreaking). Returns converged = false where the iterations run out, a linear solve
+/// takes far longer than the lattice's size suggests, a Newton step does not halve the residual, or
+/// K p is not positive along a direction (forces that switch: a contact, an interface's friction),
+/// with the particles at the last iterate whose forces were evaluated.
 template <int D>
 RelaxationResult solve_static_equilibrium(Model<D>& m, const load::Boundaries<D>& loads, Contact<D>* contact, double t,
                                           const std::vector<double>& diagonal, int max_iterations, double tolerance);
