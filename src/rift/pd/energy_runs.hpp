@@ -99,6 +99,7 @@ void strain_energy_densities(const Model<D>& m, const BodyInfo& body, double* w)
     const FamilyOffset& family = b.families[run.family];
     alignas(64) double alive[max_run_length], correction_a[max_run_length], correction_b[max_run_length];
     const bool masked = mask_run(b, run, rows, alive);
+    if (masked && !any_set(alive, length)) return;  // every bond of the run broken: nothing to add
     if constexpr (Corrected)
       for (std::size_t t = 0; t < length; ++t) {
         correction_a[t] = b.factors[static_cast<std::size_t>(b.factor_row[i + t] + run.family)].correction;

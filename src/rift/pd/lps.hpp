@@ -132,6 +132,7 @@ void dilatation_runs(Model<D>& m, const BodyInfo& body, double* coupling, double
     alignas(64) double alive[max_run_length], weight_a[max_run_length], weight_b[max_run_length], correction_a[max_run_length],
         correction_b[max_run_length], flagged[max_run_length];
     const bool masked = mask_run(b, run, rows, alive);
+    if (masked && !any_set(alive, length)) return;  // every bond of the run broken: nothing to add
     if constexpr (Corrected)
       for (std::size_t t = 0; t < length; ++t) {
         const BondFactors& own = v.factors[v.factor_row[i + t] + run.family];
@@ -370,6 +371,7 @@ void state_based_forces(Model<D>& m, const BodyInfo& body, double history_dt) {
     alignas(64) double alive[max_run_length], weight_a[max_run_length], weight_b[max_run_length], correction_a[max_run_length],
         correction_b[max_run_length];
     const bool masked = mask_run(b, run, rows, alive);
+    if (masked && !any_set(alive, length)) return;  // every bond of the run broken: nothing to add
     if constexpr (Corrected)
       for (std::size_t t = 0; t < length; ++t) {
         const BondFactors& own = b.factors[static_cast<std::size_t>(b.factor_row[i + t] + run.family)];

@@ -172,6 +172,7 @@ void pmb_forces(Model<D>& m, const BodyInfo& body) {
     alignas(64) double alive[max_run_length], factor[max_run_length], flagged[max_run_length];
     // the bonds' states (in their lower ends' rows) only where a row is not whole (bond_runs.hpp)
     const bool masked = mask_run(b, run, rows, alive);
+    if (masked && !any_set(alive, length)) return;  // every bond of the run broken: nothing to add
     if constexpr (Corrected)
       for (std::size_t t = 0; t < length; ++t)
         factor[t] = 0.5f * (v.factors[v.factor_row[i + t] + run.family].correction +
