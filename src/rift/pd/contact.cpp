@@ -122,10 +122,14 @@ void Contact<D>::look_at_family_rows(const Model<D>& m) {
     for (int q = 0; q < D; ++q) family_looked_at_[i][q] = static_cast<float>(u[q]);
     // bonds join particles of one body
     const double reach = distance_[m.body[i]] + family_skin_, reach2 = reach * reach;
-    std::uint8_t near = 0;
-    for (auto k = b.offset[i]; k < b.offset[i + 1]; ++k) {
+    NearBonds near;
+    const auto length = b.offset[i + 1] - b.offset[i];
+    if (length > 255) near.count = NearBonds::whole_row;
+    for (auto k = b.offset[i]; k < b.offset[i + 1] && near.count != NearBonds::whole_row; ++k) {
       const Vec<D> eta = m.position[static_cast<std::size_t>(b.neighbor[k])] - m.position[i];
-      near |= !(dot<D>(eta, eta) >= reach2);  // a NaN position counts as near
+      if (dot<D>(eta, eta) >= reach2) continue;  // a NaN position counts as near
+      if (near.count == near.place.size()) near.count = NearBonds::whole_row;
+      else near.place[near.count++] = static_cast<std::uint8_t>(k - b.offset[i]);
     }
     family_near_[i] = near;
   }
@@ -152,7 +156,7 @@ void Contact<D>::add_forces(Model<D>& m) {
   // looked at again before a particle has moved s_f / 2: 0.45 leaves room for the float
   // displacements' rounding (a relative 6e-8 of displacements far below a spacing)
   if (family_skin_ > 0.0 && (!family_rows || !(family_moved2 <= 0.45 * 0.45 * family_skin_ * family_skin_))) look_at_family_rows(m);
-  const std::uint8_t* const near = family_skin_ > 0.0 ? family_near_.data() : nullptr;
+  const NearBonds* const near = family_skin_ > 0.0 ? family_near_.data() : nullptr;
   const Bonds& b = m.bonds;
 #pragma omp parallel for if(rift::parallel::worth_a_team(n)) schedule(static)
   for (std::size_t i = 0; i < n; ++i) {
@@ -169,18 +173,26 @@ void Contact<D>::add_forces(Model<D>& m) {
       for (int q = 0; q < D; ++q) f[q] += scalar * eta[q];
       any = true;
     };
-    // the broken bonds of i's family and the listed pairs, merged in the order of j (rows of both
-    // are sorted by neighbour); a failed interface bond has its own contact (interface_contact.hpp)
+    // the broken bonds of i's family that may touch and the listed pairs, merged in the order of j
+    // (rows of both are sorted by neighbour); a failed interface bond has its own contact
+    // (interface_contact.hpp)
     auto p = offset_[i];
     const auto listed_end = offset_[i + 1];
-    const std::uint8_t* const row = b.intact.data() + b.offset[i];
-    const auto length = static_cast<std::size_t>(b.offset[i + 1] - b.offset[i]);
-    static_assert(bond_broken == 0);  // found by memchr: most rows have none
-    for (auto at = near && !near[i] ? nullptr : static_cast<const std::uint8_t*>(std::memchr(row, 0, length)); at;
-         at = static_cast<const std::uint8_t*>(std::memchr(at + 1, 0, length - static_cast<std::size_t>(at + 1 - row)))) {
-      const auto j = b.neighbor[static_cast<std::size_t>(b.offset[i] + (at - row))];
+    auto family_pair = [&](std::int64_t k) {
+      if (b.intact[static_cast<std::size_t>(k)] != bond_broken) return;
+      const auto j = b.neighbor[static_cast<std::size_t>(k)];
       for (; p < listed_end && pairs_[static_cast<std::size_t>(p)] < j; ++p) pair(static_cast<std::size_t>(pairs_[static_cast<std::size_t>(p)]));
       pair(static_cast<std::size_t>(j));
+    };
+    if (near && near[i].count != NearBonds::whole_row) {
+      for (std::uint8_t q = 0; q < near[i].count; ++q) family_pair(b.offset[i] + near[i].place[q]);
+    } else {
+      const std::uint8_t* const row = b.intact.data() + b.offset[i];
+      const auto length = static_cast<std::size_t>(b.offset[i + 1] - b.offset[i]);
+      static_assert(bond_broken == 0);  // found by memchr: most rows have none
+      for (auto at = static_cast<const std::uint8_t*>(std::memchr(row, 0, length)); at;
+           at = static_cast<const std::uint8_t*>(std::memchr(at + 1, 0, length - static_cast<std::size_t>(at + 1 - row))))
+        family_pair(b.offset[i] + (at - row));
     }
     for (; p < listed_end; ++p) pair(static_cast<std::size_t>(pairs_[static_cast<std::size_t>(p)]));
     if (any)

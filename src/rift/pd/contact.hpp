@@ -8,11 +8,13 @@
 // rebuilt when a particle has moved half the skin: on a lattice that list holds the pairs across
 // the cuts alone, not the 18 nearest neighbours of every particle (at the thesis-size example it
 // was 80 million pairs and its rebuild a serial sort of 4 million particles).
-// The broken bonds are read only in the rows that may touch: those with a bond of any state
-// shorter than d + s_f when last looked at, s_f a skin under the gap between d and the shortest
-// bond, looked at again once a particle has moved s_f / 2 (the same Verlet argument; Allen and
-// Tildesley, Computer Simulation of Liquids, section 5.3). A broken bond is stretched, so around a
-// crack hardly a row is read: reading every broken bond was a tenth of a step at a third broken.
+// The broken bonds are read only where they may touch: the bonds of any state shorter than d + s_f
+// when last looked at (up to seven a row, by their places; a row with more is read whole), s_f a
+// skin under the gap between d and the shortest bond, looked at again once a particle has moved
+// s_f / 2 (the same Verlet argument; Allen and Tildesley, Computer Simulation of Liquids, section
+// 5.3). A broken bond is stretched, so around a crack hardly a row is read: reading every broken
+// bond was a tenth of a step at a third broken, and reading every broken bond of a row with one
+// near was a tenth of a step once the thesis example's block had shattered.
 #pragma once
 #include <array>
 #include <cstdint>
@@ -45,7 +47,14 @@ class Contact {
   std::vector<std::int32_t> pairs_;  // per particle, ascending: the pairs within reach that no family holds
   double family_skin_ = 0.0;  // s_f; 0: every row's broken bonds are read
   std::vector<std::array<float, D>> family_looked_at_;  // the displacements when the rows were looked at
-  std::vector<std::uint8_t> family_near_;  // per particle: a bond shorter than d + s_f then
+  // per particle, the bonds shorter than d + s_f then: `count` of them at `place` in the row, or
+  // count = whole_row: more than the places hold (or a row too long for them), every broken bond read
+  struct NearBonds {
+    static constexpr std::uint8_t whole_row = 255;
+    std::uint8_t count = 0;
+    std::array<std::uint8_t, 7> place{};
+  };
+  std::vector<NearBonds> family_near_;
 };
 
 }  // namespace rift::pd
