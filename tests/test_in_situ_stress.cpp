@@ -14,6 +14,7 @@
 #include "rift/pd/stress.hpp"
 #include "rift/run/simulation.hpp"
 #include "rift/scene/parse.hpp"
+#include "dense_stiffness.hpp"
 #include "rock_scene.hpp"
 
 namespace {
@@ -179,19 +180,7 @@ void check_measured_density(const std::string& text) {
   std::vector<double> bound(n);
   for (std::size_t i = 0; i < n; ++i) bound[i] = dr.fictitious_density()[i] / rift::pd::row_sum_factor;
   const auto start = m.position;
-  const double h = 1e-9;  // a millionth of the spacing
-  Eigen::MatrixXd K(N, N);
-  for (std::size_t c = 0; c < N; ++c) {
-    std::vector<rift::Vec<D>> f[2];
-    for (int side = 0; side < 2; ++side) {
-      m.position = start;
-      m.position[c / D][c % D] += side == 0 ? h : -h;
-      rift::pd::compute_forces<D>(m, nullptr);
-      f[side] = m.force;
-    }
-    for (std::size_t r = 0; r < N; ++r) K(static_cast<Eigen::Index>(r), static_cast<Eigen::Index>(c)) = -m.volume[r / D] * (f[0][r / D][r % D] - f[1][r / D][r % D]) / (2 * h);
-  }
-  m.position = start;
+  const Eigen::MatrixXd K = rift::test::dense_stiffness<D>(m, 1e-9);  // a millionth of the spacing
   const double asymmetry = (K - K.transpose()).cwiseAbs().maxCoeff() / K.cwiseAbs().maxCoeff();
   EXPECT_LT(asymmetry, 1e-5);  // a hyperelastic model's stiffness is symmetric
   const Eigen::MatrixXd A = 0.5 * (K + K.transpose());

@@ -21,6 +21,7 @@
 #include "rift/pd/rigid_motion.hpp"
 #include "rift/run/simulation.hpp"
 #include "rift/scene/parse.hpp"
+#include "dense_stiffness.hpp"
 #include "rock_scene.hpp"
 
 namespace {
@@ -73,17 +74,15 @@ end_time = 1e-6
 )";
 }
 
-// a 20 x 40 mm block of the tests' rock between platens, a 6 mm borehole at 1 MPa in its middle,
-// sigma_H = -10 MPa along y and sigma_h = -2 MPa along x
-std::string block_between_platens(const std::string& solver) {
-  return rift::test::plane_strain_rock() + R"([regions.block]
-shape = "box"
-min = [-0.01, -0.02]
-max = [0.01, 0.02]
-[regions.hole]
-shape = "cylinder"
-center = [0.0, 0.0]
-radius = 0.003
+// A plane strain block of the tests' rock, 2 half_x by 2 half_y, with a borehole of `radius` at
+// `pressure` in its middle; in_situ_keys go to [in_situ_stress] (with the tolerance 1e-9 and the
+// solver).
+std::string block_with_borehole(double half_x, double half_y, double radius, double pressure, const std::string& in_situ_keys,
+                                const std::string& solver) {
+  auto number = [](double v) { return std::to_string(v); };
+  return rift::test::plane_strain_rock() + "[regions.block]\nshape = \"box\"\nmin = [-" + number(half_x) + ", -" + number(half_y) +
+         "]\nmax = [" + number(half_x) + ", " + number(half_y) + "]\n[regions.hole]\nshape = \"cylinder\"\ncenter = [0.0, 0.0]\nradius = " +
+         number(radius) + R"(
 [regions.rock]
 shape = "difference"
 of = ["block", "hole"]
@@ -94,17 +93,16 @@ spacing = 0.001
 horizon = 3.015
 [[boreholes]]
 region = "hole"
-pressure = 1e6
-[in_situ_stress]
-sigma_H = -10e6
-sigma_h = -2e6
-sigma_H_axis = "y"
-faces = "platens"
-tolerance = 1e-9
-solver = ")" + solver + R"("
+pressure = )" + number(pressure) + "\n[in_situ_stress]\n" + in_situ_keys + "tolerance = 1e-9\nsolver = \"" + solver + R"("
 [solver]
 type = "dynamic_relaxation"
 )";
+}
+
+// a 20 x 40 mm block between platens, a 6 mm borehole at 1 MPa, sigma_H = -10 MPa along y and
+// sigma_h = -2 MPa along x
+std::string block_between_platens(const std::string& solver) {
+  return block_with_borehole(0.01, 0.02, 0.003, 1e6, "sigma_H = -10e6\nsigma_h = -2e6\nsigma_H_axis = \"y\"\nfaces = \"platens\"\n", solver);
 }
 
 // The residual of relax's measure, from a fresh evaluation of the forces at the particles' positions:
@@ -179,37 +177,10 @@ void check_same_equilibrium(Scene scene, const char* name) {
               name, iterations[0], iterations[1], difference / largest);
 }
 
-// a 64 x 64 mm block of the tests' rock held by tractions, an 8 mm borehole at 2 MPa in its middle,
-// sigma_H = -10 MPa along x and sigma_h = -5 MPa: nine aggregates of 7.03 mm on each axis
+// a 64 x 64 mm block held by tractions, an 8 mm borehole at 2 MPa, sigma_H = -10 MPa along x and
+// sigma_h = -5 MPa: nine aggregates of 7.03 mm on each axis
 std::string large_free_block(const std::string& solver) {
-  return rift::test::plane_strain_rock() + R"([regions.block]
-shape = "box"
-min = [-0.032, -0.032]
-max = [0.032, 0.032]
-[regions.hole]
-shape = "cylinder"
-center = [0.0, 0.0]
-radius = 0.004
-[regions.rock]
-shape = "difference"
-of = ["block", "hole"]
-[bodies.block]
-material = "rock"
-region = "rock"
-spacing = 0.001
-horizon = 3.015
-[[boreholes]]
-region = "hole"
-pressure = 2e6
-[in_situ_stress]
-sigma_H = -10e6
-sigma_h = -5e6
-start = "uniform_strain"
-tolerance = 1e-9
-solver = ")" + solver + R"("
-[solver]
-type = "dynamic_relaxation"
-)";
+  return block_with_borehole(0.032, 0.032, 0.004, 2e6, "sigma_H = -10e6\nsigma_h = -5e6\nstart = \"uniform_strain\"\n", solver);
 }
 
 TEST(StaticEquilibrium, ConjugateGradientsFindDynamicRelaxationsEquilibriumOfAFreeBlockWithABorehole) {
@@ -254,21 +225,7 @@ type = "dynamic_relaxation"
   rift::pd::apply_in_situ_strain<2>(m, s.in_situ);
   const std::size_t n = m.size(), N = 2 * n;
   ASSERT_EQ(n, 324u);
-  const auto start = m.position;
-  const double h = 1e-9;
-  Eigen::MatrixXd K(N, N);
-  for (std::size_t c = 0; c < N; ++c) {
-    std::vector<rift::Vec<2>> f[2];
-    for (int side = 0; side < 2; ++side) {
-      m.position = start;
-      m.position[c / 2][c % 2] += side == 0 ? h : -h;
-      rift::pd::compute_forces<2>(m, nullptr);
-      f[side] = m.force;
-    }
-    for (std::size_t r = 0; r < N; ++r)
-      K(static_cast<Eigen::Index>(r), static_cast<Eigen::Index>(c)) = -m.volume[r / 2] * (f[0][r / 2][r % 2] - f[1][r / 2][r % 2]) / (2 * h);
-  }
-  m.position = start;
+  const Eigen::MatrixXd K = rift::test::dense_stiffness<2>(m, 1e-9);
   rift::pd::CoarseSpace<2> coarse;
   const double edge = 2.0 * m.bodies[0].constants.horizon + m.bodies[0].constants.spacing;
   ASSERT_TRUE(coarse.make_aggregates(m.reference_position, edge));

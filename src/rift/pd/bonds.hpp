@@ -226,7 +226,7 @@ struct FluidNetwork {
   bool load_from_scratch = true;
   std::vector<std::vector<double>> network_load;         // per source: the force density on each particle per unit pressure (n x d, 1/m); empty: none (network_load.hpp)
   std::vector<std::vector<std::uint8_t>> is_end;         // per source, per particle: it has a bond in the network
-  std::vector<std::vector<NetworkEnd>> network_ends;     // per source, per particle: an end's NetworkEnd as network_load was last made
+  std::vector<std::vector<NetworkEnd>> network_ends;     // per source, per particle: an end's NetworkEnd as network_load was last made (zero: not an end)
   // per pressure source (the scene's cracks, then its boreholes)
   std::vector<std::uint8_t> dry;         // a crack without pressure of its own: its cut bonds carry a fluid that reaches them
   std::vector<std::uint8_t> sealed;      // a borehole whose wall has not broken down yet: the dry pre-cracks stay shut to its fluid

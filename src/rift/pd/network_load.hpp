@@ -29,8 +29,6 @@
 #include <algorithm>
 #include <array>
 #include <cstdint>
-#include <iterator>
-#include <utility>
 #include <vector>
 
 #include "rift/pd/fluid_network.hpp"
@@ -126,7 +124,7 @@ inline bool same_end(const NetworkEnd& a, const NetworkEnd& z) {
 ///   of pmb.hpp and lps.hpp, summed as the difference itself: a network bond adds -f^s (its pair
 ///   force in F^s); an intact bond adds the change of its pair force, which is linear in the
 ///   changes of its ends' dilatation and P (lps.hpp force_state, pressure_factor), nonzero only
-///   where an end has network bonds (an end: is_end[i], its NetworkEnd ends[i]); every other
+///   where an end has network bonds (an end: is_end[i], its NetworkEnd ends[i], zero for the others); every other
 ///   bond adds nothing and is skipped. So a particle's sum reads its network bonds and its bonds to
 ///   ends alone, and F and F^s never cancel each other's rounding.
 /// - With `before` (their NetworkEnd as g was last made; empty: g made from scratch, nothing to
@@ -142,12 +140,12 @@ inline bool same_end(const NetworkEnd& a, const NetworkEnd& z) {
 /// the network load each).
 template <int D, class InNetwork>
 void changed_rows_pass(const Model<D>& m, const std::vector<std::size_t>& changed, const std::vector<NetworkEnd>& before,
-                                      const std::vector<std::uint8_t>& is_end, const std::vector<NetworkEnd>& ends, const FamilyTerms& terms,
-                                      const std::vector<std::uint8_t>& in_changed, InNetwork in_network, std::vector<double>& g) {
+                       const std::vector<std::uint8_t>& is_end, const std::vector<NetworkEnd>& ends, const FamilyTerms& terms,
+                       const std::vector<std::uint8_t>& in_changed, InNetwork in_network, std::vector<double>& g) {
   const Bonds& b = m.bonds;
   const std::size_t n = m.size(), count = changed.size();
   if (count == 0) return;
-  auto now = [&](std::size_t q) { return is_end[changed[q]] ? ends[changed[q]] : NetworkEnd{}; };
+  auto now = [&](std::size_t q) { return ends[changed[q]]; };  // zero where not an end
   // the entries whose NetworkEnd changed, and how far a bond of theirs reaches in particle numbers
   // (rows are sorted by neighbour)
   std::vector<std::uint8_t> moved(count, 0);
@@ -268,8 +266,7 @@ void update_network_load(Model<D>& m) {
       changed = f.load_changed;
       std::sort(changed.begin(), changed.end());
       before.resize(changed.size());
-      for (std::size_t q = 0; q < changed.size(); ++q)
-        if (is_end[changed[q]]) before[q] = ends[changed[q]];
+      for (std::size_t q = 0; q < changed.size(); ++q) before[q] = ends[changed[q]];
     }
     // in one pass each: whether it is an end, and its NetworkEnd
 #pragma omp parallel for if(rift::parallel::worth_a_team(changed.size())) schedule(static)
