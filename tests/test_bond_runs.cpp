@@ -26,6 +26,7 @@
 #include "rift/pd/bond_runs.hpp"
 #include "rift/pd/discretize.hpp"
 #include "rift/pd/forces.hpp"
+#include "rift/pd/ves.hpp"
 #include "rift/scene/parse.hpp"
 
 namespace {
@@ -170,6 +171,45 @@ void check_pmb_against_rows(bool surface_correction) {
       ASSERT_DOUBLE_EQ(m.next_stretch_limit[i], c.critical_stretch - c.alpha * smallest[i]) << i;
     }
   }
+}
+
+// The rows of bond states the dilatation pass leaves for the force pass (bond_runs.hpp RowStates:
+// those of the bonds it broke made again, refresh_rows) equal rows made afresh from every bond's
+// state after it, bit for bit, with the intact counts of each row; and the pass broke bonds. With
+// LAMMPS's bonds to 3 spacings (122 offsets: a bit per offset) and the default's (250: no bits).
+TEST(BondRuns, RowsLeftByTheDilatationPassEqualRowsMadeAfresh) {
+  for (const bool lammps : {true, false})
+    for (const char* model : {"lps", "ves"}) {
+      std::string scene = block_scene(3, false, model);
+      if (lammps) scene.replace(scene.find("horizon = 3.015\n"), 16, "horizon = 3.0\npartial_volume = \"lammps\"\n");
+      auto m = rift::pd::discretize<3>(rift::scene::parse_string(scene, "block.toml"));
+      deform_and_break(m);
+      const auto& b = m.bonds;
+      const auto& body = m.bodies[0];
+      ASSERT_EQ(body.family_count, lammps ? 122u : 250u);
+      const auto before = b.intact;
+      rift::pd::RowStates left;
+      if (std::string(model) == "lps") rift::pd::lps_dilatation<3, rift::scene::Influence::constant>(m, body, &left);
+      else rift::pd::ves_dilatation<3, rift::scene::Influence::constant>(m, body, 1e-7, &left);
+      std::size_t broke = 0;
+      for (std::size_t k = 0; k < b.intact.size(); ++k) broke += before[k] != b.intact[k];
+      ASSERT_GT(broke, 40u) << model;
+      ASSERT_EQ(left.intact != nullptr, lammps);
+      // copies: whole_rows makes its rows in the same buffers
+      const std::vector<std::uint8_t> whole(left.whole, left.whole + m.size());
+      const std::vector<std::uint64_t> words = lammps ? std::vector<std::uint64_t>(left.intact, left.intact + 2 * left.stride)
+                                                      : std::vector<std::uint64_t>{};
+      const rift::pd::RowStates fresh = rift::pd::whole_rows(b, body);
+      for (std::size_t i = 0; i < m.size(); ++i) {
+        ASSERT_EQ(whole[i], fresh.whole[i]) << model << " row " << i;
+        std::int32_t intact = 0;
+        for (auto k = b.offset[i]; k < b.offset[i + 1]; ++k) intact += b.intact[static_cast<std::size_t>(k)] == rift::pd::bond_intact;
+        ASSERT_EQ(rift::pd::intact_bond_count(b, fresh, i), intact) << model << " row " << i;
+        if (!lammps || whole[i] == rift::pd::bond_intact) continue;  // a whole row's bits are not read
+        ASSERT_EQ(words[i], fresh.intact[i]) << model << " row " << i;
+        ASSERT_EQ(words[left.stride + i], fresh.intact[fresh.stride + i]) << model << " row " << i;
+      }
+    }
 }
 
 TEST(BondRuns, PmbPassEqualsRowByRowFormulas) {

@@ -11,6 +11,7 @@
 #pragma once
 #include <algorithm>
 #include <array>
+#include <bit>
 #include <cstddef>
 #include <cstdint>
 #include <cstring>
@@ -79,14 +80,17 @@ inline void make_bond_runs(const Bonds& b, BodyInfo& body) {
 /// for a failed interface bond, so their AND is 1 only when all are 1; a run of whole rows needs no
 /// look at its bonds' states), and for the rows that are not, a bit per family offset of the body
 /// (where it has at most 128: a horizon of 3 spacings has 122 in 3D), set where that bond is intact.
-/// One read of the states per pass, a small part of a pass that reads every bond's neighbour.
+/// One read of the states per step: the dilatation pass makes the rows, and after it those of the
+/// bonds it broke again (refresh_rows) for the force pass and the VES sums (ves.hpp).
 struct RowStates {
-  const std::uint8_t* whole = nullptr;
+  std::uint8_t* whole = nullptr;
   // offsets 0-63 of particle i at intact[i], 64-127 at intact[stride + i] (a run's rows one word
   // after the next); null: the body has more offsets
-  const std::uint64_t* intact = nullptr;
+  std::uint64_t* intact = nullptr;
   std::size_t stride = 0;
   std::size_t first_family = 0;
+  std::size_t family_count = 0;
+  explicit operator bool() const { return whole != nullptr; }
 };
 
 /// Bit t of bits (bits[0]: t < 64, bits[1]: the rest) set where state[t] is bond_intact, t < count
@@ -105,40 +109,64 @@ inline void intact_bits(const std::uint8_t* state, std::size_t count, std::uint6
   for (; t < count; ++t) bits[t >> 6] |= std::uint64_t{state[t] & 1u} << (t & 63);
 }
 
+/// Row i of rows from its bonds' states.
+inline void make_row_state(const Bonds& b, const RowStates& rows, std::size_t i) {
+  const std::uint8_t* const state = b.intact.data();
+  const std::int64_t first = b.offset[i], last = b.offset[i + 1];
+  std::uint8_t all = bond_intact;
+  for (auto k = first; k < last; ++k) all &= state[k];
+  rows.whole[i] = all;
+  if (!rows.intact || all == bond_intact) return;
+  std::uint64_t word[2] = {0, 0};
+  if (static_cast<std::size_t>(last - first) == rows.family_count) {
+    // a whole family: its rows' families ascend, so the bond's place is its offset
+    intact_bits(state + first, rows.family_count, word);
+  } else {
+    for (auto k = first; k < last; ++k)
+      if (state[k] == bond_intact) {
+        const std::size_t f = b.family[static_cast<std::size_t>(k)] - rows.first_family;
+        word[f >> 6] |= std::uint64_t{1} << (f & 63);
+      }
+  }
+  rows.intact[i] = word[0], rows.intact[rows.stride + i] = word[1];
+}
+
+/// The rows of the body's particles, in the calling thread's buffers (indexed by particle, so the
+/// rows of every body of the model stay valid together until a body's rows are made again).
 inline RowStates whole_rows(const Bonds& b, const BodyInfo& body) {
   static thread_local std::vector<std::uint8_t> whole;
   static thread_local std::vector<std::uint64_t> intact;
-  whole.resize(b.offset.size());
-  const bool bits = body.family_count <= 128;
   const std::size_t stride = b.offset.size();
-  intact.resize(bits ? 2 * stride : 0);
-  std::uint8_t* const out = whole.data();
-  std::uint64_t* const words = intact.data();
-  const std::int64_t* const offset = b.offset.data();
-  const std::uint8_t* const state = b.intact.data();
-  const std::uint16_t* const family = b.family.data();
-  const std::size_t first_family = body.first_family, family_count = body.family_count;
+  const bool bits = body.family_count <= 128;
+  whole.resize(stride);
+  if (bits && intact.size() < 2 * stride) intact.resize(2 * stride);  // never shrinks: another body's rows may be in use
+  const RowStates rows{whole.data(), bits ? intact.data() : nullptr, stride, body.first_family, body.family_count};
 #pragma omp parallel for if(rift::parallel::worth_a_team(body.last - body.first)) schedule(static)
-  for (std::size_t i = body.first; i < body.last; ++i) {
-    std::uint8_t all = bond_intact;
-    for (auto k = offset[i]; k < offset[i + 1]; ++k) all &= state[k];
-    out[i] = all;
-    if (!bits || all == bond_intact) continue;
-    std::uint64_t word[2] = {0, 0};
-    if (static_cast<std::size_t>(offset[i + 1] - offset[i]) == family_count) {
-      // a whole family: its rows' families ascend, so the bond's place is its offset
-      intact_bits(state + offset[i], family_count, word);
-      words[i] = word[0], words[stride + i] = word[1];
-      continue;
-    }
-    for (auto k = offset[i]; k < offset[i + 1]; ++k)
-      if (state[k] == bond_intact) {
-        const std::size_t f = family[k] - first_family;
-        word[f >> 6] |= std::uint64_t{1} << (f & 63);
-      }
-    words[i] = word[0], words[stride + i] = word[1];
-  }
-  return {out, bits ? words : nullptr, stride, first_family};
+  for (std::size_t i = body.first; i < body.last; ++i) make_row_state(b, rows, i);
+  return rows;
+}
+
+/// Makes the rows of both ends of the bonds `broken` ((i, k) of a row) again, after a pass broke
+/// them: a few rows, where whole_rows reads every bond's state.
+inline void refresh_rows(const Bonds& b, const RowStates& rows, const std::vector<std::pair<std::size_t, std::int64_t>>& broken) {
+  if (broken.empty()) return;
+  std::vector<std::size_t> ends;
+  ends.reserve(2 * broken.size());
+  for (const auto& [i, k] : broken) ends.push_back(i), ends.push_back(static_cast<std::size_t>(b.neighbor[static_cast<std::size_t>(k)]));
+  std::sort(ends.begin(), ends.end());
+  ends.erase(std::unique(ends.begin(), ends.end()), ends.end());
+#pragma omp parallel for if(rift::parallel::worth_a_team(ends.size() * 16)) schedule(static)
+  for (std::size_t q = 0; q < ends.size(); ++q) make_row_state(b, rows, ends[q]);
+}
+
+/// The intact bonds of row i (its whole length, or the bits of its intact offsets).
+inline std::int32_t intact_bond_count(const Bonds& b, const RowStates& rows, std::size_t i) {
+  const auto length = static_cast<std::int32_t>(b.offset[i + 1] - b.offset[i]);
+  if (rows.whole[i] == bond_intact) return length;
+  if (rows.intact) return std::popcount(rows.intact[i]) + std::popcount(rows.intact[rows.stride + i]);
+  std::int32_t count = 0;
+  for (auto k = b.offset[i]; k < b.offset[i + 1]; ++k) count += b.intact[static_cast<std::size_t>(k)] == bond_intact;
+  return count;
 }
 
 /// Whether the rows [i, i + length) are whole (whole_rows).

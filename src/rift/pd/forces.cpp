@@ -22,29 +22,34 @@ void compute_forces(Model<D>& m, Contact<D>* contact, double history_dt) {
   PhaseClock clock(Phase::bond_passes);
   apply_interface_law<D>(m);  // bonds across pre-existing fractures, with the last stresses
   if (!m.failure_strain.empty()) update_failure_strain<D>(m);  // what the first pass breaks on
-  for (const auto& body : m.bodies) {
+  // each state-based body's rows of bond states as its dilatation pass left them, for its force
+  // pass (bond_runs.hpp RowStates: the states read once a step)
+  std::vector<RowStates> rows(m.bodies.size());
+  for (std::size_t a = 0; a < m.bodies.size(); ++a) {
+    const auto& body = m.bodies[a];
     const auto& c = body.constants;
     if (c.model == scene::ModelKind::pmb) {
       if (c.influence == I::constant) pmb_forces<D, I::constant>(m, body);
       else pmb_forces<D, I::inverse_distance>(m, body);
     } else if (c.model == scene::ModelKind::lps) {
-      if (c.influence == I::constant) lps_dilatation<D, I::constant>(m, body);
-      else lps_dilatation<D, I::inverse_distance>(m, body);
+      if (c.influence == I::constant) lps_dilatation<D, I::constant>(m, body, &rows[a]);
+      else lps_dilatation<D, I::inverse_distance>(m, body, &rows[a]);
     } else {
-      if (c.influence == I::constant) ves_dilatation<D, I::constant>(m, body, history_dt);
-      else ves_dilatation<D, I::inverse_distance>(m, body, history_dt);
+      if (c.influence == I::constant) ves_dilatation<D, I::constant>(m, body, history_dt, &rows[a]);
+      else ves_dilatation<D, I::inverse_distance>(m, body, history_dt, &rows[a]);
     }
   }
   // the second pass of the state-based models needs every dilatation of the step (bodies may
   // neighbour through contact only)
-  for (const auto& body : m.bodies) {
+  for (std::size_t a = 0; a < m.bodies.size(); ++a) {
+    const auto& body = m.bodies[a];
     const auto& c = body.constants;
     if (c.model == scene::ModelKind::lps) {
-      if (c.influence == I::constant) state_based_forces<D, I::constant, false>(m, body);
-      else state_based_forces<D, I::inverse_distance, false>(m, body);
+      if (c.influence == I::constant) state_based_forces<D, I::constant, false>(m, body, 0.0, &rows[a]);
+      else state_based_forces<D, I::inverse_distance, false>(m, body, 0.0, &rows[a]);
     } else if (c.model == scene::ModelKind::ves) {
-      if (c.influence == I::constant) state_based_forces<D, I::constant, true>(m, body, history_dt);
-      else state_based_forces<D, I::inverse_distance, true>(m, body, history_dt);
+      if (c.influence == I::constant) state_based_forces<D, I::constant, true>(m, body, history_dt, &rows[a]);
+      else state_based_forces<D, I::inverse_distance, true>(m, body, history_dt, &rows[a]);
     }
   }
   add_interface_contact<D>(m, history_dt > 0.0);  // failed bonds across pre-existing fractures

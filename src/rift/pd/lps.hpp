@@ -58,22 +58,23 @@ double pressure_factor(double kappa, double theta, double a, double coupling) {
 /// m.dilatation), with Coupling also q_i = sum sigma_ij e |xi| V (into `coupling`), and the smallest
 /// stretch of each particle (into `smallest`, none: no intact bond). e = |y| - |xi| is the same seen
 /// from either end; b and sigma are each end's own (surface_correction.hpp). `broken_out`,
-/// where given, receives the bonds the pass broke, (i, k) of the lower end's row, in no fixed order.
+/// where given, receives the bonds the pass broke, (i, k) of the lower end's row, in no fixed order;
+/// `rows_out` the rows' states after the pass (bond_runs.hpp RowStates), for the force pass.
 template <int D, scene::Influence Omega, bool Coupling, bool Corrected>
 void dilatation_pass(Model<D>& m, const BodyInfo& body, double* coupling, double* smallest,
-                     std::vector<std::pair<std::size_t, std::int64_t>>* broken_out = nullptr);
+                     std::vector<std::pair<std::size_t, std::int64_t>>* broken_out = nullptr, RowStates* rows_out = nullptr);
 
 template <int D, scene::Influence Omega, bool Coupling>
 void dilatation_pass(Model<D>& m, const BodyInfo& body, double* coupling, double* smallest,
-                     std::vector<std::pair<std::size_t, std::int64_t>>* broken_out = nullptr) {
-  if (body.constants.surface_correction) dilatation_pass<D, Omega, Coupling, true>(m, body, coupling, smallest, broken_out);
-  else dilatation_pass<D, Omega, Coupling, false>(m, body, coupling, smallest, broken_out);
+                     std::vector<std::pair<std::size_t, std::int64_t>>* broken_out = nullptr, RowStates* rows_out = nullptr) {
+  if (body.constants.surface_correction) dilatation_pass<D, Omega, Coupling, true>(m, body, coupling, smallest, broken_out, rows_out);
+  else dilatation_pass<D, Omega, Coupling, false>(m, body, coupling, smallest, broken_out, rows_out);
 }
 
 /// The dilatation pass's bonds in runs (bond_runs.hpp, lps_runs.hpp), the stretch criterion: the
 /// same terms as the rows of dilatation_pass. The bonds of a run that may break are taken one by one.
 template <int D, scene::Influence Omega, bool Coupling, bool Corrected>
-void dilatation_runs(Model<D>& m, const BodyInfo& body, double* coupling, double* smallest,
+void dilatation_runs(Model<D>& m, const BodyInfo& body, const RowStates& rows, double* coupling, double* smallest,
                      std::vector<std::pair<std::size_t, std::int64_t>>& broken, std::vector<std::pair<std::size_t, std::int64_t>>& crossing) {
   const auto& c = body.constants;
   Bonds& b = m.bonds;
@@ -82,7 +83,6 @@ void dilatation_runs(Model<D>& m, const BodyInfo& body, double* coupling, double
   const auto x = positions_by_component<D>(m.position, body);
   const double* const limits = m.stretch_limit.data();
   double* const theta = m.dilatation.data();
-  const RowStates rows = whole_rows(b, body);
   const VectorIsa isa = vector_isa();
   // bond t of a run, as a row takes it
   auto settle = [&]<bool Wet>(const BondRun& run, std::size_t t) {
@@ -181,7 +181,7 @@ void dilatation_runs(Model<D>& m, const BodyInfo& body, double* coupling, double
 
 template <int D, scene::Influence Omega, bool Coupling, bool Corrected>
 void dilatation_pass(Model<D>& m, const BodyInfo& body, double* coupling, double* smallest,
-                     std::vector<std::pair<std::size_t, std::int64_t>>* broken_out) {
+                     std::vector<std::pair<std::size_t, std::int64_t>>* broken_out, RowStates* rows_out) {
   const auto& c = body.constants;
   Bonds& b = m.bonds;
   constexpr double none = std::numeric_limits<double>::max();
@@ -256,15 +256,24 @@ void dilatation_pass(Model<D>& m, const BodyInfo& body, double* coupling, double
   };
   // the normal stress only where a bond may break (the strain is not made while breaking is held):
   // row by row; the stretch in runs of bonds (bond_runs.hpp, lps_runs.hpp)
+  RowStates rows;
   if (c.normal_stress_failure && c.breakable) {
     if (wet)
       for_each_row_by_slabs(body, [&](std::size_t i) { row.template operator()<true, true>(i); });
     else
       for_each_row_by_slabs(body, [&](std::size_t i) { row.template operator()<false, true>(i); });
   } else {
-    dilatation_runs<D, Omega, Coupling, Corrected>(m, body, coupling, smallest, broken, crossing);
+    rows = whole_rows(b, body);
+    dilatation_runs<D, Omega, Coupling, Corrected>(m, body, rows, coupling, smallest, broken, crossing);
   }
   for (const auto& [i, k] : broken) break_mirror_bond(b, body, i, k);
+  if (rows_out) {
+    // the rows as the pass leaves them: those of the bonds it broke made again (or all, where it
+    // went row by row)
+    if (rows) refresh_rows(b, rows, broken);
+    else rows = whole_rows(b, body);
+    *rows_out = rows;
+  }
   record_crossing_breaks<D>(m, crossing);
   if (broken_out) *broken_out = std::move(broken);
   if constexpr (!Corrected) {
@@ -273,11 +282,12 @@ void dilatation_pass(Model<D>& m, const BodyInfo& body, double* coupling, double
   }
 }
 
+/// `rows_out`, where given, receives the rows' states after the pass (dilatation_pass).
 template <int D, scene::Influence Omega>
-void lps_dilatation(Model<D>& m, const BodyInfo& body) {
+void lps_dilatation(Model<D>& m, const BodyInfo& body, RowStates* rows_out = nullptr) {
   double* const q = pass_scratch(m.size(), 0);
   double* const smallest = pass_scratch(m.size(), 1);
-  dilatation_pass<D, Omega, true>(m, body, q, smallest);
+  dilatation_pass<D, Omega, true>(m, body, q, smallest, nullptr, rows_out);
 #pragma omp parallel for if(rift::parallel::worth_a_team(body.last - body.first)) schedule(static)
   for (std::size_t i = body.first; i < body.last; ++i) m.dilatation_coupling[i] = q[i] - m.dilatation[i] * m.weighted_volume[i] / D;
   next_stretch_limits<D>(m, body, smallest);
@@ -286,18 +296,19 @@ void lps_dilatation(Model<D>& m, const BodyInfo& body) {
 /// Second pass of the LPS and of its viscoelastic variant (ves.hpp, Viscous: the deviatoric
 /// extension of each end less lambda times its back extension, which first advances over
 /// history_dt, viscous_step.hpp; 0 holds it), each bond once (bond_slabs.hpp): the pair force
-/// density (t_i<j> + t_j<i>) V along the deformed bond, on i and, opposite, on j.
+/// density (t_i<j> + t_j<i>) V along the deformed bond, on i and, opposite, on j. `rows`: the rows'
+/// states as the dilatation pass left them (null: read from the bonds).
 template <int D, scene::Influence Omega, bool Viscous, bool Corrected>
-void state_based_forces(Model<D>& m, const BodyInfo& body, double history_dt);
+void state_based_forces(Model<D>& m, const BodyInfo& body, double history_dt, const RowStates* rows);
 
 template <int D, scene::Influence Omega, bool Viscous>
-void state_based_forces(Model<D>& m, const BodyInfo& body, double history_dt = 0.0) {
-  if (body.constants.surface_correction) state_based_forces<D, Omega, Viscous, true>(m, body, history_dt);
-  else state_based_forces<D, Omega, Viscous, false>(m, body, history_dt);
+void state_based_forces(Model<D>& m, const BodyInfo& body, double history_dt = 0.0, const RowStates* rows = nullptr) {
+  if (body.constants.surface_correction) state_based_forces<D, Omega, Viscous, true>(m, body, history_dt, rows);
+  else state_based_forces<D, Omega, Viscous, false>(m, body, history_dt, rows);
 }
 
 template <int D, scene::Influence Omega, bool Viscous, bool Corrected>
-void state_based_forces(Model<D>& m, const BodyInfo& body, double history_dt) {
+void state_based_forces(Model<D>& m, const BodyInfo& body, double history_dt, const RowStates* given_rows) {
   const auto& c = body.constants;
   Bonds& b = m.bonds;
   const double horizon = c.horizon, kappa = c.kappa, a_dev = c.lps_deviatoric_coefficient(), lambda = c.viscous_fraction;
@@ -320,7 +331,7 @@ void state_based_forces(Model<D>& m, const BodyInfo& body, double history_dt) {
     pressure[j] = p_j, coefficient[j] = a_j;
     for (int q = 0; q < D; ++q) f[q][j] = 0.0;
   }
-  const RowStates rows = whole_rows(b, body);
+  const RowStates rows = given_rows ? *given_rows : whole_rows(b, body);
   const VectorIsa isa = vector_isa();
   // bond t of a run, as a row takes it
   auto settle = [&](const BondRun& run, std::size_t t) {

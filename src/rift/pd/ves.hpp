@@ -111,8 +111,10 @@ void take_out_of_viscous_sums(Model<D>& m, const BodyInfo& body, std::vector<std
 /// state_based_forces, Viscous), which needs P_i of both ends before it: two passes over the bonds
 /// instead of three. P differs from the sum over the stored single-precision back extensions by
 /// their rounding (tests/test_viscoelastic.cpp).
+/// `rows_out`, where given, receives the rows' states after the pass (dilatation_pass); they give
+/// each row's count of intact bonds here.
 template <int D, scene::Influence Omega>
-void ves_dilatation(Model<D>& m, const BodyInfo& body, double dt) {
+void ves_dilatation(Model<D>& m, const BodyInfo& body, double dt, RowStates* rows_out = nullptr) {
   const auto& c = body.constants;
   Bonds& b = m.bonds;
   const double lambda = c.viscous_fraction;
@@ -121,20 +123,14 @@ void ves_dilatation(Model<D>& m, const BodyInfo& body, double dt) {
   double* const q = pass_scratch(m.size(), 0);  // with the surface correction: q_i
   const bool corrected = c.surface_correction;
   std::vector<std::pair<std::size_t, std::int64_t>> broken;
-  if (corrected) dilatation_pass<D, Omega, true>(m, body, q, smallest, &broken);
-  else dilatation_pass<D, Omega, false>(m, body, nullptr, smallest, &broken);
+  RowStates local_rows;
+  RowStates& rows = rows_out ? *rows_out : local_rows;
+  if (corrected) dilatation_pass<D, Omega, true>(m, body, q, smallest, &broken, &rows);
+  else dilatation_pass<D, Omega, false>(m, body, nullptr, smallest, &broken, &rows);
   take_out_of_viscous_sums<D, Omega>(m, body, broken);
-  const std::uint8_t* const state = b.intact.data();
 #pragma omp parallel for if(rift::parallel::worth_a_team(body.last - body.first)) schedule(static)
   for (std::size_t i = body.first; i < body.last; ++i) {
-    // a whole row (bond_runs.hpp whole_rows: the AND of its states, a quicker loop) has them all
-    std::uint8_t all = bond_intact;
-    for (auto k = b.offset[i]; k < b.offset[i + 1]; ++k) all &= state[k];
-    auto intact_bonds = static_cast<std::int32_t>(b.offset[i + 1] - b.offset[i]);
-    if (all != bond_intact) {
-      intact_bonds = 0;
-      for (auto k = b.offset[i]; k < b.offset[i + 1]; ++k) intact_bonds += state[k] == bond_intact;
-    }
+    const std::int32_t intact_bonds = intact_bond_count(b, rows, i);
     if (intact_bonds != b.summed_bonds[i]) sum_viscous_history<D, Omega>(m, body, i, intact_bonds);
     const double theta = m.dilatation[i], m_intact = b.intact_weighted_volume[i];
     const double deviatoric = corrected ? q[i] - theta * m_intact / D : theta * (m.weighted_volume[i] - m_intact) / D;  // C
