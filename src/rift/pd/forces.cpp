@@ -59,18 +59,33 @@ void compute_forces(Model<D>& m, Contact<D>* contact, double history_dt) {
   }
 }
 
+namespace {
+
+/// Damage of row i (Silling and Askari 2005, eq. 25); its broken (or failed) directed bonds into
+/// `broken`. A whole row (the AND of its states, bond_runs.hpp) without a look at its bonds' volumes.
+inline double row_damage(const Bonds& b, std::size_t i, double& broken) {
+  std::uint8_t all_intact = bond_intact;
+  for (auto k = b.offset[i]; k < b.offset[i + 1]; ++k) all_intact &= b.intact[static_cast<std::size_t>(k)];
+  if (all_intact == bond_intact) return 0.0;
+  double all = 0.0, intact = 0.0;
+  for (auto k = b.offset[i]; k < b.offset[i + 1]; ++k) {
+    const double v = b.volume(k);
+    all += v;
+    if (b.intact[static_cast<std::size_t>(k)] == bond_intact) intact += v;
+    else broken += 1.0;
+  }
+  return all > 0.0 ? 1.0 - intact / all : 0.0;
+}
+
+}  // namespace
+
 template <int D>
 void update_damage(Model<D>& m) {
-  const Bonds& b = m.bonds;
   const std::size_t n = m.size();
 #pragma omp parallel for if(rift::parallel::worth_a_team(n)) schedule(static)
   for (std::size_t i = 0; i < n; ++i) {
-    double all = 0.0, intact = 0.0;
-    for (auto k = b.offset[i]; k < b.offset[i + 1]; ++k) {
-      all += b.volume(k);
-      if (b.intact[k] == bond_intact) intact += b.volume(k);
-    }
-    m.damage[i] = all > 0.0 ? 1.0 - intact / all : 0.0;
+    double broken = 0.0;
+    m.damage[i] = row_damage(m.bonds, i, broken);
   }
 }
 
@@ -84,8 +99,11 @@ double strain_energy_density(const Model<D>& m, std::size_t i) {
   }
 }
 
+namespace {
+
+/// summarize, and where `damage` is given each particle's damage into it (row_damage).
 template <int D>
-EnergySummary summarize(const Model<D>& m, bool strain_energy) {
+EnergySummary summarize_rows(const Model<D>& m, bool strain_energy, double* damage) {
   // W_i of every particle first, its bonds in runs (energy_runs.hpp)
   static thread_local std::vector<double> densities;  // the calling thread's; the team reads it through the pointer
   densities.resize(strain_energy ? m.size() : 0);
@@ -100,7 +118,11 @@ EnergySummary summarize(const Model<D>& m, bool strain_energy) {
       for (int k = 0; k < D; ++k)
         if (!std::isfinite(m.position[i][k])) acc[1] = std::numeric_limits<double>::quiet_NaN();
     }
-    for (auto k = m.bonds.offset[i]; k < m.bonds.offset[i + 1]; ++k) acc[2] += m.bonds.intact[k] != bond_intact;
+    if (damage) {
+      damage[i] = row_damage(m.bonds, i, acc[2]);
+    } else {
+      for (auto k = m.bonds.offset[i]; k < m.bonds.offset[i + 1]; ++k) acc[2] += m.bonds.intact[k] != bond_intact;
+    }
   });
   EnergySummary s;
   s.kinetic = sums[0];
@@ -109,6 +131,18 @@ EnergySummary summarize(const Model<D>& m, bool strain_energy) {
   s.broken_bonds = broken / 2;
   s.broken_fraction = m.bonds.size() > 0 ? double(broken) / double(m.bonds.size()) : 0.0;
   return s;
+}
+
+}  // namespace
+
+template <int D>
+EnergySummary summarize(const Model<D>& m, bool strain_energy) {
+  return summarize_rows<D>(m, strain_energy, nullptr);
+}
+
+template <int D>
+EnergySummary summarize_and_update_damage(Model<D>& m, bool strain_energy) {
+  return summarize_rows<D>(m, strain_energy, m.damage.data());
 }
 
 template <int D>
@@ -147,6 +181,7 @@ std::size_t failed_bonds(const Model<D>& m) {
   template double strain_energy_density<D>(const Model<D>&, std::size_t); \
   template void strain_energy_densities<D>(const Model<D>&, double*);     \
   template EnergySummary summarize<D>(const Model<D>&, bool);             \
+  template EnergySummary summarize_and_update_damage<D>(Model<D>&, bool); \
   template std::size_t failed_bonds<D>(const Model<D>&);                  \
   template double stable_time_step<D>(const Model<D>&);
 RIFT_INSTANTIATE(2)

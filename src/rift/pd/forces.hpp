@@ -47,6 +47,10 @@ struct EnergySummary {
 template <int D>
 EnergySummary summarize(const Model<D>& m, bool strain_energy = true);
 
+/// summarize and update_damage in one pass over the bond states (a history row's).
+template <int D>
+EnergySummary summarize_and_update_damage(Model<D>& m, bool strain_energy);
+
 /// Directed bonds no longer intact (broken, and failed interface bonds).
 template <int D>
 std::size_t failed_bonds(const Model<D>& m);

@@ -234,9 +234,8 @@ Result run_dim(const scene::Scene& s, const Options& o) {
   const bool strain_column = std::any_of(s.output.history.begin(), s.output.history.end(),
                                          [](const std::string& q) { return q == "strain_energy" || q == "total_energy"; });
   auto history_row = [&](long step, std::vector<double> extra) {
-    auto e = pd::summarize<D>(m, strain_column);
+    auto e = pd::summarize_and_update_damage<D>(m, strain_column);
     check_finite<D>(m, step, e);
-    pd::update_damage<D>(m);
     double dmax = 0.0;
     for (double d : m.damage) dmax = std::max(dmax, d);
     std::vector<double> row{m.time, double(step)};
