@@ -145,6 +145,7 @@ void changed_rows_pass(const Model<D>& m, const std::vector<std::size_t>& change
   const Bonds& b = m.bonds;
   const std::size_t n = m.size(), count = changed.size();
   if (count == 0) return;
+  constexpr std::int64_t prefetch_ahead = 12;
   auto now = [&](std::size_t q) { return ends[changed[q]]; };  // zero where not an end
   // the entries whose NetworkEnd changed, and how far a bond of theirs reaches in particle numbers
   // (rows are sorted by neighbour)
@@ -177,8 +178,16 @@ void changed_rows_pass(const Model<D>& m, const std::vector<std::size_t>& change
       if (!own && !correct) continue;
       const NetworkEnd z = now(q), old = correct ? before[q] : NetworkEnd{};
       Vec<D> sum{};
-      for (auto k = b.offset[x]; k < b.offset[x + 1]; ++k) {
+      const std::int64_t row_end = b.offset[x + 1];
+      for (auto k = b.offset[x]; k < row_end; ++k) {
         const auto j = static_cast<std::size_t>(b.neighbor[k]);
+        // the neighbours' NetworkEnd and g are scattered over a few planes of the lattice: asked
+        // for some bonds ahead
+        if (k + prefetch_ahead < row_end) {
+          const auto ahead = static_cast<std::size_t>(b.neighbor[k + prefetch_ahead]);
+          __builtin_prefetch(&ends[ahead]);
+          __builtin_prefetch(&g[ahead * D], 1);
+        }
         const bool intact = b.intact[static_cast<std::size_t>(k)] == bond_intact;
         const bool corrects = correct && j >= lo && j < hi && !in_changed[j];
         const bool sums = own && (intact ? !pmb && (is_end[x] || is_end[j]) : true);
