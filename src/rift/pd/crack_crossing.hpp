@@ -158,6 +158,12 @@ double surface_spacing(const Model<D>& m) {
   return spacing;
 }
 
+/// The longest bond that makes a patch (nearest and diagonal lattice neighbours).
+template <int D>
+double patch_bond_length(const Model<D>& m) {
+  return 1.5 * surface_spacing<D>(m);
+}
+
 /// The unit direction of a patch's bond, from the patch's key.
 template <int D>
 std::array<double, 3> patch_direction(const Model<D>& m, std::int64_t key) {
@@ -414,7 +420,7 @@ void remake_crack_surface(Model<D>& m) {
   FluidNetwork& f = m.fluid_network;
   CrackSurface& surface = f.crack_surface;
   const std::size_t n = m.size();
-  const double spacing = detail::surface_spacing<D>(m), short_bond = 1.5 * spacing;
+  const double spacing = detail::surface_spacing<D>(m), short_bond = detail::patch_bond_length<D>(m);
   std::vector<std::size_t> all(f.source.size() == n ? n : 0);
   for (std::size_t i = 0; i < all.size(); ++i) all[i] = i;
   // every bond decided again, by the rule as it stands now (makes_patch)
@@ -469,7 +475,7 @@ void remake_crack_surface(Model<D>& m) {
 template <int D>
 void extend_crack_surface(Model<D>& m, const std::vector<std::size_t>& changed) {
   CrackSurface& surface = m.fluid_network.crack_surface;
-  const double short_bond = 1.5 * detail::surface_spacing<D>(m);
+  const double short_bond = detail::patch_bond_length<D>(m);
   auto found = detail::patches_of_particles<D>(m, changed, short_bond, false, surface.decided);
   std::erase_if(found, [&](const auto& p) { return std::binary_search(surface.sorted_patches.begin(), surface.sorted_patches.end(), p.first); });
   if (found.empty()) return;

@@ -94,7 +94,7 @@ void dilatation_runs(Model<D>& m, const BodyInfo& body, const RowStates& rows, d
     const double limit = std::min(limits[i], limits[j]);
     const double value = e * family.inverse_length;
     bool past = e > xi * limit, crossed = false;
-    if constexpr (Wet) past = c.breakable && breaks_in_wet_rock<D>(wet, c.alpha, i, j, value, limit, crossed);
+    if constexpr (Wet) past = c.breakable && breaks_in_wet_rock<D>(wet, c.alpha, i, j, xi, value, limit, crossed);
     if (c.breakable && past) {
       v.intact[k] = bond_broken;
       note_broken_bond(broken, crossing, i, k, crossed);
@@ -219,7 +219,7 @@ void dilatation_pass(Model<D>& m, const BodyInfo& body, double* coupling, double
         value = e * family.inverse_length;
       }
       bool past = Normal ? value > limit : e > xi * limit, crossed = false;
-      if constexpr (Wet) past = c.breakable && breaks_in_wet_rock<D>(wet, c.alpha, i, j, value, limit, crossed);
+      if constexpr (Wet) past = c.breakable && breaks_in_wet_rock<D>(wet, c.alpha, i, j, xi, value, limit, crossed);
       if (c.breakable && past) {
         b.intact[k] = bond_broken;
         note_broken_bond(broken, crossing, i, k, crossed);

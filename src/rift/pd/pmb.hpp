@@ -139,7 +139,7 @@ void pmb_forces(Model<D>& m, const BodyInfo& body) {
     const double s = (r - family.length) * family.inverse_length;
     const double limit = std::min(limits[i], limits[j]);
     bool past = s > limit, crossed = false;
-    if constexpr (Wet) past = breakable && breaks_in_wet_rock<D>(wet, c.alpha, i, j, s, limit, crossed);
+    if constexpr (Wet) past = breakable && breaks_in_wet_rock<D>(wet, c.alpha, i, j, family.length, s, limit, crossed);
     if (breakable && past) {
       v.intact[k] = bond_broken;
       note_broken_bond(broken, crossing, i, k, crossed);
