@@ -109,12 +109,18 @@ inline void intact_bits(const std::uint8_t* state, std::size_t count, std::uint6
   for (; t < count; ++t) bits[t >> 6] |= std::uint64_t{state[t] & 1u} << (t & 63);
 }
 
+/// The AND of row i's states: bond_intact exactly when every bond of the row is (RowStates).
+inline std::uint8_t row_whole(const Bonds& b, std::size_t i) {
+  std::uint8_t all = bond_intact;
+  for (auto k = b.offset[i]; k < b.offset[i + 1]; ++k) all &= b.intact[static_cast<std::size_t>(k)];
+  return all;
+}
+
 /// Row i of rows from its bonds' states.
 inline void make_row_state(const Bonds& b, const RowStates& rows, std::size_t i) {
   const std::uint8_t* const state = b.intact.data();
   const std::int64_t first = b.offset[i], last = b.offset[i + 1];
-  std::uint8_t all = bond_intact;
-  for (auto k = first; k < last; ++k) all &= state[k];
+  const std::uint8_t all = row_whole(b, i);
   rows.whole[i] = all;
   if (!rows.intact || all == bond_intact) return;
   std::uint64_t word[2] = {0, 0};

@@ -4,6 +4,7 @@
 #include <limits>
 
 #include "rift/core/phase_times.hpp"
+#include "rift/pd/bond_runs.hpp"
 #include "rift/parallel/ordered_sum.hpp"
 #include "rift/pd/energy_runs.hpp"
 #include "rift/pd/interface_contact.hpp"
@@ -64,9 +65,7 @@ namespace {
 /// Damage of row i (Silling and Askari 2005, eq. 25); its broken (or failed) directed bonds into
 /// `broken`. A whole row (the AND of its states, bond_runs.hpp) without a look at its bonds' volumes.
 inline double row_damage(const Bonds& b, std::size_t i, double& broken) {
-  std::uint8_t all_intact = bond_intact;
-  for (auto k = b.offset[i]; k < b.offset[i + 1]; ++k) all_intact &= b.intact[static_cast<std::size_t>(k)];
-  if (all_intact == bond_intact) return 0.0;
+  if (row_whole(b, i) == bond_intact) return 0.0;
   double all = 0.0, intact = 0.0;
   for (auto k = b.offset[i]; k < b.offset[i + 1]; ++k) {
     const double v = b.volume(k);
