@@ -85,7 +85,7 @@ Solver<D>::Solver(const scene::Scene& s, Model<D>& m) : settings_(s.mpm) {
       }
     }
   }
-  thread_grids_.resize(static_cast<std::size_t>(omp_get_max_threads()));
+  thread_buffers_.resize(static_cast<std::size_t>(omp_get_max_threads()));
   cell_volume_ = std::pow(m.grid.cell_size, D) * (D == 2 ? s.thickness : 1.0);
 }
 
@@ -100,79 +100,99 @@ double Solver<D>::stable_time_step(const Model<D>& m) const {
 template <int D>
 void Solver<D>::scatter(Model<D>& m, bool momentum_only, bool internal_force) {
   auto& ps = m.particles;
-  // one buffer per thread of the team for_each_cached_stencil forks (one thread for a few points)
-  const std::size_t buffers = rift::parallel::worth_a_team(ps.size()) ? thread_grids_.size() : 1;
-  const int threads = static_cast<int>(buffers);
-  for (std::size_t t = 0; t < buffers; ++t) {
-    auto& tg = thread_grids_[t];
-    if (tg.slots() != m.grid.slots()) {
-      tg = m.grid;
-      tg.resize();
-    }
-    std::fill(tg.mass.begin(), tg.mass.end(), 0.0);
-    std::fill(tg.momentum.begin(), tg.momentum.end(), Vec<D>{});
-    std::fill(tg.force.begin(), tg.force.end(), Vec<D>{});
-    std::fill(tg.mass_gradient.begin(), tg.mass_gradient.end(), Vec<D>{});
-    std::fill(tg.volume.begin(), tg.volume.end(), 0.0);
-    std::fill(tg.displacement.begin(), tg.displacement.end(), Vec<D>{});
-  }
-  const std::size_t fields = static_cast<std::size_t>(m.grid.fields);
+  auto& g = m.grid;
+  const std::size_t fields = static_cast<std::size_t>(g.fields);
   const bool normals = fields > 1 && !momentum_only;
   const bool apic = settings_.transfer == scene::Mpm::Transfer::apic;
-  for_each_cached_stencil<D>(stencils_, threads, [&](std::size_t p, const auto& st) {
-    auto& tg = thread_grids_[static_cast<std::size_t>(omp_get_thread_num())];
-    const double mp = ps.mass[p];
-    for (int q = 0; q < st.count; ++q) {
-      const std::size_t node = st.node[static_cast<std::size_t>(q)];
-      const std::size_t n = node * fields + field_of(m, p, q);
-      const double w = st.weight[static_cast<std::size_t>(q)];
-      if (w == 0.0) continue;
-      Vec<D> v = ps.velocity[p];
-      if (apic) {
-        const Vec<D> dx = m.grid.node_position(node) - start_position_[p];
-        for (int a = 0; a < D; ++a)
-          for (int b = 0; b < D; ++b) v[a] += ps.affine_velocity[p](a, b) * dx[b];
-      }
-      tg.mass[n] += w * mp;
-      for (int a = 0; a < D; ++a) tg.momentum[n][a] += w * mp * v[a];
-      if (normals) {
-        for (int a = 0; a < D; ++a) tg.mass_gradient[n][a] += mp * st.gradient[static_cast<std::size_t>(q)][a];
-        tg.volume[n] += w * ps.volume[p];
-        for (int a = 0; a < D; ++a) tg.displacement[n][a] += w * mp * (start_position_[p][a] - ps.reference_position[p][a]);
-      }
-      if (momentum_only) continue;
-      for (int a = 0; a < D; ++a) tg.force[n][a] += w * ps.external_force[p][a];
-      if (internal_force) {
-        const auto& sigma = ps.state[p].stress;
-        const auto& grad = st.gradient[static_cast<std::size_t>(q)];
-        for (int a = 0; a < D; ++a) {
-          double f = 0.0;
-          for (int b = 0; b < D; ++b) f += sigma(a, b) * grad[b];
-          tg.force[n][a] -= ps.volume[p] * f;
+  const bool external = !loads_.empty();
+  const std::size_t n_points = stencils_.size();
+  // One team for the whole transfer. Thread t takes a fixed block of points and sums their shares
+  // into its own buffer, over the slots its block reaches: [first, last) from the stencils (their
+  // nodes come in increasing order), zeroed by the thread itself. The buffers are then summed slot
+  // by slot in thread order, so a run is bit-reproducible for a given thread count. Points are laid
+  // out cell by cell, so the blocks reach bands of the grid that overlap only at their edges.
+  const int team = rift::parallel::worth_a_team(n_points) ? static_cast<int>(thread_buffers_.size()) : 1;
+  int used = 1;
+#pragma omp parallel num_threads(team) if(team > 1)
+  {
+    const int threads = omp_get_num_threads();
+    const auto t = static_cast<std::size_t>(omp_get_thread_num());
+#pragma omp single
+    used = threads;
+    auto& buffer = thread_buffers_[t];
+    const std::size_t p_begin = n_points * t / static_cast<std::size_t>(threads);
+    const std::size_t p_end = n_points * (t + 1) / static_cast<std::size_t>(threads);
+    std::size_t first = g.slots(), last = 0;
+    for (std::size_t p = p_begin; p < p_end; ++p) {
+      const auto st = stencils_[p];
+      if (st.count == 0) continue;
+      first = std::min(first, st.node[0] * fields);
+      last = std::max(last, (st.node[static_cast<std::size_t>(st.count - 1)] + 1) * fields);
+    }
+    buffer.first = first, buffer.last = std::max(first, last);
+    buffer.resize(g.slots());
+    const auto zero = [&](auto& values) { std::fill(values.begin() + first, values.begin() + buffer.last, std::decay_t<decltype(values[0])>{}); };
+    zero(buffer.mass), zero(buffer.momentum);
+    if (!momentum_only) zero(buffer.force);
+    if (normals) zero(buffer.mass_gradient), zero(buffer.volume), zero(buffer.displacement);
+    for (std::size_t p = p_begin; p < p_end; ++p) {
+      const auto st = stencils_[p];
+      const double mp = ps.mass[p];
+      for (int q = 0; q < st.count; ++q) {
+        const std::size_t node = st.node[static_cast<std::size_t>(q)];
+        const std::size_t n = node * fields + field_of(m, p, q);
+        const double w = st.weight[static_cast<std::size_t>(q)];
+        if (w == 0.0) continue;
+        Vec<D> v = ps.velocity[p];
+        if (apic) {
+          const Vec<D> dx = g.node_position(node) - start_position_[p];
+          for (int a = 0; a < D; ++a)
+            for (int b = 0; b < D; ++b) v[a] += ps.affine_velocity[p](a, b) * dx[b];
+        }
+        buffer.mass[n] += w * mp;
+        for (int a = 0; a < D; ++a) buffer.momentum[n][a] += w * mp * v[a];
+        if (normals) {
+          for (int a = 0; a < D; ++a) buffer.mass_gradient[n][a] += mp * st.gradient[static_cast<std::size_t>(q)][a];
+          buffer.volume[n] += w * ps.volume[p];
+          for (int a = 0; a < D; ++a) buffer.displacement[n][a] += w * mp * (start_position_[p][a] - ps.reference_position[p][a]);
+        }
+        if (momentum_only) continue;
+        if (external)
+          for (int a = 0; a < D; ++a) buffer.force[n][a] += w * ps.external_force[p][a];
+        if (internal_force) {
+          const auto& sigma = ps.state[p].stress;
+          const auto& grad = st.gradient[static_cast<std::size_t>(q)];
+          for (int a = 0; a < D; ++a) {
+            double f = 0.0;
+            for (int b = 0; b < D; ++b) f += sigma(a, b) * grad[b];
+            buffer.force[n][a] -= ps.volume[p] * f;
+          }
         }
       }
     }
-  });
-  // sum the thread buffers in thread order (reproducible)
-  auto& g = m.grid;
-#pragma omp parallel for if(rift::parallel::worth_a_team(g.slots())) schedule(static)
-  for (std::size_t n = 0; n < g.slots(); ++n) {
-    double mass = 0.0;
-    Vec<D> mom{}, f{}, grad{}, u{};
-    double volume = 0.0;
-    for (std::size_t t = 0; t < buffers; ++t) {
-      const auto& tg = thread_grids_[t];
-      mass += tg.mass[n];
-      for (int a = 0; a < D; ++a) mom[a] += tg.momentum[n][a], f[a] += tg.force[n][a];
-      if (normals) {
-        for (int a = 0; a < D; ++a) grad[a] += tg.mass_gradient[n][a], u[a] += tg.displacement[n][a];
-        volume += tg.volume[n];
+#pragma omp barrier
+    // sum the buffers that reach each slot, in thread order
+#pragma omp for schedule(static)
+    for (std::size_t n = 0; n < g.slots(); ++n) {
+      double mass = 0.0, volume = 0.0;
+      Vec<D> mom{}, f{}, grad{}, u{};
+      for (std::size_t b = 0; b < static_cast<std::size_t>(used); ++b) {
+        const auto& tb = thread_buffers_[b];
+        if (n < tb.first || n >= tb.last) continue;
+        mass += tb.mass[n];
+        for (int a = 0; a < D; ++a) mom[a] += tb.momentum[n][a];
+        if (!momentum_only)
+          for (int a = 0; a < D; ++a) f[a] += tb.force[n][a];
+        if (normals) {
+          for (int a = 0; a < D; ++a) grad[a] += tb.mass_gradient[n][a], u[a] += tb.displacement[n][a];
+          volume += tb.volume[n];
+        }
       }
+      g.mass[n] = mass;
+      g.momentum[n] = mom;
+      if (!momentum_only) g.force[n] = f;
+      if (normals) g.mass_gradient[n] = grad, g.volume[n] = volume, g.displacement[n] = u;
     }
-    g.mass[n] = mass;
-    g.momentum[n] = mom;
-    if (!momentum_only) g.force[n] = f;
-    if (normals) g.mass_gradient[n] = grad, g.volume[n] = volume, g.displacement[n] = u;
   }
 }
 
@@ -332,8 +352,7 @@ void Solver<D>::step(Model<D>& m, double dt) {
   auto& ps = m.particles;
   auto& g = m.grid;
   const double t = m.time;
-  start_position_ = ps.position;
-  stencils_.fill(m, start_position_);  // S_ip(x_p^n) for every transfer of the step
+  stencils_.fill(m, ps.position, &start_position_);  // S_ip(x_p^n) for every transfer of the step, and x_p^n
   if constexpr (D == 2) {
     if (!cracks_.empty()) {
       // points farther than the stencil reach (2 cells) from every crack's box see no crack
@@ -342,7 +361,7 @@ void Solver<D>::step(Model<D>& m, double dt) {
       acceleration_.resize(ps.size());
       velocity_gradient_.resize(ps.size());
       const double reach = 2.0 * g.cell_size;
-#pragma omp parallel for if(rift::parallel::worth_a_team(ps.size())) schedule(static)
+#pragma omp parallel for if(rift::parallel::worth_a_team(ps.size())) schedule(dynamic, 256)
       for (std::size_t p = 0; p < ps.size(); ++p) {
         near_crack_[p] = cracks_.near(ps.position[p], reach);
         if (!near_crack_[p]) continue;
@@ -360,12 +379,14 @@ void Solver<D>::step(Model<D>& m, double dt) {
     energy_.time = t;
     energy_.strain = summarize<D>(m).strain;
   }
-  // external forces of the step
-  for (auto& f : ps.external_force) f = Vec<D>{};
-  for (const auto& l : loads_) {
-    const double amp = load::evaluate(l.time, t);
-    for (auto p : l.particles)
-      for (int a = 0; a < D; ++a) ps.external_force[p][a] += amp * l.density[a] * ps.volume[p];
+  // external forces of the step (without loads they stay the zeros discretize() gave them)
+  if (!loads_.empty()) {
+    for (auto& f : ps.external_force) f = Vec<D>{};
+    for (const auto& l : loads_) {
+      const double amp = load::evaluate(l.time, t);
+      for (auto p : l.particles)
+        for (int a = 0; a < D; ++a) ps.external_force[p][a] += amp * l.density[a] * ps.volume[p];
+    }
   }
   using S = scene::Mpm::Scheme;
   if (settings_.scheme == S::usf) {
@@ -430,7 +451,14 @@ void Solver<D>::step(Model<D>& m, double dt) {
   if (settings_.scheme == S::usl) {
     update_stress(m, dt);
   } else if (settings_.scheme == S::musl) {
-    if (g.fields > 1) stage_velocity_ = g.velocity;
+    if (g.fields > 1) {
+      // only the nodes in contact need their velocities kept (below)
+      const std::size_t fields = static_cast<std::size_t>(g.fields);
+      stage_velocity_.resize(g.slots());
+      for (std::size_t node = 0; node < g.size(); ++node)
+        if (touching_[node])
+          for (std::size_t f = 0; f < fields; ++f) stage_velocity_[node * fields + f] = g.velocity[node * fields + f];
+    }
     scatter(m, true, false);  // the new particle momenta back to the grid (Sulsky et al. 1995)
     grid_velocities(m, t + dt, false, false);
     if (g.fields > 1) {
@@ -516,6 +544,9 @@ void Solver<D>::move_cracks(const Model<D>& m, double dt) {
       const std::size_t n = crack.points.size();
       std::vector<Vec<2>> v_mid(n), v_up(n), v_down(n);
       const double eps = 1e-6 * g.cell_size;
+      // a crack particle's three velocities take three stencils and their crossing tests against the
+      // crack: the work of some tens of grid-node updates, so a few dozen particles fill a team
+#pragma omp parallel for if(rift::parallel::worth_a_team(n * 32)) schedule(dynamic, 4)
       for (std::size_t k = 0; k < n; ++k) {
         const Vec<2> above = cracks_.side_point(c, k, crack.above[k], 1, eps), below = cracks_.side_point(c, k, crack.below[k], 2, eps);
         v_mid[k] = velocity(crack.points[k], nullptr);

@@ -79,7 +79,19 @@ class Solver {
   scene::Mpm settings_;
   std::vector<GridCondition> conditions_;
   std::vector<ParticleLoad> loads_;
-  std::vector<Grid<D>> thread_grids_;
+  /// One thread's share of a particle-to-grid transfer: the grid quantities scatter() sums, valid
+  /// over the slots [first, last) that the thread's points reach.
+  struct ScatterBuffer {
+    std::size_t first = 0, last = 0;
+    std::vector<double> mass, volume;
+    std::vector<Vec<D>> momentum, force, mass_gradient, displacement;
+    void resize(std::size_t slots) {
+      if (mass.size() == slots) return;
+      for (auto* v : {&mass, &volume}) v->resize(slots);
+      for (auto* v : {&momentum, &force, &mass_gradient, &displacement}) v->resize(slots);
+    }
+  };
+  std::vector<ScatterBuffer> thread_buffers_;
   std::vector<Vec<D>> start_position_;
   StencilCache<D> stencils_;  // every point's S_ip and grad S_ip at start_position_
   std::vector<Vec<D>> start_velocity_;

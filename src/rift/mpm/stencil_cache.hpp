@@ -26,9 +26,9 @@ class StencilCache {
     const Vec<D>* gradient = nullptr;
   };
 
-  /// Takes every point's stencil at positions[p]; a point whose stencil reaches past the grid
-  /// raises a PhysicsError (stencil.hpp) after the loop.
-  void fill(const Model<D>& m, const std::vector<Vec<D>>& positions) {
+  /// Takes every point's stencil at positions[p], and copies the positions to *taken_at when given;
+  /// a point whose stencil reaches past the grid raises a PhysicsError (stencil.hpp) after the loop.
+  void fill(const Model<D>& m, const std::vector<Vec<D>>& positions, std::vector<Vec<D>>* taken_at = nullptr) {
     int nodes = 1;
     for (int a = 0; a < D; ++a) nodes *= support(m.shape);
     stride_ = static_cast<std::size_t>(nodes);
@@ -37,13 +37,15 @@ class StencilCache {
     node_.resize(n * stride_);
     weight_.resize(n * stride_);
     gradient_.resize(n * stride_);
+    if (taken_at) taken_at->resize(n);
     LostParticle lost;
 #pragma omp parallel if(rift::parallel::worth_a_team(n))
     {
       Stencil<D> st;
-#pragma omp for schedule(static)
+#pragma omp for schedule(dynamic, 256)
       for (std::size_t p = 0; p < n; ++p) {
         count_[p] = 0;
+        if (taken_at) (*taken_at)[p] = positions[p];
         if (!make_stencil<D>(m, positions[p], st)) {
           lost.record(p);
           continue;
@@ -80,7 +82,7 @@ class StencilCache {
 template <int D, class Body>
 void for_each_cached_stencil(const StencilCache<D>& cache, int threads, Body body) {
   const std::size_t n = cache.size();
-#pragma omp parallel for num_threads(threads) if(rift::parallel::worth_a_team(n)) schedule(static)
+#pragma omp parallel for num_threads(threads) if(rift::parallel::worth_a_team(n)) schedule(dynamic, 256)
   for (std::size_t p = 0; p < n; ++p) body(p, cache[p]);
 }
 
