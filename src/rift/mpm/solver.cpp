@@ -86,6 +86,17 @@ Solver<D>::Solver(const scene::Scene& s, Model<D>& m) : settings_(s.mpm) {
     }
   }
   thread_buffers_.resize(static_cast<std::size_t>(omp_get_max_threads()));
+  // the conditions of each node, for the node-by-node grid passes
+  node_conditions_.first.assign(m.grid.size() + 1, 0);
+  for (const auto& c : conditions_)
+    for (auto node : c.nodes) ++node_conditions_.first[node + 1];
+  for (std::size_t node = 0; node < m.grid.size(); ++node) node_conditions_.first[node + 1] += node_conditions_.first[node];
+  node_conditions_.condition.resize(node_conditions_.first.back());
+  {
+    auto next = node_conditions_.first;
+    for (std::size_t c = 0; c < conditions_.size(); ++c)
+      for (auto node : conditions_[c].nodes) node_conditions_.condition[next[node]++] = static_cast<std::uint32_t>(c);
+  }
   cell_volume_ = std::pow(m.grid.cell_size, D) * (D == 2 ? s.thickness : 1.0);
 }
 
@@ -197,20 +208,27 @@ void Solver<D>::scatter(Model<D>& m, bool momentum_only, bool internal_force) {
 }
 
 template <int D>
-void Solver<D>::apply_grid_conditions(Model<D>& m, double t, bool on_momentum) {
+void Solver<D>::apply_grid_conditions(Model<D>& m, std::size_t node, const std::vector<double>& amplitude) const {
   auto& g = m.grid;
-  for (const auto& c : conditions_) {
-    const double amp = load::evaluate(c.time, t);
-    for (auto node : c.nodes)
-      for (int f = 0; f < g.fields; ++f) {
-        const std::size_t n = node * static_cast<std::size_t>(g.fields) + static_cast<std::size_t>(f);
-        for (int a = 0; a < D; ++a)
-          if (c.value[a]) {
-            g.velocity[n][a] = amp * *c.value[a];
-            if (on_momentum) g.momentum[n][a] = g.mass[n] * g.velocity[n][a];
-          }
-      }
+  for (auto c = node_conditions_.first[node]; c < node_conditions_.first[node + 1]; ++c) {
+    const auto& condition = conditions_[node_conditions_.condition[c]];
+    const double amp = amplitude[node_conditions_.condition[c]];
+    for (int f = 0; f < g.fields; ++f) {
+      const std::size_t n = node * static_cast<std::size_t>(g.fields) + static_cast<std::size_t>(f);
+      for (int a = 0; a < D; ++a)
+        if (condition.value[a]) {
+          g.velocity[n][a] = amp * *condition.value[a];
+          g.momentum[n][a] = g.mass[n] * g.velocity[n][a];
+        }
+    }
   }
+}
+
+template <int D>
+std::vector<double> Solver<D>::condition_amplitudes(double t) const {
+  std::vector<double> amplitude(conditions_.size());
+  for (std::size_t c = 0; c < conditions_.size(); ++c) amplitude[c] = load::evaluate(conditions_[c].time, t);
+  return amplitude;
 }
 
 template <int D>
@@ -223,7 +241,7 @@ std::size_t Solver<D>::field_of(const Model<D>& m, std::size_t p, int q) const {
 }
 
 template <int D>
-void Solver<D>::apply_contact(Model<D>& m) {
+bool Solver<D>::apply_contact(Model<D>& m, std::size_t node) const {
   // Multi-material contact (Bardenhagen et al. 2001): at a node where two or more bodies have mass,
   // a body approaching the others along the contact normal gets the normal part of its velocity
   // relative to the centre of mass removed (frictionless), also its tangential part within the
@@ -234,96 +252,131 @@ void Solver<D>::apply_contact(Model<D>& m) {
   const std::size_t fields = static_cast<std::size_t>(g.fields);
   const double tiny = tiny_mass(m);
   using C = scene::Mpm::Contact;
-  touching_.assign(g.size(), 0);
-#pragma omp parallel for if(rift::parallel::worth_a_team(g.size())) schedule(static)
-  for (std::size_t node = 0; node < g.size(); ++node) {
-    const std::size_t base = node * fields;
-    int present = 0;
-    double mass = 0.0, volume = 0.0;
-    Vec<D> momentum{}, gradient{};
-    for (std::size_t f = 0; f < fields; ++f) {
-      if (g.mass[base + f] <= tiny) continue;
-      ++present;
-      mass += g.mass[base + f];
-      volume += g.volume[base + f];
-      for (int a = 0; a < D; ++a) momentum[a] += g.momentum[base + f][a], gradient[a] += g.mass_gradient[base + f][a];
-    }
-    if (present < 2) continue;
-    scene::Mpm::Contact kind = settings_.contact;
-    Vec<D> crack_normal{};  // crack faces: the crack's normal, pointing to its "above" side
-    bool node_above = false;
-    if constexpr (D == 2) {
-      if (!cracks_.empty()) {
-        kind = crack_contact_;
-        if (kind == C::none) continue;
-        const auto near = cracks_.nearest(g.node_position(node));
-        crack_normal = cracks_.normal(near.crack, near.particle);
-        node_above = dot<D>(g.node_position(node) - cracks_.cracks()[near.crack].points[near.particle], crack_normal) >= 0.0;
-        // the faces touch only where the crack is closed: the displacements of the material above
-        // and below, extrapolated to this node, must not have opened it (the displacement check of
-        // Guo and Nairn 2006, sec. 2; the crack starts closed). Field 1 is above material, field 2
-        // below, field 0 the node's own side.
-        const std::size_t above = g.mass[base + 1] > tiny ? 1 : node_above ? 0 : fields;
-        const std::size_t below = g.mass[base + 2] > tiny ? 2 : !node_above ? 0 : fields;
-        if (above == fields || below == fields) continue;
-        const Vec<D> u_above = (1.0 / g.mass[base + above]) * g.displacement[base + above];
-        const Vec<D> u_below = (1.0 / g.mass[base + below]) * g.displacement[base + below];
-        if (dot<D>(u_above - u_below, crack_normal) > 0.0) continue;
-      }
-    }
-    // bodies touch at this node only when together they fill its cell (their stencils already
-    // overlap a couple of cells before they meet)
-    if (cracks_.empty() && volume < contact_volume_ * cell_volume_) continue;
-    touching_[node] = 1;
-    const Vec<D> v_cm = (1.0 / mass) * momentum;
-    for (std::size_t f = 0; f < fields; ++f) {
-      const std::size_t n = base + f;
-      if (g.mass[n] <= tiny) continue;
-      Vec<D> normal;
-      if (!cracks_.empty()) {
-        // field 1 holds the material above the crack, field 2 below, field 0 the node's own side;
-        // each is pushed toward the other face
-        const bool above = f == 1 || (f == 0 && node_above);
-        normal = (above ? -1.0 : 1.0) * crack_normal;
-      } else {
-        // mass_gradient holds sum m_p dS/dx_p = -grad m (the gradient with respect to the node is the
-        // opposite), so grad m_others - grad m_f = 2 mass_gradient_f - sum of all
-        normal = 2.0 * g.mass_gradient[n] - gradient;
-        const double length = norm<D>(normal);
-        if (length == 0.0) continue;
-        normal = (1.0 / length) * normal;
-      }
-      const Vec<D> dv = g.velocity[n] - v_cm;
-      const double approach = dot<D>(dv, normal);
-      if (approach <= 0.0) continue;  // separating: free
-      Vec<D> correction = approach * normal;
-      if (kind == C::stick) {
-        correction = dv;
-      } else if (kind == C::friction) {
-        const Vec<D> tangential = dv - approach * normal;
-        const double slip = norm<D>(tangential);
-        const double limit = settings_.friction * approach;
-        if (slip > 0.0) correction = correction + (slip <= limit ? 1.0 : limit / slip) * tangential;
-      }
-      g.velocity[n] = g.velocity[n] - correction;
-      g.momentum[n] = g.mass[n] * g.velocity[n];
+  const std::size_t base = node * fields;
+  int present = 0;
+  double mass = 0.0, volume = 0.0;
+  Vec<D> momentum{}, gradient{};
+  for (std::size_t f = 0; f < fields; ++f) {
+    if (g.mass[base + f] <= tiny) continue;
+    ++present;
+    mass += g.mass[base + f];
+    volume += g.volume[base + f];
+    for (int a = 0; a < D; ++a) momentum[a] += g.momentum[base + f][a], gradient[a] += g.mass_gradient[base + f][a];
+  }
+  if (present < 2) return false;
+  scene::Mpm::Contact kind = settings_.contact;
+  Vec<D> crack_normal{};  // crack faces: the crack's normal, pointing to its "above" side
+  bool node_above = false;
+  if constexpr (D == 2) {
+    if (!cracks_.empty()) {
+      kind = crack_contact_;
+      if (kind == C::none) return false;
+      const auto near = cracks_.nearest(g.node_position(node));
+      crack_normal = cracks_.normal(near.crack, near.particle);
+      node_above = dot<D>(g.node_position(node) - cracks_.cracks()[near.crack].points[near.particle], crack_normal) >= 0.0;
+      // the faces touch only where the crack is closed: the displacements of the material above
+      // and below, extrapolated to this node, must not have opened it (the displacement check of
+      // Guo and Nairn 2006, sec. 2; the crack starts closed). Field 1 is above material, field 2
+      // below, field 0 the node's own side.
+      const std::size_t above = g.mass[base + 1] > tiny ? 1 : node_above ? 0 : fields;
+      const std::size_t below = g.mass[base + 2] > tiny ? 2 : !node_above ? 0 : fields;
+      if (above == fields || below == fields) return false;
+      const Vec<D> u_above = (1.0 / g.mass[base + above]) * g.displacement[base + above];
+      const Vec<D> u_below = (1.0 / g.mass[base + below]) * g.displacement[base + below];
+      if (dot<D>(u_above - u_below, crack_normal) > 0.0) return false;
     }
   }
+  // bodies touch at this node only when together they fill its cell (their stencils already
+  // overlap a couple of cells before they meet)
+  if (cracks_.empty() && volume < contact_volume_ * cell_volume_) return false;
+  const Vec<D> v_cm = (1.0 / mass) * momentum;
+  for (std::size_t f = 0; f < fields; ++f) {
+    const std::size_t n = base + f;
+    if (g.mass[n] <= tiny) continue;
+    Vec<D> normal;
+    if (!cracks_.empty()) {
+      // field 1 holds the material above the crack, field 2 below, field 0 the node's own side;
+      // each is pushed toward the other face
+      const bool above = f == 1 || (f == 0 && node_above);
+      normal = (above ? -1.0 : 1.0) * crack_normal;
+    } else {
+      // mass_gradient holds sum m_p dS/dx_p = -grad m (the gradient with respect to the node is the
+      // opposite), so grad m_others - grad m_f = 2 mass_gradient_f - sum of all
+      normal = 2.0 * g.mass_gradient[n] - gradient;
+      const double length = norm<D>(normal);
+      if (length == 0.0) continue;
+      normal = (1.0 / length) * normal;
+    }
+    const Vec<D> dv = g.velocity[n] - v_cm;
+    const double approach = dot<D>(dv, normal);
+    if (approach <= 0.0) continue;  // separating: free
+    Vec<D> correction = approach * normal;
+    if (kind == C::stick) {
+      correction = dv;
+    } else if (kind == C::friction) {
+      const Vec<D> tangential = dv - approach * normal;
+      const double slip = norm<D>(tangential);
+      const double limit = settings_.friction * approach;
+      if (slip > 0.0) correction = correction + (slip <= limit ? 1.0 : limit / slip) * tangential;
+    }
+    g.velocity[n] = g.velocity[n] - correction;
+    g.momentum[n] = g.mass[n] * g.velocity[n];
+  }
+  return true;
 }
 
 template <int D>
-void Solver<D>::grid_velocities(Model<D>& m, double t, bool record_start, bool contact) {
+void Solver<D>::node_velocities(Model<D>& m, std::size_t node, double tiny, bool record_start, bool contact,
+                                const std::vector<double>& amplitude) {
   auto& g = m.grid;
-  const double tiny = tiny_mass(m);
-#pragma omp parallel for if(rift::parallel::worth_a_team(g.slots())) schedule(static)
-  for (std::size_t n = 0; n < g.slots(); ++n) {
+  const std::size_t fields = static_cast<std::size_t>(g.fields);
+  for (std::size_t n = node * fields; n < (node + 1) * fields; ++n) {
     for (int a = 0; a < D; ++a) g.velocity[n][a] = g.mass[n] > tiny ? g.momentum[n][a] / g.mass[n] : 0.0;
     // FLIP increments are taken from the plain projection, so that contact and boundary
     // corrections reach the particles too
     if (record_start) g.velocity_start[n] = g.velocity[n];
   }
-  if (g.fields > 1 && contact) apply_contact(m);
-  apply_grid_conditions(m, t, true);
+  if (fields > 1 && contact) touching_[node] = apply_contact(m, node);
+  apply_grid_conditions(m, node, amplitude);
+}
+
+template <int D>
+void Solver<D>::grid_velocities(Model<D>& m, double t, bool record_start, bool contact, bool restore_stage) {
+  auto& g = m.grid;
+  const double tiny = tiny_mass(m);
+  const std::size_t fields = static_cast<std::size_t>(g.fields);
+  const auto amplitude = condition_amplitudes(t);
+  if (fields > 1 && contact) touching_.resize(g.size());
+#pragma omp parallel for if(rift::parallel::worth_a_team(g.slots())) schedule(static)
+  for (std::size_t node = 0; node < g.size(); ++node) {
+    node_velocities(m, node, tiny, record_start, contact, amplitude);
+    if (restore_stage && touching_[node])
+      for (std::size_t n = node * fields; n < (node + 1) * fields; ++n) g.velocity[n] = stage_velocity_[n];
+  }
+}
+
+template <int D>
+void Solver<D>::grid_update(Model<D>& m, double t, double dt) {
+  // node by node (every part is local to a node): velocities at t^n from the scattered momenta,
+  // contact and conditions; the momentum update with mass-proportional damping,
+  // dp/dt = f - damping p; velocities at t^n+1, contact and conditions again
+  auto& g = m.grid;
+  const double tiny = tiny_mass(m), alpha = settings_.damping;
+  const std::size_t fields = static_cast<std::size_t>(g.fields);
+  const auto amplitude_start = condition_amplitudes(t), amplitude_end = condition_amplitudes(t + dt);
+  if (fields > 1) touching_.resize(g.size());
+  const bool keep_stage = fields > 1 && settings_.scheme == scene::Mpm::Scheme::musl;
+  if (keep_stage) stage_velocity_.resize(g.slots());
+#pragma omp parallel for if(rift::parallel::worth_a_team(g.slots())) schedule(static)
+  for (std::size_t node = 0; node < g.size(); ++node) {
+    node_velocities(m, node, tiny, true, true, amplitude_start);
+    for (std::size_t n = node * fields; n < (node + 1) * fields; ++n)
+      for (int a = 0; a < D; ++a) g.momentum[n][a] += dt * (g.force[n][a] - alpha * g.momentum[n][a]);
+    node_velocities(m, node, tiny, false, true, amplitude_end);
+    // MUSL: the velocities the points move with, kept where the fields touch (step())
+    if (keep_stage && touching_[node])
+      for (std::size_t n = node * fields; n < (node + 1) * fields; ++n) stage_velocity_[n] = g.velocity[n];
+  }
 }
 
 template <int D>
@@ -394,20 +447,13 @@ void Solver<D>::step(Model<D>& m, double dt) {
     grid_velocities(m, t, false);
     update_stress(m, dt);
     scatter(m, false, true);  // forces from the updated stress (mass and momentum unchanged)
-    grid_velocities(m, t, true);
   } else {
     scatter(m, false, true);
-    grid_velocities(m, t, true);
   }
-  // grid momentum update with mass-proportional damping: dp/dt = f - damping p
-  const double alpha = settings_.damping;
-#pragma omp parallel for if(rift::parallel::worth_a_team(g.slots())) schedule(static)
-  for (std::size_t n = 0; n < g.slots(); ++n)
-    for (int a = 0; a < D; ++a) g.momentum[n][a] += dt * (g.force[n][a] - alpha * g.momentum[n][a]);
-  grid_velocities(m, t + dt, false);
+  grid_update(m, t, dt);
   // grid to particles
   const bool apic = settings_.transfer == scene::Mpm::Transfer::apic;
-  const double flip = settings_.flip_fraction;
+  const double flip = settings_.flip_fraction, alpha = settings_.damping;
   for_each_cached_stencil<D>(stencils_, omp_get_max_threads(), [&](std::size_t p, const auto& st) {
     const std::size_t fields = static_cast<std::size_t>(g.fields);
     Vec<D> pic{}, increment{}, start{};
@@ -451,29 +497,14 @@ void Solver<D>::step(Model<D>& m, double dt) {
   if (settings_.scheme == S::usl) {
     update_stress(m, dt);
   } else if (settings_.scheme == S::musl) {
-    if (g.fields > 1) {
-      // only the nodes in contact need their velocities kept (below)
-      const std::size_t fields = static_cast<std::size_t>(g.fields);
-      stage_velocity_.resize(g.slots());
-      for (std::size_t node = 0; node < g.size(); ++node)
-        if (touching_[node])
-          for (std::size_t f = 0; f < fields; ++f) stage_velocity_[node * fields + f] = g.velocity[node * fields + f];
-    }
     scatter(m, true, false);  // the new particle momenta back to the grid (Sulsky et al. 1995)
-    grid_velocities(m, t + dt, false, false);
-    if (g.fields > 1) {
-      // where the fields touch (closed crack faces, bodies in contact) the strain rate comes from
-      // the contact-corrected velocities the points moved with: remapped ones differ in their
-      // normal parts by the FLIP history, and contact, which only removes approach, would ratchet
-      // the faces open. Elsewhere the fields are independent and take the remapped velocities like
-      // every other node: a field holding only the edge of a few points' support would otherwise
-      // feed f / m_field (unbounded as m_field -> 0) into the stress and go unstable.
-      const std::size_t fields = static_cast<std::size_t>(g.fields);
-#pragma omp parallel for if(rift::parallel::worth_a_team(g.size())) schedule(static)
-      for (std::size_t node = 0; node < g.size(); ++node)
-        if (touching_[node])
-          for (std::size_t f = 0; f < fields; ++f) g.velocity[node * fields + f] = stage_velocity_[node * fields + f];
-    }
+    // where the fields touch (closed crack faces, bodies in contact) the strain rate comes from
+    // the contact-corrected velocities the points moved with (kept by grid_update): remapped ones
+    // differ in their normal parts by the FLIP history, and contact, which only removes approach,
+    // would ratchet the faces open. Elsewhere the fields are independent and take the remapped
+    // velocities like every other node: a field holding only the edge of a few points' support
+    // would otherwise feed f / m_field (unbounded as m_field -> 0) into the stress and go unstable.
+    grid_velocities(m, t + dt, false, false, g.fields > 1);
     update_stress(m, dt);
   }
   m.time = t + dt;

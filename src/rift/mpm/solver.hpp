@@ -60,10 +60,21 @@ class Solver {
     scene::TimeFunction time;
   };
   void scatter(Model<D>& m, bool momentum_only, bool internal_force);
-  void grid_velocities(Model<D>& m, double t, bool record_start, bool contact = true);
+  /// Grid velocities from the scattered momenta at time t, node by node (node_velocities);
+  /// restore_stage: then the velocities grid_update kept at the nodes in contact.
+  void grid_velocities(Model<D>& m, double t, bool record_start, bool contact = true, bool restore_stage = false);
+  /// One node's velocities from its momenta (and velocity_start when record_start), contact
+  /// between its fields, and the grid conditions at the given amplitudes.
+  void node_velocities(Model<D>& m, std::size_t node, double tiny, bool record_start, bool contact, const std::vector<double>& amplitude);
+  /// The grid part of a step, one pass over the nodes: velocities at t (recorded for FLIP), the
+  /// momentum update to t + dt, velocities at t + dt; contact and conditions at both.
+  void grid_update(Model<D>& m, double t, double dt);
   void update_stress(Model<D>& m, double dt);
-  void apply_grid_conditions(Model<D>& m, double t, bool on_momentum);
-  void apply_contact(Model<D>& m);
+  /// Prescribed grid velocities at a node (the momenta follow), amplitude[c] for condition c.
+  void apply_grid_conditions(Model<D>& m, std::size_t node, const std::vector<double>& amplitude) const;
+  std::vector<double> condition_amplitudes(double t) const;
+  /// Contact between the fields of one node; true when they touch (and were corrected).
+  bool apply_contact(Model<D>& m, std::size_t node) const;
   /// Velocity field of material point p at a node: crack side (CRAMP), body (multi-material
   /// contact) or the single shared field.
   /// (q: the node's place in the point's stencil, for the per-step crack-field cache)
@@ -78,6 +89,9 @@ class Solver {
 
   scene::Mpm settings_;
   std::vector<GridCondition> conditions_;
+  struct NodeConditions {  // the conditions of each node, in scene order: condition[first[n] .. first[n + 1])
+    std::vector<std::uint32_t> first, condition;
+  } node_conditions_;
   std::vector<ParticleLoad> loads_;
   /// One thread's share of a particle-to-grid transfer: the grid quantities scatter() sums, valid
   /// over the slots [first, last) that the thread's points reach.
