@@ -347,7 +347,7 @@ void Solver<D>::grid_velocities(Model<D>& m, double t, bool record_start, bool c
   const std::size_t fields = static_cast<std::size_t>(g.fields);
   const auto amplitude = condition_amplitudes(t);
   if (fields > 1 && contact) touching_.resize(g.size());
-#pragma omp parallel for if(rift::parallel::worth_a_team(g.slots())) schedule(static)
+#pragma omp parallel for if(rift::parallel::worth_a_team(g.slots())) schedule(dynamic, 256)
   for (std::size_t node = 0; node < g.size(); ++node) {
     node_velocities(m, node, tiny, record_start, contact, amplitude);
     if (restore_stage && touching_[node])
@@ -367,7 +367,7 @@ void Solver<D>::grid_update(Model<D>& m, double t, double dt) {
   if (fields > 1) touching_.resize(g.size());
   const bool keep_stage = fields > 1 && settings_.scheme == scene::Mpm::Scheme::musl;
   if (keep_stage) stage_velocity_.resize(g.slots());
-#pragma omp parallel for if(rift::parallel::worth_a_team(g.slots())) schedule(static)
+#pragma omp parallel for if(rift::parallel::worth_a_team(g.slots())) schedule(dynamic, 256)
   for (std::size_t node = 0; node < g.size(); ++node) {
     node_velocities(m, node, tiny, true, true, amplitude_start);
     for (std::size_t n = node * fields; n < (node + 1) * fields; ++n)
