@@ -120,8 +120,9 @@ void Solver<D>::scatter(Model<D>& m, bool momentum_only, bool internal_force) {
   // One team for the whole transfer. Thread t takes a fixed block of points and sums their shares
   // into its own buffer, over the slots its block reaches: [first, last) from the stencils (their
   // nodes come in increasing order), zeroed by the thread itself. The buffers are then summed slot
-  // by slot in thread order, so a run is bit-reproducible for a given thread count. Points are laid
-  // out cell by cell, so the blocks reach bands of the grid that overlap only at their edges.
+  // by slot in thread order, so a run is bit-reproducible for a given thread count. A body's points
+  // are laid out row by row (discretize.cpp), so a block reaches a band of grid rows, and the bands
+  // of neighbouring blocks overlap only at their edges.
   const int team = rift::parallel::worth_a_team(n_points) ? static_cast<int>(thread_buffers_.size()) : 1;
   int used = 1;
 #pragma omp parallel num_threads(team) if(team > 1)
