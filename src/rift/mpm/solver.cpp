@@ -383,7 +383,7 @@ void Solver<D>::grid_update(Model<D>& m, double t, double dt) {
 template <int D>
 void Solver<D>::update_stress(Model<D>& m, double dt) {
   auto& ps = m.particles;
-  for_each_cached_stencil<D>(stencils_, omp_get_max_threads(), [&](std::size_t p, const auto& st) {
+  for_each_cached_stencil<D>(stencils_, [&](std::size_t p, const auto& st) {
     const std::size_t fields = static_cast<std::size_t>(m.grid.fields);
     Tensor<D> L = Tensor<D>::Zero();  // velocity gradient L_ab = sum v_a dS/dx_b
     for (int q = 0; q < st.count; ++q) {
@@ -455,7 +455,7 @@ void Solver<D>::step(Model<D>& m, double dt) {
   // grid to particles
   const bool apic = settings_.transfer == scene::Mpm::Transfer::apic;
   const double flip = settings_.flip_fraction, alpha = settings_.damping;
-  for_each_cached_stencil<D>(stencils_, omp_get_max_threads(), [&](std::size_t p, const auto& st) {
+  for_each_cached_stencil<D>(stencils_, [&](std::size_t p, const auto& st) {
     const std::size_t fields = static_cast<std::size_t>(g.fields);
     Vec<D> pic{}, increment{}, start{};
     Tensor<D> B = Tensor<D>::Zero(), Dp = Tensor<D>::Zero();

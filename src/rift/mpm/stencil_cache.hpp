@@ -77,12 +77,13 @@ class StencilCache {
   std::vector<Vec<D>> gradient_;
 };
 
-/// Runs body(p, stencil) for every point of the cache in parallel (static schedule, `threads`
-/// threads, or the calling thread alone for a few points: parallel/team.hpp).
+/// Runs body(p, stencil) for every point of the cache in parallel, or on the calling thread alone
+/// for a few points (parallel/team.hpp). The schedule is dynamic, so body must compute each point
+/// alone (a sum over points across calls would depend on which thread took which block).
 template <int D, class Body>
-void for_each_cached_stencil(const StencilCache<D>& cache, int threads, Body body) {
+void for_each_cached_stencil(const StencilCache<D>& cache, Body body) {
   const std::size_t n = cache.size();
-#pragma omp parallel for num_threads(threads) if(rift::parallel::worth_a_team(n)) schedule(dynamic, 256)
+#pragma omp parallel for if(rift::parallel::worth_a_team(n)) schedule(dynamic, 256)
   for (std::size_t p = 0; p < n; ++p) body(p, cache[p]);
 }
 
