@@ -1,0 +1,71 @@
+// The most two threads can gain on this machine: work with nothing shared between the threads.
+//
+//     c++ -O2 -fopenmp bench/parallel_ceiling.cpp -o ceiling && ./ceiling [repeats]
+//
+// Each kernel runs a fixed amount of work on one thread, then the same work split in halves on two
+// threads, each on its own data (no shared cache lines, no reduction in the loop, one barrier at the
+// end). The ratio of the two times is what a perfectly parallel code could reach here; a virtual
+// machine whose two CPUs share a core, or whose clock drops when both are busy, gives less than 2.
+// bench/run_mpm prints it beside the MPM speed-ups, so that those read against the machine.
+//   compute: four independent chains of multiply-adds on registers (clock-bound, no memory);
+//   cache:   sweeps of a multiply-add over 256 KiB of private array per thread (L2-resident).
+#include <omp.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <vector>
+
+namespace {
+
+double compute_kernel(long iterations) {
+  double a = 1.0, b = 1.1, c = 1.2, d = 1.3;
+  for (long i = 0; i < iterations; ++i) {
+    a = a * 0.999999 + 1e-7;
+    b = b * 0.999999 + 1e-7;
+    c = c * 0.999999 + 1e-7;
+    d = d * 0.999999 + 1e-7;
+  }
+  return a + b + c + d;
+}
+
+double cache_kernel(long sweeps) {
+  std::vector<double> x(32768, 1.0);  // 256 KiB
+  for (long s = 0; s < sweeps; ++s)
+    for (double& v : x) v = v * 0.999999 + 1e-7;
+  return x[12345];
+}
+
+// Seconds for `total` units of work on `threads` threads, each thread taking total / threads.
+template <class Kernel>
+double seconds(Kernel kernel, long total, int threads) {
+  double sink = 0.0;
+  const auto start = std::chrono::steady_clock::now();
+#pragma omp parallel num_threads(threads) reduction(+ : sink)
+  sink += kernel(total / threads);
+  const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  if (sink == 42.0) std::puts("");  // keeps the work
+  return elapsed;
+}
+
+template <class Kernel>
+double median_speedup(Kernel kernel, long total, int repeats) {
+  std::vector<double> one, two;
+  for (int r = 0; r < repeats; ++r) {  // alternating, so a drift in the clock reaches both alike
+    one.push_back(seconds(kernel, total, 1));
+    two.push_back(seconds(kernel, total, 2));
+  }
+  std::sort(one.begin(), one.end());
+  std::sort(two.begin(), two.end());
+  return one[one.size() / 2] / two[two.size() / 2];
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  const int repeats = argc > 1 ? std::max(1, std::atoi(argv[1])) : 5;
+  std::printf("compute %.2f\n", median_speedup(compute_kernel, 200'000'000L, repeats));
+  std::printf("cache %.2f\n", median_speedup(cache_kernel, 4'000L, repeats));
+  return 0;
+}
