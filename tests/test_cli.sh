@@ -50,7 +50,9 @@ SCENE
 "$rift" run "$tmp/plate.toml" -o "$tmp/out" --threads 2 > "$tmp/run.log"
 grep -q "damage   $tmp/out/damage.png" "$tmp/run.log"
 grep -q "M bonds/s)" "$tmp/run.log"  # throughput at the end of the run
-test -s "$tmp/out/fields.h5"
+test -s "$tmp/out/fields_000000.h5" && test -s "$tmp/out/fields_000003.h5"  # a file per snapshot
+test ! -e "$tmp/out/fields_000004.h5"
+! ls "$tmp/out" | grep -q '\.tmp$'  # every file renamed into place
 test -s "$tmp/out/damage.png"
 test "$(wc -l < "$tmp/out/history.csv")" -eq 7  # header, initial state, 5 rows
 head -1 "$tmp/out/history.csv" | grep -q 'reaction_left_x'
@@ -109,6 +111,34 @@ SCENE
 "$rift" run "$tmp/in_situ.toml" -o "$tmp/in_situ_out" --threads 1 > "$tmp/in_situ.log" 2> "$tmp/in_situ.err"
 grep -q "in-situ stage: equilibrium in" "$tmp/in_situ.log"
 grep -q "are past their limit at the in-situ equilibrium and broke at the start" "$tmp/in_situ.err"
+# SIGTERM (a batch system's notice): the run ends its step, writes a checkpoint and exits with
+# 128 + 15; `--restart` continues it to the history of a run never stopped, byte for byte
+sed 's/end_time = 4e-6/end_time = 4e-4/; s/history_rows = 5/history_rows = 500/' "$tmp/plate.toml" > "$tmp/long.toml"
+"$rift" run "$tmp/long.toml" -o "$tmp/long_whole" --threads 1 -q > /dev/null
+set +e
+"$rift" run "$tmp/long.toml" -o "$tmp/long" --threads 1 -q > "$tmp/long.log" &
+pid=$!
+# a tenth of the way in (50 of its 500 history rows)
+until [ "$(cat "$tmp/long/history.csv" 2> /dev/null | wc -l)" -gt 50 ]; do sleep 0.02; done
+kill -TERM "$pid"
+wait "$pid"
+status=$?
+set -e
+test "$status" -eq 143
+grep -q "rift: stopped by signal 15 after step" "$tmp/long.log"
+test -s "$tmp/long/checkpoint.rift"
+"$rift" run "$tmp/long.toml" -o "$tmp/long" --threads 1 --restart "$tmp/long/checkpoint.rift" > "$tmp/long2.log"
+grep -q "rift: continued from $tmp/long/checkpoint.rift at step" "$tmp/long2.log"
+cmp "$tmp/long/history.csv" "$tmp/long_whole/history.csv"
+# a checkpoint of another scene is refused (exit status 2), the run's files unchanged
+cp "$tmp/long/history.csv" "$tmp/history_before.csv"
+set +e
+"$rift" run "$tmp/plate.toml" -o "$tmp/long" --restart "$tmp/long/checkpoint.rift" 2> "$tmp/err.txt"
+status=$?
+set -e
+test "$status" -eq 2
+grep -q "cannot restart from this checkpoint: it was written for another scene" "$tmp/err.txt"
+cmp "$tmp/long/history.csv" "$tmp/history_before.csv"
 # a mistake: exit status 2, the message (file:line:column, key), nothing written
 refused() {  # scene, expected text of the message
   set +e

@@ -139,6 +139,9 @@ const Case cases[] = {
      "breaking = \"after\""},
     {"breaking passes while bonds break during the iterations", "type = \"explicit\"\nend_time = 1e-6",
      "type = \"dynamic_relaxation\"\nmax_breaking_passes = 3", "solver.max_breaking_passes", "max_breaking_passes = 3"},
+    {"checkpoints every zero steps", "", "\n[checkpoint]\nevery_steps = 0\n", "checkpoint.every_steps", "every_steps = 0"},
+    {"checkpoint every negative second", "", "\n[checkpoint]\nevery_seconds = -60.0\n", "checkpoint.every_seconds", "every_seconds = -60.0"},
+    {"unknown checkpoint key", "", "\n[checkpoint]\nevery = 10\n", "checkpoint.every", "every = 10"},
 };
 
 class SceneErrors : public ::testing::TestWithParam<Case> {};
@@ -260,6 +263,7 @@ const MpmCase mpm_cases[] = {
     {"interface in mpm", "[solver]", "[[interfaces]]\npoints = [[0.0, 0.0025], [0.01, 0.0025]]\ntensile_strength = 1e6\nfriction_coefficient = 0.5\n[solver]", "interfaces[0].points"},
     {"in-situ stress in mpm", "[solver]", "[in_situ_stress]\nsigma_H = -1e6\nsigma_h = -1e6\n[solver]", "in_situ_stress.sigma_H"},
     {"unknown mode partition", "cell_size = 0.001", "cell_size = 0.001\nmode_partition = \"displacement\"", "mpm.mode_partition"},
+    {"checkpoint of an mpm scene", "[solver]", "[checkpoint]\nevery_steps = 10\n[solver]", "checkpoint"},
     {"traction layer thinner than a row of points", "type = \"fixed\"",
      "type = \"fixed\"\n[[boundaries]]\nregion = \"beam\"\ntype = \"traction\"\ny = 1e6\nlayer_depth = 0.0002", "boundaries[1].layer_depth"},
 };

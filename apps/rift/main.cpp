@@ -1,8 +1,11 @@
 // rift: peridynamic fracture simulator.
-//   rift run SCENE [-o DIR] [--threads N]   run a scene and write fields, history and images
+//   rift run SCENE [-o DIR] [--threads N] [--restart FILE]
+//                                           run a scene and write fields, history and images
+//                                           (or continue it from a checkpoint)
 //   rift check SCENE                        validate a scene and print what a run would do
 //   rift --version
-// Exit status: 0 success, 1 physics failure during a run, 2 bad input (nothing written).
+// Exit status: 0 success, 1 physics failure during a run, 2 bad input (nothing written), 128 + the
+// signal when SIGTERM or SIGINT stopped a run (its checkpoint written).
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
 #include <omp.h>
@@ -16,6 +19,7 @@
 #include "rift/core/version.hpp"
 #include "rift/parallel/cpu_quota.hpp"
 #include "rift/run/runner.hpp"
+#include "rift/run/stop_signal.hpp"
 #include "rift/scene/parse.hpp"
 
 int main(int argc, char** argv) {
@@ -23,7 +27,7 @@ int main(int argc, char** argv) {
   CLI::App app{"rift: fracture of solids with peridynamics"};
   app.set_version_flag("--version", std::string("rift ") + rift::version);
   app.require_subcommand(1);
-  std::string scene_path, output_dir;
+  std::string scene_path, output_dir, restart;
   int threads = 0;
   bool quiet = false;
   auto* run = app.add_subcommand("run", "Run a scene and write its results");
@@ -31,6 +35,7 @@ int main(int argc, char** argv) {
   run->add_option("-o,--output", output_dir, "Output directory (default: results/<scene name>)");
   run->add_option("--threads", threads, "OpenMP threads (default: all cores)")->check(CLI::PositiveNumber);
   run->add_flag("-q,--quiet", quiet, "No progress output");
+  run->add_option("--restart", restart, "Continue the run from this checkpoint (written by [checkpoint] or on SIGTERM/SIGINT)");
   auto* check = app.add_subcommand("check", "Validate a scene and print particles, bonds, memory, time step and outputs");
   check->add_option("scene", scene_path, "Scene file (TOML)")->required();
   try {
@@ -45,8 +50,17 @@ int main(int argc, char** argv) {
       rift::run::check(scene, std::cout);
       return 0;
     }
-    rift::run::Options options{output_dir, threads, quiet};
+    rift::run::Options options{output_dir, threads, quiet, restart};
+    if (scene.method == rift::scene::Method::peridynamics) rift::run::catch_stop_signals();
     auto r = rift::run::run(scene, options);
+    if (r.stopped) {
+      std::printf("rift: stopped by signal %d after step %ld (t = %.6g s); checkpoint %s\n", r.stop_signal, r.steps, r.time,
+                  r.checkpoint.c_str());
+      std::printf("rift: continue with: rift run %s%s%s --restart %s\n", scene_path.c_str(), output_dir.empty() ? "" : " -o ",
+                  output_dir.c_str(), r.checkpoint.c_str());
+      return r.stop_signal > 0 ? 128 + r.stop_signal : 0;
+    }
+    if (r.first_step > 1) std::printf("rift: continued from %s at step %ld\n", restart.c_str(), r.first_step - 1);
     if (scene.method == rift::scene::Method::mpm)
       std::printf("rift: %ld steps, t = %.6g s, kinetic energy %.6g J, strain energy %.6g J, crack growth %ld increments\n", r.steps,
                   r.time, r.final_energy.kinetic, r.final_energy.strain, r.crack_growth_events);
@@ -58,7 +72,8 @@ int main(int argc, char** argv) {
     std::string rate = scene.method == rift::scene::Method::mpm
                            ? fmt::format("{:.4g} M particle-steps/s", 1e-6 * r.particle_steps * per_second)
                            : fmt::format("{:.4g} M bonds/s", 1e-6 * r.bond_updates * per_second);
-    std::printf("rift: loop time %.6g s (%.4g s per step, %d threads; %s)\n", r.loop_seconds, r.loop_seconds / double(std::max(1L, r.steps)),
+    const long steps_run = r.steps - r.first_step + 1;  // by this process
+    std::printf("rift: loop time %.6g s (%.4g s per step, %d threads; %s)\n", r.loop_seconds, r.loop_seconds / double(std::max(1L, steps_run)),
                 omp_get_max_threads(), rate.c_str());
     if (!r.phases.empty()) std::printf("rift: by phase: %s\n", r.phases.c_str());
     // peak resident memory of the process (getrusage: kilobytes on Linux), for the memory targets

@@ -1,5 +1,8 @@
-// Particle fields per snapshot in one HDF5 file, with an XDMF index so ParaView/VisIt open the
-// time series directly (Polyvertex topology; 2D positions are padded with z = 0).
+// Particle fields per snapshot, one HDF5 file each (stem_000000.h5, ...), with an XDMF index so
+// ParaView/VisIt open the time series directly (Polyvertex topology; 2D positions are padded with
+// z = 0). Each file is written under a temporary name and renamed once closed, and so is the index:
+// a run killed at any moment leaves every snapshot the index lists whole, and no half-written file
+// under a snapshot's name. The files carry no object times, so the same run writes the same bytes.
 #pragma once
 #include <string>
 #include <vector>
@@ -17,23 +20,39 @@ class FieldWriter {
   /// A field with `components` values per particle (1 = scalar, 3 = vector), row-major.
   void write(const std::string& name, const std::vector<double>& values, int components);
   void end_snapshot();
-  const std::string& h5_path() const { return h5_path_; }
+  /// The snapshots' files: stem_??????.h5 in the directory.
+  std::string h5_pattern() const { return directory_ + "/" + stem_ + "_??????.h5"; }
   const std::string& xdmf_path() const { return xdmf_path_; }
 
+  /// The index of the snapshots written so far, for a checkpoint (pd/checkpoint_state.hpp): a
+  /// restart takes it back and goes on numbering, its index listing the earlier snapshots too.
+  template <class A>
+  void visit_state(A& a) {
+    a("fields.snapshots", snapshots_);
+  }
+
  private:
-  void write_xdmf() const;
   struct Field {
     std::string name;
-    int components;
+    int components = 1;
+    template <class A>
+    friend void visit(A& a, Field& f) {
+      a("field.name", f.name), a("field.components", f.components);
+    }
   };
   struct Snapshot {
-    double time;
-    std::string group;
+    double time = 0.0;
+    std::string file;  // its file's name in the directory
     std::vector<Field> fields;
+    template <class A>
+    friend void visit(A& a, Snapshot& s) {
+      a("snapshot.time", s.time), a("snapshot.file", s.file), a("snapshot.fields", s.fields);
+    }
   };
-  std::string h5_path_, xdmf_path_, h5_name_;
+  void write_xdmf() const;
+  std::string directory_, stem_, xdmf_path_;
   std::size_t particles_;
-  long long file_ = -1, group_ = -1;
+  long long file_ = -1;
   std::vector<Snapshot> snapshots_;
 };
 

@@ -34,6 +34,15 @@ class Contact {
   /// Add contact force densities to m.force.
   void add_forces(Model<D>& m);
   std::size_t candidate_pairs() const { return pairs_.size(); }
+  /// Every member, for a checkpoint (pd/checkpoint_state.hpp): the Verlet lists and where they
+  /// were built, so a restart looks again exactly when the run it continues would have.
+  template <class A>
+  void visit_state(A& a) {
+    a("contact.enabled", enabled_), a("contact.skin", skin_), a("contact.max_distance", max_distance_);
+    a("contact.distance", distance_), a("contact.stiffness", stiffness_), a("contact.built_at", built_at_);
+    a("contact.offset", offset_), a("contact.pairs", pairs_), a("contact.family_skin", family_skin_);
+    a("contact.family_looked_at", family_looked_at_), a("contact.family_near", family_near_);
+  }
 
  private:
   void rebuild(const Model<D>& m);

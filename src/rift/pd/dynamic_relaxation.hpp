@@ -40,6 +40,11 @@ class DynamicRelaxation {
   /// Damping from Rayleigh's quotient of the displacement since the start of each relax call
   /// instead of since the reference state (in_situ_strain.hpp: a start already near equilibrium).
   void measure_damping_from_start(bool on) { damping_from_start_ = on; }
+  /// Every member, for a checkpoint (pd/checkpoint_state.hpp).
+  template <class A>
+  void visit_state(A& a) {
+    a("relaxation.fictitious_density", fictitious_density_), a("relaxation.damping_from_start", damping_from_start_);
+  }
   /// Quasi-static growth: relax with every bond held, break the bonds past their limits at that
   /// equilibrium, and relax again, until an equilibrium breaks nothing (or max_passes equilibria;
   /// then converged is false).

@@ -63,7 +63,7 @@ Plan check_dim(const scene::Scene& s, std::ostream& out) {
   out << line;
   std::string fields;
   for (const auto& f : s.output.fields) fields += " " + f;
-  out << "output       " << s.output.count << " snapshots (position" << fields << ") -> fields.h5 + fields.xdmf\n";
+  out << "output       " << s.output.count << " snapshots (position" << fields << ") -> fields_000000.h5 ... (one file each) + fields.xdmf\n";
   out << "             " << s.output.history_count << " history rows -> history.csv\n";
   if constexpr (D == 2) {
     if (!s.cracks.empty()) {
@@ -164,7 +164,7 @@ Result run_dim(const scene::Scene& s, const Options& o) {
   res.output_dir = o.output_dir.empty() ? "results/" + s.name : o.output_dir;
   std::filesystem::create_directories(res.output_dir);
   io::FieldWriter fields(res.output_dir, "fields", m.particles.size());
-  res.fields_h5 = fields.h5_path();
+  res.fields_h5 = fields.h5_pattern();
   res.fields_xdmf = fields.xdmf_path();
   std::vector<std::string> columns{"time", "step"};
   columns.insert(columns.end(), s.output.history.begin(), s.output.history.end());

@@ -8,19 +8,23 @@
 #include <chrono>
 #include <cmath>
 #include <filesystem>
+#include <optional>
 #include <ostream>
 
 #include "rift/core/phase_times.hpp"
 #include "rift/core/progress.hpp"
 #include "rift/io/damage_histogram.hpp"
 #include "rift/io/damage_image.hpp"
+#include "rift/io/checkpoint.hpp"
 #include "rift/io/field_writer.hpp"
 #include "rift/io/history.hpp"
 #include "rift/pd/dynamic_relaxation.hpp"
+#include "rift/pd/checkpoint_state.hpp"
 #include "rift/pd/interface_outcome.hpp"
 #include "rift/pd/stress.hpp"
 #include "rift/run/mpm_runner.hpp"
 #include "rift/run/simulation.hpp"
+#include "rift/run/stop_signal.hpp"
 
 namespace rift::run {
 
@@ -113,7 +117,7 @@ Plan check_dim(const scene::Scene& s, std::ostream& out) {
   }
   std::string fields;
   for (const auto& f : s.output.fields) fields += " " + f;
-  out << "output       " << s.output.count << " snapshots (position" << fields << ") -> fields.h5 + fields.xdmf\n";
+  out << "output       " << s.output.count << " snapshots (position" << fields << ") -> fields_000000.h5 ... (one file each) + fields.xdmf\n";
   out << "             " << s.output.history_count << " history rows (time step";
   for (const auto& q : s.output.history) out << " " << q;
   out << ") -> history.csv";
@@ -134,6 +138,15 @@ Plan check_dim(const scene::Scene& s, std::ostream& out) {
   if (!probes.empty()) out << "             damage at " << probes.size() << " probes -> damage_probe_0... columns of history.csv\n";
   if (D == 2 && s.output.damage_image) out << "             final damage image -> damage.png\n";
   if (s.output.damage_histogram) out << "             final damage histogram (intervals of 0.1) -> damage_histogram.csv + .png\n";
+  if (s.checkpoint.every_steps > 0 || s.checkpoint.every_seconds > 0.0) {
+    std::string when;
+    if (s.checkpoint.every_steps > 0) when = fmt::format("every {} {}steps", s.checkpoint.every_steps, s.solver.kind == scene::SolverKind::explicit_dynamics ? "" : "load ");
+    if (s.checkpoint.every_seconds > 0.0) when += fmt::format("{}every {:g} s of wall time", when.empty() ? "" : " and ", s.checkpoint.every_seconds);
+    out << "checkpoint   " << when << " -> " << (s.checkpoint.file.empty() ? "checkpoint.rift" : s.checkpoint.file)
+        << " (about the memory above, each), and on SIGTERM/SIGINT\n";
+  } else {
+    out << "checkpoint   on SIGTERM/SIGINT -> checkpoint.rift (about the memory above)\n";
+  }
   return plan;
 }
 
@@ -191,6 +204,14 @@ void check_finite(const pd::Model<D>& m, long step, const pd::EnergySummary& e) 
   throw PhysicsError("step " + std::to_string(step) + ": energy is not finite");
 }
 
+/// Where the scene's checkpoint after `step` goes ([checkpoint] file, relative to the output
+/// directory; a '*' in it becomes the step, as in LAMMPS' restart command, to keep each one).
+std::string checkpoint_path(const scene::Scene& s, const std::string& output_dir, long step) {
+  std::string file = s.checkpoint.file.empty() ? "checkpoint.rift" : s.checkpoint.file;
+  if (const auto star = file.find('*'); star != std::string::npos) file.replace(star, 1, std::to_string(step));
+  return std::filesystem::path(file).is_absolute() ? file : output_dir + "/" + file;
+}
+
 template <int D>
 Result run_dim(const scene::Scene& s, const Options& o) {
   Simulation<D> p(s);  // every scene error is raised here, before anything is written
@@ -198,10 +219,53 @@ Result run_dim(const scene::Scene& s, const Options& o) {
   auto& m = p.model;
   Result res;
   res.output_dir = o.output_dir.empty() ? "results/" + s.name : o.output_dir;
-  std::filesystem::create_directories(res.output_dir);
   io::FieldWriter fields(res.output_dir, "fields", m.size());
-  res.fields_h5 = fields.h5_path();
+  res.fields_h5 = fields.h5_pattern();
   res.fields_xdmf = fields.xdmf_path();
+  const bool relaxation = s.solver.kind == scene::SolverKind::dynamic_relaxation;
+  std::optional<pd::DynamicRelaxation<D>> dr;
+
+  // The loop's own state, which a checkpoint holds with the model's (pd/checkpoint_state.hpp).
+  // The outcome at the interfaces, as recorded up to the history row where the fluid first broke
+  // through to the outer surface (a laboratory test ends there, its pressure lost; the load step's
+  // bonds stop breaking then, pd/dynamic_relaxation.hpp), and when it broke through.
+  std::vector<pd::InterfaceOutcome> outcomes, outcomes_at_breakthrough;
+  double vent_time = -1.0;
+  long next_snapshot = 1, next_history = 1;
+  std::int64_t history_bytes = 0;
+  auto visit_run = [&](auto& a) {
+    a("run.next_snapshot", next_snapshot), a("run.next_history", next_history), a("run.outcomes", outcomes);
+    a("run.outcomes_at_breakthrough", outcomes_at_breakthrough), a("run.vent_time", vent_time), a("run.notes", res.notes);
+    a("run.history_bytes", history_bytes);
+    fields.visit_state(a);
+    pd::visit(a, m);
+    pd::visit(a, p.contact);
+  };
+  if (!o.restart.empty()) {
+    // the whole checkpoint is read before any output is touched: a wrong or damaged one changes nothing
+    try {
+      io::CheckpointReader checkpoint(o.restart);
+      const auto& h = checkpoint.header();
+      if (h.scene_fingerprint != s.fingerprint)
+        throw std::runtime_error("it was written for another scene, or for " + s.file +
+                                 " before it was edited (a restart continues the same scene, unchanged)");
+      if (h.step < 0 || h.step > p.steps)
+        throw std::runtime_error(fmt::format("it is at step {}, past the scene's {} steps", h.step, p.steps));
+      visit_run(checkpoint);
+      if (relaxation) {
+        dr.emplace(m);
+        pd::visit(checkpoint, *dr);
+      }
+      checkpoint.finish();
+      res.first_step = h.step + 1;
+    } catch (const SceneError&) {
+      throw;
+    } catch (const std::exception& e) {
+      throw SceneError({o.restart, 0, 0}, "", std::string("cannot restart from this checkpoint: ") + e.what());
+    }
+  }
+  const bool restarted = !o.restart.empty();
+  std::filesystem::create_directories(res.output_dir);
   std::vector<std::string> columns{"time", "step"};
   columns.insert(columns.end(), s.output.history.begin(), s.output.history.end());
   for (std::size_t k = 0; k < probes.size(); ++k) columns.push_back("damage_probe_" + std::to_string(k));
@@ -222,14 +286,9 @@ Result run_dim(const scene::Scene& s, const Options& o) {
   const bool at_equilibrium = s.solver.breaking == scene::Solver::Breaking::at_equilibrium;
   if (s.solver.kind == scene::SolverKind::dynamic_relaxation) columns.insert(columns.end(), {"iterations", "residual"});
   if (s.solver.kind == scene::SolverKind::dynamic_relaxation && at_equilibrium) columns.push_back("breaking_passes");
-  io::History history(res.output_dir + "/history.csv", columns);
+  io::History history = restarted ? io::History(res.output_dir + "/history.csv", history_bytes)
+                                  : io::History(res.output_dir + "/history.csv", columns);
   res.history_csv = history.path();
-
-  // The outcome at the interfaces, as recorded up to the history row where the fluid first broke
-  // through to the outer surface (a laboratory test ends there, its pressure lost; the load step's
-  // bonds stop breaking then, pd/dynamic_relaxation.hpp), and when it broke through.
-  std::vector<pd::InterfaceOutcome> outcomes, outcomes_at_breakthrough;
-  double vent_time = -1.0;
   // the strain energy only where the history has a column for it (a pass over every bond)
   const bool strain_column = std::any_of(s.output.history.begin(), s.output.history.end(),
                                          [](const std::string& q) { return q == "strain_energy" || q == "total_energy"; });
@@ -264,7 +323,7 @@ Result run_dim(const scene::Scene& s, const Options& o) {
     return e;
   };
 
-  if (s.in_situ.enabled) {
+  if (s.in_situ.enabled && !restarted) {
     const auto r = p.equilibrate_in_situ(s.in_situ);
     const bool cg = p.uses_conjugate_gradients(s.in_situ);
     const std::string how = !(r.density_factor > 0.0) ? std::string("force evaluations of preconditioned conjugate gradients")
@@ -277,11 +336,13 @@ Result run_dim(const scene::Scene& s, const Options& o) {
       std::fprintf(stderr, "rift: warning: the in-situ stage did not converge in %d iterations (residual %.3g > %.3g)\n", r.iterations,
                    r.residual, s.in_situ.tolerance);
   }
-  pd::record_outcomes(outcomes, pd::classify_interfaces<D>(m));
-  outcomes_at_breakthrough = outcomes;
-  const std::size_t failed_before_start = s.in_situ.enabled ? pd::failed_bonds<D>(m) : 0;
-  p.start();
-  if (s.in_situ.enabled) {
+  if (!restarted) {
+    pd::record_outcomes(outcomes, pd::classify_interfaces<D>(m));
+    outcomes_at_breakthrough = outcomes;
+  }
+  const std::size_t failed_before_start = s.in_situ.enabled && !restarted ? pd::failed_bonds<D>(m) : 0;
+  if (!restarted) p.start();  // a checkpoint holds the forces of its step
+  if (s.in_situ.enabled && !restarted) {
     // the in-situ stage holds every bond; those its equilibrium strains past their limit break now
     const auto broken = static_cast<std::int64_t>((pd::failed_bonds<D>(m) - failed_before_start) / 2);
     if (broken > 0) {
@@ -297,39 +358,73 @@ Result run_dim(const scene::Scene& s, const Options& o) {
   const auto loop_start = std::chrono::steady_clock::now();
   PhaseTimes::run().reset();
   Progress progress(p.steps, s.solver.end_time, o.quiet);
+  // checkpoints: every [checkpoint] every_steps steps or every_seconds of wall time, and when a stop
+  // signal came (run/stop_signal.hpp)
+  auto last_checkpoint = std::chrono::steady_clock::now();
+  // after step `step`: writes a checkpoint where one is due, and says whether the run stops here
+  auto checkpoint_and_stop = [&](long step) {
+    const bool stop = stop_signal() != 0 || (o.stop_after_step > 0 && step >= o.stop_after_step);
+    const auto now = std::chrono::steady_clock::now();
+    const auto& c = s.checkpoint;
+    const bool due = (c.every_steps > 0 && step % c.every_steps == 0) ||
+                     (c.every_seconds > 0.0 && std::chrono::duration<double>(now - last_checkpoint).count() >= c.every_seconds);
+    if (stop || due) {
+      PhaseClock output_clock(Phase::output);
+      history_bytes = history.bytes();
+      const std::string checkpoint_file = checkpoint_path(s, res.output_dir, step);
+      io::CheckpointWriter w(checkpoint_file, {s.fingerprint, step, m.time});
+      visit_run(w);
+      if (dr) pd::visit(w, *dr);
+      w.commit();
+      res.checkpoint = checkpoint_file;
+      last_checkpoint = std::chrono::steady_clock::now();
+    }
+    if (stop) {
+      res.stopped = true;
+      res.stop_signal = stop_signal();
+      res.steps = step;
+    }
+    return stop;
+  };
   if (s.solver.kind == scene::SolverKind::explicit_dynamics) {
-    write_snapshot<D>(fields, m, s);
-    history_row(0, {});
-    long next_snapshot = 1, next_history = 1;
-    for (long step = 1; step <= p.steps; ++step) {
+    if (!restarted) {
+      write_snapshot<D>(fields, m, s);
+      history_row(0, {});
+    }
+    for (long step = res.first_step; step <= p.steps; ++step) {
       p.step();
       res.bond_updates += double(m.bonds.size());
       const bool snap = step * s.output.count >= next_snapshot * p.steps;
       const bool hist = step * s.output.history_count >= next_history * p.steps;
-      PhaseClock output_clock(Phase::output);
-      if (hist) {
-        auto e = history_row(step, {});
-        progress.update(step, m.time, e.broken_fraction);
-        while (next_history * p.steps <= step * s.output.history_count) ++next_history;
+      {
+        PhaseClock output_clock(Phase::output);
+        if (hist) {
+          auto e = history_row(step, {});
+          progress.update(step, m.time, e.broken_fraction);
+          while (next_history * p.steps <= step * s.output.history_count) ++next_history;
+        }
+        if (snap) {
+          write_snapshot<D>(fields, m, s);
+          while (next_snapshot * p.steps <= step * s.output.count) ++next_snapshot;
+        }
       }
-      if (snap) {
-        write_snapshot<D>(fields, m, s);
-        while (next_snapshot * p.steps <= step * s.output.count) ++next_snapshot;
-      }
+      if (checkpoint_and_stop(step)) break;
     }
   } else {
-    pd::DynamicRelaxation<D> dr(m);
-    write_snapshot<D>(fields, m, s);
-    for (long step = 1; step <= p.steps; ++step) {
+    if (!dr) dr.emplace(m);
+    if (!restarted) write_snapshot<D>(fields, m, s);
+    for (long step = res.first_step; step <= p.steps; ++step) {
       const double t = s.solver.end_time * double(step) / double(p.steps);
-      auto r = p.relax(dr, s.solver, t);
+      auto r = p.relax(*dr, s.solver, t);
       res.bond_updates += double(r.iterations) * double(m.bonds.size());
       std::vector<double> extra{double(r.iterations), r.residual};
       if (at_equilibrium) extra.push_back(double(r.breaking_passes));
-      PhaseClock output_clock(Phase::output);
-      auto e = history_row(step, extra);
-      write_snapshot<D>(fields, m, s);
-      progress.update(step, m.time, e.broken_fraction, true);
+      {
+        PhaseClock output_clock(Phase::output);
+        auto e = history_row(step, extra);
+        write_snapshot<D>(fields, m, s);
+        progress.update(step, m.time, e.broken_fraction, true);
+      }
       if (!r.converged && !o.quiet) {
         if (at_equilibrium && r.residual <= s.solver.tolerance)  // the last equilibrium was reached but broke bonds
           std::fprintf(stderr, "rift: warning: load step %ld: bonds still breaking after %d equilibria (solver max_breaking_passes)\n",
@@ -338,6 +433,7 @@ Result run_dim(const scene::Scene& s, const Options& o) {
           std::fprintf(stderr, "rift: warning: load step %ld did not converge in %d iterations (residual %.3g > %.3g)\n", step,
                        r.iterations, r.residual, s.solver.tolerance);
       }
+      if (checkpoint_and_stop(step)) break;
     }
   }
   res.loop_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - loop_start).count();
@@ -345,8 +441,9 @@ Result run_dim(const scene::Scene& s, const Options& o) {
   res.final_energy = pd::summarize<D>(m);
   pd::update_damage<D>(m);
   for (double d : m.damage) res.max_damage = std::max(res.max_damage, d);
-  res.steps = p.steps;
   res.time = m.time;
+  if (res.stopped) return res;  // the final state's reports belong to the run that ends
+  res.steps = p.steps;
   if (vent_time < 0.0) pd::record_outcomes(outcomes, pd::classify_interfaces<D>(m));
   const auto& read_outcomes = vent_time < 0.0 ? outcomes : outcomes_at_breakthrough;
   for (std::size_t k = 0; k < read_outcomes.size(); ++k) {
@@ -387,7 +484,10 @@ Plan check(const scene::Scene& s, std::ostream& out) {
 
 Result run(const scene::Scene& s, const Options& o) {
   if (o.threads > 0) omp_set_num_threads(o.threads);
-  if (s.method == scene::Method::mpm) return run_mpm(s, o);
+  if (s.method == scene::Method::mpm) {
+    if (!o.restart.empty()) throw SceneError({o.restart, 0, 0}, "", "a restart continues peridynamic scenes only, so far (this one is MPM)");
+    return run_mpm(s, o);
+  }
   return s.dimension == 2 ? run_dim<2>(s, o) : run_dim<3>(s, o);
 }
 

@@ -15,6 +15,8 @@ struct Options {
   std::string output_dir;  // default: results/<scene name>
   int threads = 0;         // 0: OpenMP default
   bool quiet = false;
+  std::string restart;     // a checkpoint to continue from (io/checkpoint.hpp); empty: from the start
+  long stop_after_step = 0;  // tests: stop after this step as a stop signal would (checkpoint, then return); 0: never
 };
 
 struct Plan {
@@ -40,6 +42,10 @@ struct Result {
   pd::EnergySummary final_energy;
   double max_damage = 0.0;
   long crack_growth_events = 0;  // MPM: crack particles added by propagation
+  long first_step = 1;           // 1, or the step after the checkpoint a restart continued from
+  int stop_signal = 0;           // the run stopped early on this signal (run/stop_signal.hpp), its checkpoint written
+  bool stopped = false;          // stopped early (a signal, or Options::stop_after_step): `steps` is where
+  std::string checkpoint;        // the last checkpoint written, empty if none
 };
 
 /// Discretize and print what a run would do (particles, bonds, memory, time step, outputs).

@@ -6,6 +6,7 @@
 #include <map>
 #include <sstream>
 
+#include "rift/io/checkpoint.hpp"
 #include "rift/scene/toml_reader.hpp"
 
 namespace rift::scene {
@@ -671,6 +672,24 @@ void parse_output(R& root, Scene& s) {
   r.finish({"snapshots", "history_rows", "fields", "history", "reactions", "damage_image", "damage_histogram", "probes", "crack_tip_plot"});
 }
 
+void parse_checkpoint(R& root, Scene& s) {
+  const toml::table* t = root.table("checkpoint");
+  if (!t) return;
+  R r(*t, "checkpoint", s.file);
+  if (s.method == Method::mpm)
+    throw SceneError(r.where(), "checkpoint", "checkpoints are written for peridynamic scenes only, so far (not [scene] method = \"mpm\")");
+  if (auto n = r.integer("every_steps")) {
+    if (*n < 1) r.fail("every_steps", "must be >= 1 (steps, or load steps of relaxation, between checkpoints)");
+    s.checkpoint.every_steps = static_cast<long>(*n);
+  }
+  if (auto t = r.number("every_seconds")) s.checkpoint.every_seconds = r.positive("every_seconds", *t);
+  if (auto f = r.string("file")) {
+    if (f->empty()) r.fail("file", "must not be empty");
+    s.checkpoint.file = *f;
+  }
+  r.finish({"every_steps", "every_seconds", "file"});
+}
+
 Scene parse_table(const toml::table& tbl, const std::string& file) {
   Scene s;
   s.file = file;
@@ -695,8 +714,9 @@ Scene parse_table(const toml::table& tbl, const std::string& file) {
   parse_mpm(root, s);
   parse_crack_growth(root, s);
   parse_output(root, s);
+  parse_checkpoint(root, s);
   root.finish({"scene", "materials", "regions", "bodies", "cracks", "boreholes", "interfaces", "boundaries", "in_situ_stress", "initial_velocity",
-               "solver", "contact", "mpm", "crack_growth", "output"});
+               "solver", "contact", "mpm", "crack_growth", "output", "checkpoint"});
   return s;
 }
 
@@ -709,7 +729,9 @@ Scene parse_text(const std::string& text, const std::string& name) {
     throw SceneError({name, static_cast<int>(src.begin.line), static_cast<int>(src.begin.column)}, "",
                      "TOML syntax: " + std::string(e.description()));
   }
-  return parse_table(tbl, name);
+  Scene s = parse_table(tbl, name);
+  s.fingerprint = io::checkpoint_fingerprint(text);
+  return s;
 }
 
 }  // namespace

@@ -2,6 +2,7 @@
 // never TOML (parse.cpp turns a file into a Scene and reports every mistake with file:line:column).
 #pragma once
 #include <array>
+#include <cstdint>
 #include <optional>
 #include <string>
 #include <vector>
@@ -252,8 +253,17 @@ struct Output {
   bool crack_tip_plot = true;       // MPM with cracks: PNG of K_I, K_II against time per crack tip
 };
 
+/// [checkpoint]: when a run writes its whole state, to continue with `rift run SCENE --restart FILE`
+/// (io/checkpoint.hpp). It also writes one when stopped by SIGTERM or SIGINT.
+struct Checkpoint {
+  long every_steps = 0;        // steps (load steps for relaxation) between checkpoints; 0: not by steps
+  double every_seconds = 0.0;  // wall time between checkpoints, s; 0: not by time
+  std::string file;            // relative to the output directory, or absolute; empty: checkpoint.rift
+};
+
 struct Scene {
   std::string file;
+  std::uint64_t fingerprint = 0;  // of the scene's text: a restart refuses another scene's checkpoint
   std::string name;
   int dimension = 3;
   Method method = Method::peridynamics;
@@ -273,6 +283,7 @@ struct Scene {
   Mpm mpm;
   CrackGrowth crack_growth;
   Output output;
+  Checkpoint checkpoint;
 
   const RegionDef* find_region(const std::string& n) const {
     for (const auto& r : regions)

@@ -1,0 +1,26 @@
+#include "rift/run/stop_signal.hpp"
+
+#include <csignal>
+
+namespace rift::run {
+
+namespace {
+
+volatile std::sig_atomic_t received = 0;
+
+extern "C" void on_stop_signal(int signal) { received = signal; }
+
+}  // namespace
+
+void catch_stop_signals() {
+  struct sigaction action {};
+  action.sa_handler = on_stop_signal;
+  sigemptyset(&action.sa_mask);
+  action.sa_flags = SA_RESETHAND;  // a second signal: the default action, the process ends
+  sigaction(SIGTERM, &action, nullptr);
+  sigaction(SIGINT, &action, nullptr);
+}
+
+int stop_signal() { return received; }
+
+}  // namespace rift::run

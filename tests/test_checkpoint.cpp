@@ -1,0 +1,384 @@
+// Checkpoint and restart (io/checkpoint.hpp, pd/checkpoint_state.hpp, `rift run --restart`): a run
+// stopped after a step and continued from its checkpoint ends in the same state, bit for bit, as
+// the run that was never stopped (issue 6: "the continued run is bit-identical to an uninterrupted
+// one, including bond state, VES history, crack geometry and fluid state"). The proof is the final
+// checkpoint itself, which holds every member of the model, the contact lists and the relaxation's
+// state: the two runs' files must be equal byte for byte, and so must their history and fields.
+#include <gtest/gtest.h>
+#include <hdf5.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <csignal>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <sstream>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "rift/core/error.hpp"
+#include "rift/io/checkpoint.hpp"
+#include "rift/run/runner.hpp"
+#include "rift/scene/parse.hpp"
+#include "rock_scene.hpp"
+
+namespace {
+
+namespace fs = std::filesystem;
+
+std::string bytes_of(const fs::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  EXPECT_TRUE(in.good()) << p;
+  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+/// The first record (io/checkpoint.hpp: after the 40-byte header, each a name's length and name,
+/// element size, count and payload) in which two checkpoint files differ, or "" where they are equal.
+std::string first_different_record(const std::string& a, const std::string& b) {
+  if (a == b) return "";
+  std::size_t at = 40;
+  if (a.compare(0, at, b, 0, at) != 0) return "(header)";
+  auto u32 = [](const std::string& s, std::size_t k) { std::uint32_t v = 0; std::memcpy(&v, s.data() + k, sizeof v); return v; };
+  auto u64 = [](const std::string& s, std::size_t k) { std::uint64_t v = 0; std::memcpy(&v, s.data() + k, sizeof v); return v; };
+  while (at + 4 <= a.size() && at + 4 <= b.size()) {
+    const std::uint32_t length = u32(a, at);
+    const std::string name = a.substr(at + 4, length);
+    if (name.rfind("ENDCKPT", 0) == 0) return "(trailer)";
+    const std::size_t payload = at + 4 + length + 16;
+    if (payload > a.size()) return "(cut short)";
+    const std::size_t bytes = static_cast<std::size_t>(u64(a, at + 4 + length) * u64(a, at + 4 + length + 8));
+    if (a.compare(at, payload - at + bytes, b, at, payload - at + bytes) != 0) return name;
+    at = payload + bytes;
+  }
+  return "(length)";
+}
+
+fs::path fresh_directory(const std::string& name) {
+  const fs::path dir = fs::temp_directory_path() / ("rift_checkpoint_" + name);
+  fs::remove_all(dir);
+  return dir;
+}
+
+rift::run::Options quiet_in(const fs::path& dir) {
+  rift::run::Options o;
+  o.output_dir = dir.string();
+  o.quiet = true;
+  return o;
+}
+
+/// Runs the scene whole, and again stopped after `stop` steps and continued from that stop's
+/// checkpoint; expects the same final checkpoint, history and fields from both. Returns the whole
+/// run's result.
+rift::run::Result expect_restart_bit_identical(const std::string& name, const std::string& text, long stop) {
+  const auto scene = rift::scene::parse_string(text, name + ".toml");
+  const fs::path whole = fresh_directory(name + "_whole"), parts = fresh_directory(name + "_parts");
+  const auto r = rift::run::run(scene, quiet_in(whole));
+  EXPECT_FALSE(r.stopped);
+
+  auto first = quiet_in(parts);
+  first.stop_after_step = stop;
+  const auto stopped = rift::run::run(scene, first);
+  EXPECT_TRUE(stopped.stopped);
+  EXPECT_EQ(stopped.steps, stop);
+  EXPECT_EQ(stopped.checkpoint, (parts / ("ck_" + std::to_string(stop) + ".rift")).string());
+
+  auto second = quiet_in(parts);
+  second.restart = stopped.checkpoint;
+  const auto continued = rift::run::run(scene, second);
+  EXPECT_FALSE(continued.stopped);
+  EXPECT_EQ(continued.first_step, stop + 1);
+  EXPECT_EQ(continued.steps, r.steps);
+
+  const std::string last = "ck_" + std::to_string(r.steps) + ".rift";
+  EXPECT_TRUE(fs::exists(whole / last)) << "the scene writes a checkpoint after its last step";
+  EXPECT_EQ(first_different_record(bytes_of(whole / last), bytes_of(parts / last)), "") << "the final states differ in this record";
+  EXPECT_TRUE(bytes_of(whole / "history.csv") == bytes_of(parts / "history.csv"));
+  EXPECT_TRUE(bytes_of(whole / "fields.xdmf") == bytes_of(parts / "fields.xdmf"));
+  for (const auto& f : fs::directory_iterator(whole)) {
+    if (f.path().extension() != ".h5") continue;
+    EXPECT_TRUE(bytes_of(f.path()) == bytes_of(parts / f.path().filename())) << f.path();
+  }
+  return r;
+}
+
+// A 2D glass plate (LPS, 0.5 mm spacing) with a pre-crack, pulled at its left edge: bonds break,
+// the crack grows and its faces meet through the short-range contact.
+std::string cracked_plate(const std::string& model) {
+  return R"([scene]
+dimension = 2
+plane = "stress"
+thickness = 0.001
+[materials.glass]
+model = ")" + model + R"("
+density = 2440.0
+youngs_modulus = 72e9
+poisson_ratio = 0.25
+fracture_energy = 3.8
+)" + (model == "ves" ? "viscous_fraction = 0.5\nrelaxation_time = 1e-7\n" : std::string()) +
+         R"([regions.plate]
+shape = "box"
+min = [0.0, 0.0]
+max = [0.02, 0.01]
+[regions.left]
+shape = "box"
+min = [0.0, 0.0]
+max = [0.001, 0.01]
+[bodies.plate]
+material = "glass"
+region = "plate"
+spacing = 0.0005
+horizon = 3.015
+[[cracks]]
+points = [[0.01, 0.0], [0.01, 0.004]]
+[[boundaries]]
+region = "left"
+type = "velocity"
+x = -5.0
+time = { function = "ramp", start = 0.0, end = 1e-6 }
+[solver]
+end_time = 4e-6
+[output]
+snapshots = 5
+history_rows = 11
+[checkpoint]
+every_steps = 11
+file = "ck_*.rift"
+)";
+}
+
+double last_history_value(const fs::path& csv, const std::string& column) {
+  std::ifstream in(csv);
+  std::string header, line, last;
+  std::getline(in, header);
+  while (std::getline(in, line))
+    if (!line.empty()) last = line;
+  std::stringstream h(header), v(last);
+  std::string name, value;
+  while (std::getline(h, name, ',') && std::getline(v, value, ','))
+    if (name == column) return std::stod(value);
+  ADD_FAILURE() << "no column " << column << " in " << csv;
+  return 0.0;
+}
+
+}  // namespace
+
+TEST(Checkpoint, RecordsComeBackAsWrittenAndADamagedFileIsRefused) {
+  const fs::path dir = fresh_directory("records");
+  fs::create_directories(dir);
+  const std::string path = (dir / "c.rift").string();
+  std::vector<double> x{1.0 / 3.0, -0.0, 6.02214076e23};
+  std::vector<std::vector<int>> rows{{1, 2}, {}, {3}};
+  std::string text = "rock";
+  {
+    rift::io::CheckpointWriter w(path, {42, 7, 0.5});
+    w("x", x), w("rows", rows), w("text", text);
+    EXPECT_FALSE(fs::exists(path)) << "nothing under the name before commit";
+    w.commit();
+  }
+  EXPECT_FALSE(fs::exists(path + ".tmp"));
+  {
+    rift::io::CheckpointReader r(path);
+    EXPECT_EQ(r.header().scene_fingerprint, 42u);
+    EXPECT_EQ(r.header().step, 7);
+    std::vector<double> x2;
+    std::vector<std::vector<int>> rows2;
+    std::string text2;
+    r("x", x2), r("rows", rows2), r("text", text2);
+    r.finish();
+    EXPECT_EQ(std::memcmp(x.data(), x2.data(), sizeof(double) * x.size()), 0);  // -0.0 and all bits
+    EXPECT_EQ(rows2, rows);
+    EXPECT_EQ(text2, text);
+  }
+  {  // a record read under another name: refused with both names
+    rift::io::CheckpointReader r(path);
+    std::vector<double> y;
+    try {
+      r("y", y);
+      ADD_FAILURE() << "a wrong name was read";
+    } catch (const std::runtime_error& e) {
+      EXPECT_NE(std::string(e.what()).find("is \"x\""), std::string::npos) << e.what();
+    }
+  }
+  const std::string whole = bytes_of(path);
+  {  // one flipped bit anywhere: the checksum refuses the file
+    std::string damaged = whole;
+    damaged[damaged.size() / 2] ^= 0x10;
+    std::ofstream(path, std::ios::binary) << damaged;
+    EXPECT_THROW(rift::io::CheckpointReader{path}, std::runtime_error);
+  }
+  {  // cut short (a copy interrupted): refused
+    std::ofstream(path, std::ios::binary) << whole.substr(0, whole.size() - 5);
+    EXPECT_THROW(rift::io::CheckpointReader{path}, std::runtime_error);
+  }
+}
+
+// Explicit dynamics, LPS: the bond states, the contact's Verlet lists and the crack grow on after
+// the stop (step 22 of 55).
+TEST(Checkpoint, ExplicitLpsRunContinuesBitForBit) {
+  const auto r = expect_restart_bit_identical("plate_lps", cracked_plate("lps"), 22);
+  EXPECT_GT(r.final_energy.broken_bonds, 100);
+}
+
+// Explicit dynamics, viscoelastic state-based (VES, Mitchell 2011): each bond's back extension,
+// the history the checkpoint must carry, relaxes on over the stop (tau = 0.1 us, steps of 73 ns).
+TEST(Checkpoint, ExplicitVesRunContinuesBitForBit) {
+  const auto r = expect_restart_bit_identical("plate_ves", cracked_plate("ves"), 33);
+  EXPECT_GT(r.final_energy.broken_bonds, 100);
+}
+
+// Quasi-static hydraulic fracture: in-situ stage, a borehole fed at a rate with a viscous fluid
+// (cubic law), a pre-existing interface, bonds breaking at each equilibrium. The stop comes after
+// load step 2 of 4, and the fracture and its fluid go on growing after it; the in-situ stage is
+// not run again.
+TEST(Checkpoint, InjectionWithInterfaceContinuesBitForBit) {
+  const std::string text = rift::test::plane_strain_rock("fracture_energy = 50.0\n") + R"([regions.block]
+shape = "box"
+min = [-0.03, -0.03]
+max = [0.03, 0.03]
+[regions.hole]
+shape = "cylinder"
+center = [0.0, 0.0]
+radius = 0.003
+[bodies.rock]
+material = "rock"
+region = "block"
+spacing = 0.002
+horizon = 3.015
+lattice_origin = [-0.001, -0.001]
+[[cracks]]
+points = [[-0.008, 0.001], [0.008, 0.001]]
+[[boreholes]]
+region = "hole"
+injection_rate = 3e-9
+fluid_bulk_modulus = 2.2e9
+fluid_viscosity = 0.1
+[[interfaces]]
+points = [[0.013, -0.03], [0.013, 0.03]]
+tensile_strength = 1.0e6
+friction_coefficient = 0.89
+[in_situ_stress]
+sigma_H = -6e6
+sigma_h = -3e6
+[solver]
+type = "dynamic_relaxation"
+breaking = "at_equilibrium"
+end_time = 1.0
+load_steps = 4
+tolerance = 1e-4
+[output]
+snapshots = 4
+history = ["broken_bonds", "max_damage"]
+[checkpoint]
+every_steps = 1
+file = "ck_*.rift"
+)";
+  const auto r = expect_restart_bit_identical("injection", text, 2);
+  const fs::path whole = fs::temp_directory_path() / "rift_checkpoint_injection_whole";
+  EXPECT_GT(last_history_value(whole / "history.csv", "broken_bonds"), 0.0) << "the fracture grew";
+  EXPECT_GT(last_history_value(whole / "history.csv", "pressure_borehole_0"), 0.0);
+  (void)r;
+}
+
+// A checkpoint of another scene, or of this scene's file since edited, is refused before any
+// output is touched (exit status 2 on the command line).
+TEST(Checkpoint, AnotherScenesCheckpointIsRefusedAndNothingChanges) {
+  const auto scene = rift::scene::parse_string(cracked_plate("lps"), "plate.toml");
+  const fs::path dir = fresh_directory("refused");
+  auto first = quiet_in(dir);
+  first.stop_after_step = 11;
+  const auto stopped = rift::run::run(scene, first);
+  const std::string history = bytes_of(dir / "history.csv");
+  const auto edited = rift::scene::parse_string(cracked_plate("lps") + "# edited\n", "plate.toml");
+  auto again = quiet_in(dir);
+  again.restart = stopped.checkpoint;
+  try {
+    rift::run::run(edited, again);
+    ADD_FAILURE() << "an edited scene took the checkpoint";
+  } catch (const rift::SceneError& e) {
+    EXPECT_NE(std::string(e.what()).find("another scene"), std::string::npos) << e.what();
+  }
+  EXPECT_TRUE(bytes_of(dir / "history.csv") == history);
+}
+
+// kill -9 at any moment (issue 6): the newest checkpoint on the disk is whole (its checksum holds)
+// and continues the run to the end an uninterrupted run reaches, and every snapshot the fields'
+// index lists opens with all its particles. The run writes a snapshot every step, so that most
+// kills land in the middle of writing one; it is killed at several moments.
+TEST(Checkpoint, KillNineLeavesWholeFilesAndARunThatContinues) {
+  std::string scene_text = cracked_plate("lps");
+  const auto replace = [&](const std::string& from, const std::string& to) {
+    const auto at = scene_text.find(from);
+    ASSERT_NE(at, std::string::npos) << from;
+    scene_text.replace(at, from.size(), to);
+  };
+  replace("end_time = 4e-6", "end_time = 4e-5");  // 546 steps
+  replace("snapshots = 5", "snapshots = 546");
+  replace("history_rows = 11", "history_rows = 546");
+  replace("every_steps = 11", "every_steps = 20");
+  const fs::path dir = fresh_directory("kill");
+  fs::create_directories(dir);
+  const std::string scene_file = (dir / "plate.toml").string();
+  std::ofstream(scene_file) << scene_text;
+  const auto scene = rift::scene::parse_file(scene_file);
+  const auto whole = rift::run::run(scene, quiet_in(dir / "whole"));
+
+  int continued_runs = 0;
+  for (int kill_after_ms : {150, 400, 900}) {
+    const fs::path out = dir / ("killed_" + std::to_string(kill_after_ms));
+    const pid_t child = fork();
+    ASSERT_GE(child, 0);
+    if (child == 0) {
+      execl(RIFT_EXE, RIFT_EXE, "run", scene_file.c_str(), "-o", out.c_str(), "--threads", "1", "-q", static_cast<char*>(nullptr));
+      _exit(127);
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(kill_after_ms));
+    kill(child, SIGKILL);
+    int status = 0;
+    waitpid(child, &status, 0);
+    if (!WIFSIGNALED(status)) continue;  // it had finished: nothing to see at this moment
+
+    // every snapshot the index lists is whole
+    std::ifstream xdmf(out / "fields.xdmf");
+    std::string line;
+    int listed = 0;
+    while (std::getline(xdmf, line)) {
+      const auto end = line.find(".h5:/position");
+      if (end == std::string::npos) continue;
+      const auto begin = line.rfind('>', end) + 1;
+      const std::string file = (out / line.substr(begin, end + 3 - begin)).string();
+      const hid_t f = H5Fopen(file.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
+      ASSERT_GE(f, 0) << file << " (listed in the index) does not open";
+      const hid_t set = H5Dopen2(f, "position", H5P_DEFAULT);
+      ASSERT_GE(set, 0) << file;
+      std::vector<double> position(3 * 800);
+      EXPECT_GE(H5Dread(set, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, position.data()), 0) << file;
+      H5Dclose(set);
+      H5Fclose(f);
+      ++listed;
+    }
+    // the newest checkpoint is whole and continues the run
+    long newest = -1;
+    for (const auto& e : fs::directory_iterator(out)) {
+      const std::string name = e.path().filename().string();
+      if (name.rfind("ck_", 0) == 0 && e.path().extension() == ".rift") newest = std::max(newest, std::stol(name.substr(3)));
+    }
+    if (newest < 0) continue;  // killed before the first checkpoint
+    SCOPED_TRACE("killed after " + std::to_string(kill_after_ms) + " ms, " + std::to_string(listed) + " snapshots listed, checkpoint " +
+                 std::to_string(newest));
+    auto again = quiet_in(out);
+    again.restart = (out / ("ck_" + std::to_string(newest) + ".rift")).string();
+    const auto continued = rift::run::run(scene, again);
+    ++continued_runs;
+    EXPECT_GT(continued.first_step, 1);
+    EXPECT_EQ(continued.final_energy.broken_bonds, whole.final_energy.broken_bonds);
+    EXPECT_TRUE(bytes_of(out / "history.csv") == bytes_of(dir / "whole" / "history.csv"));
+    const std::string last = "ck_" + std::to_string(whole.steps - whole.steps % 20) + ".rift";
+    EXPECT_EQ(first_different_record(bytes_of(out / last), bytes_of(dir / "whole" / last)), "");
+  }
+  EXPECT_GE(continued_runs, 2) << "the kills came before the first checkpoint or after the end: the run is too short for this machine";
+}
