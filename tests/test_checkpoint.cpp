@@ -325,10 +325,14 @@ TEST(Checkpoint, KillNineLeavesWholeFilesAndARunThatContinues) {
   const std::string scene_file = (dir / "plate.toml").string();
   std::ofstream(scene_file) << scene_text;
   const auto scene = rift::scene::parse_file(scene_file);
+  const auto started = std::chrono::steady_clock::now();
   const auto whole = rift::run::run(scene, quiet_in(dir / "whole"));
+  // the kills at fractions of how long the same build takes for the whole run
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
 
   int continued_runs = 0;
-  for (int kill_after_ms : {150, 400, 900}) {
+  for (double fraction : {0.3, 0.55, 0.8}) {
+    const int kill_after_ms = static_cast<int>(1000.0 * fraction * seconds);
     const fs::path out = dir / ("killed_" + std::to_string(kill_after_ms));
     const pid_t child = fork();
     ASSERT_GE(child, 0);
