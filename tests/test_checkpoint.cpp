@@ -284,6 +284,101 @@ file = "ck_*.rift"
   (void)r;
 }
 
+// MPM with an explicit crack that grows (CRAMP, maximum hoop stress): the material points and
+// their stresses, the crack particles and surfaces, the tips that stopped, and the crack_tips.csv
+// rows continue over the stop. A coarse DCB (2 mm cells), its arms pulled apart at once, with a
+// toughness its K_I passes early.
+TEST(Checkpoint, MpmCrackGrowthContinuesBitForBit) {
+  const std::string text = R"([scene]
+method = "mpm"
+dimension = 2
+plane = "stress"
+thickness = 0.001
+[materials.epoxy]
+model = "linear_elastic"
+density = 1500.0
+youngs_modulus = 2.3e9
+poisson_ratio = 0.33
+[regions.beam]
+shape = "box"
+min = [0.0, 0.0]
+max = [0.1, 0.024]
+[regions.clamp]
+shape = "box"
+min = [-1.0, -1.0]
+max = [0.0, 1.0]
+[regions.upper_arm_end]
+shape = "box"
+min = [0.096, 0.012]
+max = [0.1, 0.024]
+[regions.lower_arm_end]
+shape = "box"
+min = [0.096, 0.0]
+max = [0.1, 0.012]
+[bodies.beam]
+material = "epoxy"
+region = "beam"
+particles_per_cell = 2
+[[cracks]]
+points = [[0.1005, 0.012], [0.05, 0.012]]
+[[boundaries]]
+region = "clamp"
+type = "fixed"
+[[boundaries]]
+region = "upper_arm_end"
+type = "traction"
+y = 83333.333
+layer_depth = 0.004
+[[boundaries]]
+region = "lower_arm_end"
+type = "traction"
+y = -83333.333
+layer_depth = 0.004
+[mpm]
+cell_size = 0.002
+shape = "bspline2"
+damping = 1000.0
+grid_min = [-0.008, -0.011]
+grid_max = [0.108, 0.035]
+[crack_growth]
+criterion = "max_hoop_stress"
+toughness = 0.5e5
+increment = 0.001
+check_every = 10
+[solver]
+end_time = 0.002
+safety_factor = 0.5
+[output]
+snapshots = 4
+history_rows = 40
+crack_tip_plot = false
+[checkpoint]
+every_steps = 400
+file = "ck_*.rift"
+)";
+  const auto scene = rift::scene::parse_string(text, "dcb.toml");
+  const fs::path whole = fresh_directory("dcb_whole"), parts = fresh_directory("dcb_parts");
+  const auto r = rift::run::run(scene, quiet_in(whole));
+  auto first = quiet_in(parts);
+  first.stop_after_step = r.steps / 2;
+  const auto stopped = rift::run::run(scene, first);
+  ASSERT_TRUE(stopped.stopped);
+  auto second = quiet_in(parts);
+  second.restart = stopped.checkpoint;
+  const auto continued = rift::run::run(scene, second);
+  EXPECT_EQ(continued.first_step, r.steps / 2 + 1);
+  EXPECT_GT(r.crack_growth_events, stopped.crack_growth_events) << "the crack grows after the stop too";
+  EXPECT_EQ(continued.crack_growth_events, r.crack_growth_events);
+  const std::string last = "ck_" + std::to_string(r.steps - r.steps % 400) + ".rift";
+  EXPECT_EQ(first_different_record(bytes_of(whole / last), bytes_of(parts / last)), "") << "the final states differ in this record";
+  for (const char* file : {"history.csv", "crack_tips.csv", "fields.xdmf"})
+    EXPECT_TRUE(bytes_of(whole / file) == bytes_of(parts / file)) << file;
+  for (const auto& f : fs::directory_iterator(whole)) {
+    if (f.path().extension() != ".h5") continue;
+    EXPECT_TRUE(bytes_of(f.path()) == bytes_of(parts / f.path().filename())) << f.path();
+  }
+}
+
 // A checkpoint of another scene, or of this scene's file since edited, is refused before any
 // output is touched (exit status 2 on the command line).
 TEST(Checkpoint, AnotherScenesCheckpointIsRefusedAndNothingChanges) {

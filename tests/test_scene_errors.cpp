@@ -263,7 +263,6 @@ const MpmCase mpm_cases[] = {
     {"interface in mpm", "[solver]", "[[interfaces]]\npoints = [[0.0, 0.0025], [0.01, 0.0025]]\ntensile_strength = 1e6\nfriction_coefficient = 0.5\n[solver]", "interfaces[0].points"},
     {"in-situ stress in mpm", "[solver]", "[in_situ_stress]\nsigma_H = -1e6\nsigma_h = -1e6\n[solver]", "in_situ_stress.sigma_H"},
     {"unknown mode partition", "cell_size = 0.001", "cell_size = 0.001\nmode_partition = \"displacement\"", "mpm.mode_partition"},
-    {"checkpoint of an mpm scene", "[solver]", "[checkpoint]\nevery_steps = 10\n[solver]", "checkpoint"},
     {"traction layer thinner than a row of points", "type = \"fixed\"",
      "type = \"fixed\"\n[[boundaries]]\nregion = \"beam\"\ntype = \"traction\"\ny = 1e6\nlayer_depth = 0.0002", "boundaries[1].layer_depth"},
 };

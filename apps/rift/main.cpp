@@ -51,7 +51,7 @@ int main(int argc, char** argv) {
       return 0;
     }
     rift::run::Options options{output_dir, threads, quiet, restart};
-    if (scene.method == rift::scene::Method::peridynamics) rift::run::catch_stop_signals();
+    rift::run::catch_stop_signals();
     auto r = rift::run::run(scene, options);
     if (r.stopped) {
       std::printf("rift: stopped by signal %d after step %ld (t = %.6g s); checkpoint %s\n", r.stop_signal, r.steps, r.time,

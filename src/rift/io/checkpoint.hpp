@@ -26,6 +26,11 @@ namespace rift::io {
 template <class Archive, class T>
 concept visitable = requires(Archive& a, T& t) { visit(a, t); };
 
+/// Types written as their bytes: the trivially copyable ones, and those a header declares so (a
+/// fixed-size Eigen matrix is its coefficients alone, though its copy is user-provided).
+template <class T>
+struct written_as_bytes : std::is_trivially_copyable<T> {};
+
 /// What a checkpoint says of itself, checked against the scene before anything is read.
 struct CheckpointHeader {
   std::uint64_t scene_fingerprint = 0;  // checkpoint_fingerprint of the scene's text
@@ -49,7 +54,7 @@ class CheckpointWriter {
   void operator()(const char* name, const T& value) {
     if constexpr (is_vector<T>::value) {
       using E = typename T::value_type;
-      if constexpr (is_vector<E>::value || visitable<CheckpointWriter, E> || !std::is_trivially_copyable_v<E>) {
+      if constexpr (is_vector<E>::value || visitable<CheckpointWriter, E> || !written_as_bytes<E>::value) {
         std::uint64_t count = value.size();
         record(name, sizeof count, 1, &count);
         for (const auto& e : value) (*this)(name, e);
@@ -61,7 +66,7 @@ class CheckpointWriter {
     } else if constexpr (visitable<CheckpointWriter, T>) {
       visit(*this, const_cast<T&>(value));  // a struct of records
     } else {
-      static_assert(std::is_trivially_copyable_v<T>, "a struct in a checkpoint lists its members with visit()");
+      static_assert(written_as_bytes<T>::value, "a struct in a checkpoint lists its members with visit()");
       record(name, sizeof(T), 1, &value);
     }
   }
@@ -96,7 +101,7 @@ class CheckpointReader {
   void operator()(const char* name, T& value) {
     if constexpr (is_vector<T>::value) {
       using E = typename T::value_type;
-      if constexpr (is_vector<E>::value || visitable<CheckpointReader, E> || !std::is_trivially_copyable_v<E>) {
+      if constexpr (is_vector<E>::value || visitable<CheckpointReader, E> || !written_as_bytes<E>::value) {
         std::uint64_t count = 0;
         record(name, sizeof count, 1, &count, nullptr);
         value.resize(count);
@@ -115,6 +120,7 @@ class CheckpointReader {
     } else if constexpr (visitable<CheckpointReader, T>) {
       visit(*this, value);
     } else {
+      static_assert(written_as_bytes<T>::value, "a struct in a checkpoint lists its members with visit()");
       record(name, sizeof(T), 1, &value, nullptr);
     }
   }

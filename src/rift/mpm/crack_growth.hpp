@@ -33,11 +33,20 @@ class CrackPropagation {
   CrackPropagation(const scene::Scene& s, const Model<2>& m, const Solver<2>& solver);
   /// Crack particles added after `step`.
   int check(const Model<2>& m, Solver<2>& solver, long step);
+  /// The tips and which of them stopped, for a checkpoint (mpm/checkpoint_state.hpp).
+  template <class A>
+  void visit_state(A& a) {
+    a("propagation.tips", tips_);
+  }
 
  private:
   struct Tip {
     CrackTip tip;
     bool stopped = false;
+    template <class A>
+    friend void visit(A& a, Tip& t) {
+      a("propagation.tip", t.tip), a("propagation.stopped", t.stopped);
+    }
   };
   scene::CrackGrowth settings_;
   JContour contour_;

@@ -38,6 +38,13 @@ class Solver {
   const Energy& measured_energy() const { return energy_; }
   /// Explicit cracks (2D), with their crack particles and surfaces moved every step.
   const CrackSet& cracks() const { return cracks_; }
+  /// What lasts from one step to the next besides the model, for a checkpoint
+  /// (mpm/checkpoint_state.hpp): the explicit cracks' particles and surfaces. Every other member
+  /// is set up from the scene, or taken anew in each step before it is read.
+  template <class A>
+  void visit_state(A& a) {
+    a("solver.cracks", cracks_.cracks());
+  }
   /// Crack propagation: a new crack particle at x beyond the given tip.
   void extend_crack(const CrackTip& tip, const Vec<2>& x) { cracks_.extend(tip, x); }
   /// With cracks: each material point's acceleration and velocity gradient in the last step (for

@@ -13,11 +13,13 @@
 #include "rift/io/history.hpp"
 #include "rift/io/plot_crack_tips_script.hpp"  // generated from share/plot_crack_tips.py
 #include "rift/io/python_plot.hpp"
+#include "rift/mpm/checkpoint_state.hpp"
 #include "rift/mpm/crack_growth.hpp"
 #include "rift/mpm/discretize.hpp"
 #include "rift/mpm/energy.hpp"
 #include "rift/mpm/j_integral.hpp"
 #include "rift/mpm/solver.hpp"
+#include "rift/run/checkpointing.hpp"
 #include "rift/run/time_step.hpp"
 
 namespace rift::run {
@@ -83,6 +85,7 @@ Plan check_dim(const scene::Scene& s, std::ostream& out) {
       }
     }
   }
+  out << checkpoint_plan(s);
   return plan;
 }
 
@@ -132,7 +135,20 @@ class CrackTipHistory {
       : path_(path), out_(path), contour_(mpm::contour_of(settings)) {
     tips_ = mpm::interior_tips(m, solver.cracks());
     out_ << "time,step,crack,tip,x,y,angle_deg,J_1,J_2,J_1_area,G,K_I,K_II,opening,sliding,K_I_cod,K_II_cod,K_I_interaction,K_II_interaction\n";
+    out_.flush();
   }
+  /// Continues the file of a restarted run from its first `bytes` (the rows up to the checkpoint).
+  CrackTipHistory(const std::string& path, std::vector<mpm::CrackTip> tips, std::int64_t bytes, const scene::Mpm& settings)
+      : path_(path), contour_(mpm::contour_of(settings)), tips_(std::move(tips)) {
+    std::error_code ec;
+    if (std::filesystem::file_size(path, ec) < static_cast<std::uintmax_t>(bytes) || ec)
+      throw std::runtime_error("cannot continue " + path + " from its first " + std::to_string(bytes) + " bytes (the checkpoint's): it is shorter");
+    std::filesystem::resize_file(path, static_cast<std::uintmax_t>(bytes));
+    out_.open(path, std::ios::app);
+  }
+  /// The tips the file follows, and its length so far (every row flushed), for a checkpoint.
+  const std::vector<mpm::CrackTip>& tips() const { return tips_; }
+  std::int64_t bytes() { return static_cast<std::int64_t>(out_.tellp()); }
   const std::string& path() const { return path_; }
   bool empty() const { return tips_.empty(); }
   void row(const mpm::Model<2>& m, const mpm::Solver<2>& solver, long step) {
@@ -162,13 +178,37 @@ Result run_dim(const scene::Scene& s, const Options& o) {
   auto& m = r.model;
   Result res;
   res.output_dir = o.output_dir.empty() ? "results/" + s.name : o.output_dir;
-  std::filesystem::create_directories(res.output_dir);
   io::FieldWriter fields(res.output_dir, "fields", m.particles.size());
   res.fields_h5 = fields.h5_pattern();
   res.fields_xdmf = fields.xdmf_path();
+  const bool cracked = D == 2 && !s.cracks.empty();
+  std::optional<mpm::CrackPropagation> propagation;
+  if constexpr (D == 2)
+    if (cracked && s.crack_growth.enabled) propagation.emplace(s, m, r.solver);
+
+  // The loop's own state, which a checkpoint holds with the model's (mpm/checkpoint_state.hpp).
+  long next_snapshot = 1, next_history = 0;
+  std::int64_t history_bytes = 0, tip_bytes = 0;
+  std::vector<mpm::CrackTip> tip_list;
+  auto visit_run = [&](auto& a) {
+    a("run.next_snapshot", next_snapshot), a("run.next_history", next_history), a("run.history_bytes", history_bytes);
+    a("run.crack_growth_events", res.crack_growth_events);
+    fields.visit_state(a);
+    mpm::visit(a, m);
+    r.solver.visit_state(a);
+    if (cracked) a("run.tips", tip_list), a("run.tip_bytes", tip_bytes);
+    if (propagation) propagation->visit_state(a);
+  };
+  const bool restarted = !o.restart.empty();
+  if (restarted) {
+    // the whole checkpoint is read before any output is touched
+    res.first_step = 1 + read_checkpoint(s, o, r.steps, [&](io::CheckpointReader& checkpoint) { visit_run(checkpoint); });
+  }
+  std::filesystem::create_directories(res.output_dir);
   std::vector<std::string> columns{"time", "step"};
   columns.insert(columns.end(), s.output.history.begin(), s.output.history.end());
-  io::History history(res.output_dir + "/history.csv", columns);
+  io::History history = restarted ? io::History(res.output_dir + "/history.csv", history_bytes)
+                                  : io::History(res.output_dir + "/history.csv", columns);
   res.history_csv = history.path();
   // rows hold the time-centred energy at the start of the sampled step (see Solver::measure_energy)
   auto history_row = [&](long step, double time, double kinetic, double strain) {
@@ -179,19 +219,19 @@ Result run_dim(const scene::Scene& s, const Options& o) {
     history.row(row);
   };
   std::optional<CrackTipHistory> tips;
-  std::optional<mpm::CrackPropagation> propagation;
   if constexpr (D == 2) {
-    if (!s.cracks.empty()) {
-      tips.emplace(res.output_dir + "/crack_tips.csv", m, r.solver, s.mpm);
+    if (cracked) {
+      const std::string path = res.output_dir + "/crack_tips.csv";
+      if (restarted) tips.emplace(path, tip_list, tip_bytes, s.mpm);
+      else tips.emplace(path, m, r.solver, s.mpm);
       res.files.push_back({"cracks", tips->path()});
-      if (s.crack_growth.enabled) propagation.emplace(s, m, r.solver);
     }
   }
+  Checkpointing checkpoints(s, o, res.output_dir);
   const auto start = std::chrono::steady_clock::now();
   Progress progress(r.steps, s.solver.end_time, o.quiet);
-  write_snapshot<D>(fields, m, s);
-  long next_snapshot = 1, next_history = 0;
-  for (long step = 1; step <= r.steps; ++step) {
+  if (!restarted) write_snapshot<D>(fields, m, s);
+  for (long step = res.first_step; step <= r.steps; ++step) {
     // history rows at the starts of steps 1 + k steps / rows: energy at t = 0 first
     const bool sample = (step - 1) * s.output.history_count >= next_history * r.steps;
     if (sample) r.solver.measure_energy();
@@ -211,8 +251,18 @@ Result run_dim(const scene::Scene& s, const Options& o) {
       write_snapshot<D>(fields, m, s);
       while (next_snapshot * r.steps <= step * s.output.count) ++next_snapshot;
     }
+    const bool stop = checkpoints.after_step(step, m.time, res, [&](io::CheckpointWriter& w) {
+      history_bytes = history.bytes();
+      if (tips) tip_list = tips->tips(), tip_bytes = tips->bytes();
+      visit_run(w);
+    });
+    if (stop) break;
   }
   res.loop_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  if (res.stopped) {
+    res.time = m.time;
+    return res;  // the final state's reports belong to the run that ends
+  }
   progress.finish(r.steps, m.time, 0.0);
   if (tips && s.output.crack_tip_plot && !tips->empty()) {
     const std::string png = res.output_dir + "/crack_tips.png";

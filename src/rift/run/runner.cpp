@@ -15,16 +15,15 @@
 #include "rift/core/progress.hpp"
 #include "rift/io/damage_histogram.hpp"
 #include "rift/io/damage_image.hpp"
-#include "rift/io/checkpoint.hpp"
 #include "rift/io/field_writer.hpp"
 #include "rift/io/history.hpp"
 #include "rift/pd/dynamic_relaxation.hpp"
 #include "rift/pd/checkpoint_state.hpp"
 #include "rift/pd/interface_outcome.hpp"
 #include "rift/pd/stress.hpp"
+#include "rift/run/checkpointing.hpp"
 #include "rift/run/mpm_runner.hpp"
 #include "rift/run/simulation.hpp"
-#include "rift/run/stop_signal.hpp"
 
 namespace rift::run {
 
@@ -138,15 +137,7 @@ Plan check_dim(const scene::Scene& s, std::ostream& out) {
   if (!probes.empty()) out << "             damage at " << probes.size() << " probes -> damage_probe_0... columns of history.csv\n";
   if (D == 2 && s.output.damage_image) out << "             final damage image -> damage.png\n";
   if (s.output.damage_histogram) out << "             final damage histogram (intervals of 0.1) -> damage_histogram.csv + .png\n";
-  if (s.checkpoint.every_steps > 0 || s.checkpoint.every_seconds > 0.0) {
-    std::string when;
-    if (s.checkpoint.every_steps > 0) when = fmt::format("every {} {}steps", s.checkpoint.every_steps, s.solver.kind == scene::SolverKind::explicit_dynamics ? "" : "load ");
-    if (s.checkpoint.every_seconds > 0.0) when += fmt::format("{}every {:g} s of wall time", when.empty() ? "" : " and ", s.checkpoint.every_seconds);
-    out << "checkpoint   " << when << " -> " << (s.checkpoint.file.empty() ? "checkpoint.rift" : s.checkpoint.file)
-        << " (about the memory above, each), and on SIGTERM/SIGINT\n";
-  } else {
-    out << "checkpoint   on SIGTERM/SIGINT -> checkpoint.rift (about the memory above)\n";
-  }
+  out << checkpoint_plan(s);
   return plan;
 }
 
@@ -204,14 +195,6 @@ void check_finite(const pd::Model<D>& m, long step, const pd::EnergySummary& e) 
   throw PhysicsError("step " + std::to_string(step) + ": energy is not finite");
 }
 
-/// Where the scene's checkpoint after `step` goes ([checkpoint] file, relative to the output
-/// directory; a '*' in it becomes the step, as in LAMMPS' restart command, to keep each one).
-std::string checkpoint_path(const scene::Scene& s, const std::string& output_dir, long step) {
-  std::string file = s.checkpoint.file.empty() ? "checkpoint.rift" : s.checkpoint.file;
-  if (const auto star = file.find('*'); star != std::string::npos) file.replace(star, 1, std::to_string(step));
-  return std::filesystem::path(file).is_absolute() ? file : output_dir + "/" + file;
-}
-
 template <int D>
 Result run_dim(const scene::Scene& s, const Options& o) {
   Simulation<D> p(s);  // every scene error is raised here, before anything is written
@@ -242,27 +225,14 @@ Result run_dim(const scene::Scene& s, const Options& o) {
     pd::visit(a, p.contact);
   };
   if (!o.restart.empty()) {
-    // the whole checkpoint is read before any output is touched: a wrong or damaged one changes nothing
-    try {
-      io::CheckpointReader checkpoint(o.restart);
-      const auto& h = checkpoint.header();
-      if (h.scene_fingerprint != s.fingerprint)
-        throw std::runtime_error("it was written for another scene, or for " + s.file +
-                                 " before it was edited (a restart continues the same scene, unchanged)");
-      if (h.step < 0 || h.step > p.steps)
-        throw std::runtime_error(fmt::format("it is at step {}, past the scene's {} steps", h.step, p.steps));
-      visit_run(checkpoint);
-      if (relaxation) {
-        dr.emplace(m);
-        pd::visit(checkpoint, *dr);
-      }
-      checkpoint.finish();
-      res.first_step = h.step + 1;
-    } catch (const SceneError&) {
-      throw;
-    } catch (const std::exception& e) {
-      throw SceneError({o.restart, 0, 0}, "", std::string("cannot restart from this checkpoint: ") + e.what());
-    }
+    // the whole checkpoint is read before any output is touched
+    res.first_step = 1 + read_checkpoint(s, o, p.steps, [&](io::CheckpointReader& checkpoint) {
+                       visit_run(checkpoint);
+                       if (relaxation) {
+                         dr.emplace(m);
+                         pd::visit(checkpoint, *dr);
+                       }
+                     });
   }
   const bool restarted = !o.restart.empty();
   std::filesystem::create_directories(res.output_dir);
@@ -358,33 +328,15 @@ Result run_dim(const scene::Scene& s, const Options& o) {
   const auto loop_start = std::chrono::steady_clock::now();
   PhaseTimes::run().reset();
   Progress progress(p.steps, s.solver.end_time, o.quiet);
-  // checkpoints: every [checkpoint] every_steps steps or every_seconds of wall time, and when a stop
-  // signal came (run/stop_signal.hpp)
-  auto last_checkpoint = std::chrono::steady_clock::now();
+  Checkpointing checkpoints(s, o, res.output_dir);
   // after step `step`: writes a checkpoint where one is due, and says whether the run stops here
   auto checkpoint_and_stop = [&](long step) {
-    const bool stop = stop_signal() != 0 || (o.stop_after_step > 0 && step >= o.stop_after_step);
-    const auto now = std::chrono::steady_clock::now();
-    const auto& c = s.checkpoint;
-    const bool due = (c.every_steps > 0 && step % c.every_steps == 0) ||
-                     (c.every_seconds > 0.0 && std::chrono::duration<double>(now - last_checkpoint).count() >= c.every_seconds);
-    if (stop || due) {
-      PhaseClock output_clock(Phase::output);
+    PhaseClock output_clock(Phase::output);
+    return checkpoints.after_step(step, m.time, res, [&](io::CheckpointWriter& w) {
       history_bytes = history.bytes();
-      const std::string checkpoint_file = checkpoint_path(s, res.output_dir, step);
-      io::CheckpointWriter w(checkpoint_file, {s.fingerprint, step, m.time});
       visit_run(w);
       if (dr) pd::visit(w, *dr);
-      w.commit();
-      res.checkpoint = checkpoint_file;
-      last_checkpoint = std::chrono::steady_clock::now();
-    }
-    if (stop) {
-      res.stopped = true;
-      res.stop_signal = stop_signal();
-      res.steps = step;
-    }
-    return stop;
+    });
   };
   if (s.solver.kind == scene::SolverKind::explicit_dynamics) {
     if (!restarted) {
@@ -484,10 +436,7 @@ Plan check(const scene::Scene& s, std::ostream& out) {
 
 Result run(const scene::Scene& s, const Options& o) {
   if (o.threads > 0) omp_set_num_threads(o.threads);
-  if (s.method == scene::Method::mpm) {
-    if (!o.restart.empty()) throw SceneError({o.restart, 0, 0}, "", "a restart continues peridynamic scenes only, so far (this one is MPM)");
-    return run_mpm(s, o);
-  }
+  if (s.method == scene::Method::mpm) return run_mpm(s, o);
   return s.dimension == 2 ? run_dim<2>(s, o) : run_dim<3>(s, o);
 }
 

@@ -676,8 +676,6 @@ void parse_checkpoint(R& root, Scene& s) {
   const toml::table* t = root.table("checkpoint");
   if (!t) return;
   R r(*t, "checkpoint", s.file);
-  if (s.method == Method::mpm)
-    throw SceneError(r.where(), "checkpoint", "checkpoints are written for peridynamic scenes only, so far (not [scene] method = \"mpm\")");
   if (auto n = r.integer("every_steps")) {
     if (*n < 1) r.fail("every_steps", "must be >= 1 (steps, or load steps of relaxation, between checkpoints)");
     s.checkpoint.every_steps = static_cast<long>(*n);

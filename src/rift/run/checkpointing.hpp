@@ -1,0 +1,100 @@
+// When a run writes its checkpoints and how it reads one back (io/checkpoint.hpp), for the
+// peridynamic and the MPM runner alike: [checkpoint] every_steps and every_seconds, a stop signal
+// (run/stop_signal.hpp), and `rift run --restart FILE`.
+#pragma once
+#include <fmt/format.h>
+
+#include <chrono>
+#include <filesystem>
+#include <stdexcept>
+#include <string>
+
+#include "rift/core/error.hpp"
+#include "rift/io/checkpoint.hpp"
+#include "rift/run/runner.hpp"
+#include "rift/run/stop_signal.hpp"
+#include "rift/scene/scene.hpp"
+
+namespace rift::run {
+
+/// Where the scene's checkpoint after `step` goes ([checkpoint] file, relative to the output
+/// directory; a '*' in it becomes the step, as in LAMMPS' restart command, to keep each one).
+inline std::string checkpoint_path(const scene::Scene& s, const std::string& output_dir, long step) {
+  std::string file = s.checkpoint.file.empty() ? "checkpoint.rift" : s.checkpoint.file;
+  if (const auto star = file.find('*'); star != std::string::npos) file.replace(star, 1, std::to_string(step));
+  return std::filesystem::path(file).is_absolute() ? file : output_dir + "/" + file;
+}
+
+/// What `rift check` says of the scene's checkpoints.
+inline std::string checkpoint_plan(const scene::Scene& s) {
+  const auto& c = s.checkpoint;
+  const std::string file = c.file.empty() ? "checkpoint.rift" : c.file;
+  if (c.every_steps <= 0 && c.every_seconds <= 0.0) return "checkpoint   on SIGTERM/SIGINT -> checkpoint.rift (the whole state, about the memory of the run)\n";
+  std::string when;
+  if (c.every_steps > 0)
+    when = fmt::format("every {} {}steps", c.every_steps, s.solver.kind == scene::SolverKind::explicit_dynamics ? "" : "load ");
+  if (c.every_seconds > 0.0) when += fmt::format("{}every {:g} s of wall time", when.empty() ? "" : " and ", c.every_seconds);
+  return "checkpoint   " + when + " -> " + file + " (the whole state, about the memory of the run, each), and on SIGTERM/SIGINT\n";
+}
+
+/// Reads the checkpoint of Options::restart through visit(reader) and returns the step it
+/// continues after. Every record is read before the caller touches an output, so a checkpoint of
+/// another scene, damaged, or of another build changes nothing: a SceneError (exit status 2).
+template <class Visit>
+long read_checkpoint(const scene::Scene& s, const Options& o, long steps, Visit visit) {
+  try {
+    io::CheckpointReader checkpoint(o.restart);
+    const auto& h = checkpoint.header();
+    if (h.scene_fingerprint != s.fingerprint)
+      throw std::runtime_error("it was written for another scene, or for " + s.file +
+                               " before it was edited (a restart continues the same scene, unchanged)");
+    if (h.step < 0 || h.step > steps) throw std::runtime_error(fmt::format("it is at step {}, past the scene's {} steps", h.step, steps));
+    visit(checkpoint);
+    checkpoint.finish();
+    return h.step;
+  } catch (const SceneError&) {
+    throw;
+  } catch (const std::exception& e) {
+    throw SceneError({o.restart, 0, 0}, "", std::string("cannot restart from this checkpoint: ") + e.what());
+  }
+}
+
+/// After each step of a run: writes a checkpoint where [checkpoint] asks for one or a stop came,
+/// and says whether the run stops there (Result::stopped, its checkpoint written).
+class Checkpointing {
+ public:
+  Checkpointing(const scene::Scene& s, const Options& o, std::string output_dir)
+      : scene_(s), stop_after_step_(o.stop_after_step), output_dir_(std::move(output_dir)), last_(std::chrono::steady_clock::now()) {}
+
+  /// visit(writer) writes the records; the checkpoint holds the model at `time` after `step`.
+  template <class Visit>
+  bool after_step(long step, double time, Result& res, Visit visit) {
+    const bool stop = stop_signal() != 0 || (stop_after_step_ > 0 && step >= stop_after_step_);
+    const auto& c = scene_.checkpoint;
+    const bool due = (c.every_steps > 0 && step % c.every_steps == 0) ||
+                     (c.every_seconds > 0.0 &&
+                      std::chrono::duration<double>(std::chrono::steady_clock::now() - last_).count() >= c.every_seconds);
+    if (stop || due) {
+      const std::string file = checkpoint_path(scene_, output_dir_, step);
+      io::CheckpointWriter w(file, {scene_.fingerprint, step, time});
+      visit(w);
+      w.commit();
+      res.checkpoint = file;
+      last_ = std::chrono::steady_clock::now();
+    }
+    if (stop) {
+      res.stopped = true;
+      res.stop_signal = stop_signal();
+      res.steps = step;
+    }
+    return stop;
+  }
+
+ private:
+  const scene::Scene& scene_;
+  long stop_after_step_;
+  std::string output_dir_;
+  std::chrono::steady_clock::time_point last_;
+};
+
+}  // namespace rift::run
