@@ -139,6 +139,14 @@ set -e
 test "$status" -eq 2
 grep -q "cannot restart from this checkpoint: it was written for another scene" "$tmp/err.txt"
 cmp "$tmp/long/history.csv" "$tmp/history_before.csv"
+# a restart into another output directory (without the stopped run's files): exit status 2, nothing written
+set +e
+"$rift" run "$tmp/long.toml" -o "$tmp/elsewhere" --restart "$tmp/long/checkpoint.rift" 2> "$tmp/err.txt"
+status=$?
+set -e
+test "$status" -eq 2
+grep -q "restart with the output directory of the run that wrote the checkpoint" "$tmp/err.txt"
+test ! -e "$tmp/elsewhere"
 # a mistake: exit status 2, the message (file:line:column, key), nothing written
 refused() {  # scene, expected text of the message
   set +e

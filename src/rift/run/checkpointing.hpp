@@ -5,6 +5,7 @@
 #include <fmt/format.h>
 
 #include <chrono>
+#include <cstdint>
 #include <filesystem>
 #include <stdexcept>
 #include <string>
@@ -57,6 +58,19 @@ long read_checkpoint(const scene::Scene& s, const Options& o, long steps, Visit 
   } catch (const std::exception& e) {
     throw SceneError({o.restart, 0, 0}, "", std::string("cannot restart from this checkpoint: ") + e.what());
   }
+}
+
+/// A restart continues the stopped run's output files, which must be in the output directory
+/// (the same -o) and hold at least what the checkpoint counted; a SceneError (exit status 2)
+/// before anything is written otherwise.
+inline void require_output_file(const Options& o, const std::string& path, std::int64_t bytes) {
+  std::error_code ec;
+  const auto size = std::filesystem::file_size(path, ec);
+  if (ec || size < static_cast<std::uintmax_t>(bytes))
+    throw SceneError({o.restart, 0, 0}, "",
+                     fmt::format("cannot restart from this checkpoint: {} {} (the checkpoint counts {} bytes of it); restart with the "
+                                 "output directory of the run that wrote the checkpoint (-o)",
+                                 path, ec ? "does not exist" : fmt::format("holds only {} bytes", size), bytes));
 }
 
 /// After each step of a run: writes a checkpoint where [checkpoint] asks for one or a stop came,

@@ -204,6 +204,10 @@ Result run_dim(const scene::Scene& s, const Options& o) {
     // the whole checkpoint is read before any output is touched
     res.first_step = 1 + read_checkpoint(s, o, r.steps, [&](io::CheckpointReader& checkpoint) { visit_run(checkpoint); });
   }
+  if (restarted) {
+    require_output_file(o, res.output_dir + "/history.csv", history_bytes);
+    if (cracked) require_output_file(o, res.output_dir + "/crack_tips.csv", tip_bytes);
+  }
   std::filesystem::create_directories(res.output_dir);
   std::vector<std::string> columns{"time", "step"};
   columns.insert(columns.end(), s.output.history.begin(), s.output.history.end());

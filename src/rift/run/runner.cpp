@@ -235,6 +235,7 @@ Result run_dim(const scene::Scene& s, const Options& o) {
                      });
   }
   const bool restarted = !o.restart.empty();
+  if (restarted) require_output_file(o, res.output_dir + "/history.csv", history_bytes);
   std::filesystem::create_directories(res.output_dir);
   std::vector<std::string> columns{"time", "step"};
   columns.insert(columns.end(), s.output.history.begin(), s.output.history.end());
