@@ -31,6 +31,17 @@ concept visitable = requires(Archive& a, T& t) { visit(a, t); };
 template <class T>
 struct written_as_bytes : std::is_trivially_copyable<T> {};
 
+namespace detail {
+template <class T>
+struct is_vector : std::false_type {};
+template <class T, class A>
+struct is_vector<std::vector<T, A>> : std::true_type {};
+/// A vector's elements go one by one (a count record, then each) unless they are written as bytes
+/// together in one record.
+template <class Archive, class E>
+inline constexpr bool one_by_one = is_vector<E>::value || visitable<Archive, E> || !written_as_bytes<E>::value;
+}  // namespace detail
+
 /// What a checkpoint says of itself, checked against the scene before anything is read.
 struct CheckpointHeader {
   std::uint64_t scene_fingerprint = 0;  // checkpoint_fingerprint of the scene's text
@@ -52,9 +63,9 @@ class CheckpointWriter {
 
   template <class T>
   void operator()(const char* name, const T& value) {
-    if constexpr (is_vector<T>::value) {
+    if constexpr (detail::is_vector<T>::value) {
       using E = typename T::value_type;
-      if constexpr (is_vector<E>::value || visitable<CheckpointWriter, E> || !written_as_bytes<E>::value) {
+      if constexpr (detail::one_by_one<CheckpointWriter, E>) {
         std::uint64_t count = value.size();
         record(name, sizeof count, 1, &count);
         for (const auto& e : value) (*this)(name, e);
@@ -74,10 +85,6 @@ class CheckpointWriter {
   void commit();
 
  private:
-  template <class T>
-  struct is_vector : std::false_type {};
-  template <class T, class A>
-  struct is_vector<std::vector<T, A>> : std::true_type {};
   void record(const char* name, std::uint64_t element_size, std::uint64_t count, const void* data);
   void put(const void* data, std::size_t bytes);
   std::string path_, tmp_path_;
@@ -99,9 +106,9 @@ class CheckpointReader {
 
   template <class T>
   void operator()(const char* name, T& value) {
-    if constexpr (is_vector<T>::value) {
+    if constexpr (detail::is_vector<T>::value) {
       using E = typename T::value_type;
-      if constexpr (is_vector<E>::value || visitable<CheckpointReader, E> || !written_as_bytes<E>::value) {
+      if constexpr (detail::one_by_one<CheckpointReader, E>) {
         std::uint64_t count = 0;
         record(name, sizeof count, 1, &count, nullptr);
         value.resize(count);
@@ -128,10 +135,6 @@ class CheckpointReader {
   void finish();
 
  private:
-  template <class T>
-  struct is_vector : std::false_type {};
-  template <class T, class A>
-  struct is_vector<std::vector<T, A>> : std::true_type {};
   /// Reads a record's head and checks its name and element size; with count_out, returns its count
   /// and leaves the payload to read_payload; else reads `count` elements into data.
   void record(const char* name, std::uint64_t element_size, std::uint64_t count, void* data, std::uint64_t* count_out);
