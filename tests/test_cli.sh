@@ -111,6 +111,17 @@ SCENE
 "$rift" run "$tmp/in_situ.toml" -o "$tmp/in_situ_out" --threads 1 > "$tmp/in_situ.log" 2> "$tmp/in_situ.err"
 grep -q "in-situ stage: equilibrium in" "$tmp/in_situ.log"
 grep -q "are past their limit at the in-situ equilibrium and broke at the start" "$tmp/in_situ.err"
+# `rift run ARGUMENTS` exits with status 2 and this text in its message
+exits_2() {  # expected text of the message, then the arguments of rift run
+  local text="$1"
+  shift
+  set +e
+  "$rift" run "$@" 2> "$tmp/err.txt"
+  local status=$?
+  set -e
+  test "$status" -eq 2
+  grep -q "$text" "$tmp/err.txt"
+}
 # SIGTERM (a batch system's notice): the run ends its step, writes a checkpoint and exits with
 # 128 + 15; `--restart` continues it to the history of a run never stopped, byte for byte
 sed 's/end_time = 4e-6/end_time = 4e-4/; s/history_rows = 5/history_rows = 500/' "$tmp/plate.toml" > "$tmp/long.toml"
@@ -132,29 +143,16 @@ grep -q "rift: continued from $tmp/long/checkpoint.rift at step" "$tmp/long2.log
 cmp "$tmp/long/history.csv" "$tmp/long_whole/history.csv"
 # a checkpoint of another scene is refused (exit status 2), the run's files unchanged
 cp "$tmp/long/history.csv" "$tmp/history_before.csv"
-set +e
-"$rift" run "$tmp/plate.toml" -o "$tmp/long" --restart "$tmp/long/checkpoint.rift" 2> "$tmp/err.txt"
-status=$?
-set -e
-test "$status" -eq 2
-grep -q "cannot restart from this checkpoint: it was written for another scene" "$tmp/err.txt"
+exits_2 "cannot restart from this checkpoint: it was written for another scene" \
+  "$tmp/plate.toml" -o "$tmp/long" --restart "$tmp/long/checkpoint.rift"
 cmp "$tmp/long/history.csv" "$tmp/history_before.csv"
 # a restart into another output directory (without the stopped run's files): exit status 2, nothing written
-set +e
-"$rift" run "$tmp/long.toml" -o "$tmp/elsewhere" --restart "$tmp/long/checkpoint.rift" 2> "$tmp/err.txt"
-status=$?
-set -e
-test "$status" -eq 2
-grep -q "restart with the output directory of the run that wrote the checkpoint" "$tmp/err.txt"
+exits_2 "restart with the output directory of the run that wrote the checkpoint" \
+  "$tmp/long.toml" -o "$tmp/elsewhere" --restart "$tmp/long/checkpoint.rift"
 test ! -e "$tmp/elsewhere"
 # a mistake: exit status 2, the message (file:line:column, key), nothing written
 refused() {  # scene, expected text of the message
-  set +e
-  "$rift" run "$1" -o "$1.out" 2> "$tmp/err.txt"
-  local status=$?
-  set -e
-  test "$status" -eq 2
-  grep -q "$2" "$tmp/err.txt"
+  exits_2 "$2" "$1" -o "$1.out"
   test ! -e "$1.out"
 }
 sed 's/spacing = 0.0005/spacing = -0.0005/' "$tmp/plate.toml" > "$tmp/bad.toml"
