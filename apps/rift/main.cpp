@@ -4,6 +4,8 @@
 //                                           (or continue it from a checkpoint)
 //   rift check SCENE                        validate a scene and print what a run would do
 //   rift --version
+//   mpirun -np N rift run SCENE ...         the same run on N ranks (pd/window.hpp); rank 0 writes
+//                                           the outputs and prints
 // Exit status: 0 success, 1 physics failure during a run, 2 bad input (nothing written), 128 + the
 // signal when SIGTERM or SIGINT stopped a run (its checkpoint written).
 #include <CLI/CLI.hpp>
@@ -17,12 +19,17 @@
 
 #include "rift/core/error.hpp"
 #include "rift/core/version.hpp"
+#include "rift/parallel/communicator.hpp"
 #include "rift/parallel/cpu_quota.hpp"
 #include "rift/run/runner.hpp"
 #include "rift/run/stop_signal.hpp"
 #include "rift/scene/parse.hpp"
 
-int main(int argc, char** argv) {
+namespace {
+
+int rift_main(int argc, char** argv) {
+  const auto& comm = rift::parallel::Communicator::world();
+  if (!comm.root() && !std::freopen("/dev/null", "w", stdout)) return 1;  // rank 0 prints the run's report
   rift::parallel::limit_threads_to_cpu_quota();
   CLI::App app{"rift: fracture of solids with peridynamics"};
   app.set_version_flag("--version", std::string("rift ") + rift::version);
@@ -85,14 +92,27 @@ int main(int argc, char** argv) {
     for (const auto& [what, path] : r.files) std::printf("  %-8s %s\n", what.c_str(), path.c_str());
     for (const auto& note : r.notes) std::printf("  %s\n", note.c_str());
     return 0;
-  } catch (const rift::SceneError& e) {
-    std::fprintf(stderr, "%s\n", e.what());
+  } catch (const rift::SceneError& e) {  // raised on every rank alike, before anything is written
+    if (comm.root()) std::fprintf(stderr, "%s\n", e.what());
     return 2;
-  } catch (const rift::PhysicsError& e) {
-    std::fprintf(stderr, "rift: run stopped: %s\n", e.what());
+  } catch (const rift::PhysicsError& e) {  // every rank's, from the reduced history (the one that found it says where)
+    const std::string rank = comm.distributed() ? fmt::format(" (rank {})", comm.rank()) : "";
+    std::fprintf(stderr, "rift: run stopped%s: %s\n", rank.c_str(), e.what());
     return 1;
   } catch (const std::exception& e) {
-    std::fprintf(stderr, "rift: error: %s\n", e.what());
-    return 1;
+    if (!comm.distributed()) {
+      std::fprintf(stderr, "rift: error: %s\n", e.what());
+      return 1;
+    }
+    // one rank's failure (an output it cannot write): the others may wait for it in an exchange
+    std::fprintf(stderr, "rift: error on rank %d: %s\n", comm.rank(), e.what());
+    rift::parallel::MpiSession::abort(1);
   }
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  rift::parallel::MpiSession mpi(argc, argv);
+  return rift_main(argc, argv);
 }

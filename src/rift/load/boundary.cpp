@@ -206,6 +206,18 @@ std::vector<Vec<D>> Boundaries<D>::reactions(const pd::Model<D>& m) const {
   return out;
 }
 
+template <int D>
+void Boundaries<D>::restrict_to(std::size_t first, std::size_t last, std::size_t owned_first, std::size_t owned_last) {
+  auto keep = [](std::vector<std::size_t>& particles, std::size_t from, std::size_t to, std::size_t base) {
+    std::vector<std::size_t> kept;
+    for (auto i : particles)
+      if (i >= from && i < to) kept.push_back(i - base);
+    particles = std::move(kept);
+  };
+  for (auto& a : applied_) keep(a.particles, first, last, first);
+  for (auto& parts : reaction_particles_) keep(parts, owned_first, owned_last, first);
+}
+
 template class Boundaries<2>;
 template class Boundaries<3>;
 

@@ -37,9 +37,11 @@ inline void make_bond_runs(const Bonds& b, BodyInfo& body) {
   body.slab_runs.clear();
   if (body.last <= body.first) return;
   const std::size_t length = body.slab_length;
-  auto slab = [&](std::size_t i) { return (i - body.first) / length; };
+  // the slabs and blocks are the whole body's (BodyInfo::origin)
+  auto slab = [&](std::size_t i) { return static_cast<std::size_t>(static_cast<std::int64_t>(i) - body.origin) / length; };
   // and inside one block of the VES history (bonds.hpp), which holds max_run_length particles
-  auto block = [&](std::size_t i) { return (i - body.first) / max_run_length; };
+  auto block = [&](std::size_t i) { return static_cast<std::size_t>(static_cast<std::int64_t>(i) - body.origin) / max_run_length; };
+  body.first_slab = slab(body.first);
   std::vector<std::int64_t> open(body.family_count, -1);  // per family offset: the run that may grow
   for (std::size_t i = body.first; i < body.last; ++i)
     for (auto k = first_forward_bond(b, i); k < b.offset[i + 1]; ++k) {
@@ -69,9 +71,9 @@ inline void make_bond_runs(const Bonds& b, BodyInfo& body) {
     if (a.family != b.family) return a.family < b.family;
     return ia < ib;
   });
-  const std::size_t slabs = (body.last - body.first + length - 1) / length;
+  const std::size_t slabs = slab(body.last - 1) + 1 - body.first_slab;
   body.slab_runs.assign(slabs + 1, 0);
-  for (const auto& r : body.runs) ++body.slab_runs[slab(static_cast<std::size_t>(r.i)) + 1];
+  for (const auto& r : body.runs) ++body.slab_runs[slab(static_cast<std::size_t>(r.i)) - body.first_slab + 1];
   for (std::size_t q = 0; q < slabs; ++q) body.slab_runs[q + 1] += body.slab_runs[q];
 }
 
@@ -270,10 +272,12 @@ void for_each_run_by_slabs(const BodyInfo& body, Run&& run) {
   if (body.slab_runs.size() < 2) return;
   const std::size_t slabs = body.slab_runs.size() - 1;
   for (std::size_t parity = 0; parity < 2; ++parity) {
-    const auto count = static_cast<std::int64_t>((slabs + 1 - parity) / 2);
+    // the whole body's parity (BodyInfo::first_slab): local slab `skip` is its first of this parity
+    const std::size_t skip = (body.first_slab + parity) % 2;
+    const auto count = static_cast<std::int64_t>((slabs + 1 - skip) / 2);
 #pragma omp parallel for if(rift::parallel::worth_a_team(body.last - body.first) && count > 1) schedule(dynamic, 1)
     for (std::int64_t q = 0; q < count; ++q) {
-      const std::size_t slab = 2 * static_cast<std::size_t>(q) + parity;
+      const std::size_t slab = 2 * static_cast<std::size_t>(q) + skip;
       for (std::size_t r = body.slab_runs[slab]; r < body.slab_runs[slab + 1]; ++r) run(body.runs[r]);
     }
   }

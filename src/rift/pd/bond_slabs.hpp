@@ -41,9 +41,9 @@ inline std::int64_t reverse_bond(const Bonds& b, const BodyInfo& body, std::size
 /// symmetric and ordered as the lattice is numbered, so its second half are the forward offsets.
 inline std::size_t history_index(const BodyInfo& body, std::size_t i, std::size_t family, std::size_t direction) {
   constexpr std::size_t block = Bonds::history_block;
-  const std::size_t forward = body.family_count / 2, local = i - body.first;
+  const std::size_t forward = body.family_count / 2, local = static_cast<std::size_t>(static_cast<std::int64_t>(i) - body.origin);
   const std::size_t offset = family - body.first_family - forward;
-  return body.history_base + ((local / block) * forward + offset) * 2 * block + direction * block + local % block;
+  return static_cast<std::size_t>(body.history_base + static_cast<std::int64_t>(((local / block) * forward + offset) * 2 * block + direction * block + local % block));
 }
 
 /// Where the VES history of directed bond k = i-j sits.
@@ -115,13 +115,17 @@ template <class Row>
 void for_each_row_by_slabs(const BodyInfo& body, Row&& row) {
   const std::size_t first = body.first, last = body.last, length = body.slab_length;
   if (last <= first) return;
-  const std::size_t slabs = (last - first + length - 1) / length;
+  // the whole body's slabs (BodyInfo::origin): the first here may be cut short
+  const auto start = [&](std::size_t slab) { return static_cast<std::size_t>(body.origin + static_cast<std::int64_t>(slab * length)); };
+  const std::size_t first_slab = static_cast<std::size_t>(static_cast<std::int64_t>(first) - body.origin) / length;
+  const std::size_t end_slab = static_cast<std::size_t>(static_cast<std::int64_t>(last - 1) - body.origin) / length + 1;
   for (std::size_t parity = 0; parity < 2; ++parity) {
-    const auto count = static_cast<std::int64_t>((slabs + 1 - parity) / 2);
+    const std::size_t skip = (first_slab + parity) % 2;
+    const auto count = static_cast<std::int64_t>((end_slab - first_slab + 1 - skip) / 2);
 #pragma omp parallel for if(rift::parallel::worth_a_team(last - first) && count > 1) schedule(dynamic, 1)
     for (std::int64_t q = 0; q < count; ++q) {
-      const std::size_t from = first + (2 * static_cast<std::size_t>(q) + parity) * length;
-      const std::size_t to = std::min(last, from + length);
+      const std::size_t slab = first_slab + 2 * static_cast<std::size_t>(q) + skip;
+      const std::size_t from = std::max(first, start(slab)), to = std::min(last, start(slab + 1));
       for (std::size_t i = from; i < to; ++i) row(i);
     }
   }

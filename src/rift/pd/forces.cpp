@@ -41,7 +41,12 @@ void compute_forces(Model<D>& m, Contact<D>* contact, double history_dt) {
     }
   }
   // the second pass of the state-based models needs every dilatation of the step (bodies may
-  // neighbour through contact only)
+  // neighbour through contact only); a distributed run's ghosts take theirs, and P, from their
+  // owners, who summed them over whole families (pd/window.hpp)
+  if (m.ghosts) {
+    m.refresh_ghosts(m.dilatation);
+    m.refresh_ghosts(m.dilatation_coupling);
+  }
   for (std::size_t a = 0; a < m.bodies.size(); ++a) {
     const auto& body = m.bodies[a];
     const auto& c = body.constants;
@@ -108,7 +113,9 @@ EnergySummary summarize_rows(const Model<D>& m, bool strain_energy, double* dama
   densities.resize(strain_energy ? m.size() : 0);
   double* const density = densities.data();
   if (strain_energy) strain_energy_densities<D>(m, density);
-  auto sums = parallel::ordered_sums<3>(m.size(), [&](std::size_t i, std::array<double, 3>& acc) {
+  const std::size_t first = m.owned_begin, last = m.owned_last();  // a distributed run's ranks sum their own
+  auto sums = parallel::ordered_sums<3>(last - first, [&](std::size_t owned, std::array<double, 3>& acc) {
+    const std::size_t i = first + owned;
     const double rho = m.constants_of(i).density;
     acc[0] += 0.5 * rho * dot<D>(m.velocity[i], m.velocity[i]) * m.volume[i];
     if (strain_energy) {
@@ -126,9 +133,10 @@ EnergySummary summarize_rows(const Model<D>& m, bool strain_energy, double* dama
   EnergySummary s;
   s.kinetic = sums[0];
   s.strain = sums[1];
-  const auto broken = static_cast<std::int64_t>(sums[2]);
-  s.broken_bonds = broken / 2;
-  s.broken_fraction = m.bonds.size() > 0 ? double(broken) / double(m.bonds.size()) : 0.0;
+  s.failed_directed = sums[2];
+  s.directed = static_cast<double>(m.bonds.offset[last] - m.bonds.offset[first]);
+  s.broken_bonds = static_cast<std::int64_t>(s.failed_directed) / 2;
+  s.broken_fraction = s.directed > 0.0 ? s.failed_directed / s.directed : 0.0;
   return s;
 }
 

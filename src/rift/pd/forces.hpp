@@ -39,8 +39,11 @@ struct EnergySummary {
   double kinetic = 0.0, strain = 0.0;
   std::int64_t broken_bonds = 0;  // bonds broken (each bond counted once)
   double broken_fraction = 0.0;
+  // what they were counted from: the directed bonds not intact, of all directed bonds, in the rows
+  // summed (a distributed run's ranks add theirs, run/distributed.hpp)
+  double failed_directed = 0.0, directed = 0.0;
 };
-/// Kinetic and strain energy and the broken bonds. The strain energy visits every pair of bonds
+/// Kinetic and strain energy and the broken bonds, of the owned particles (Model::owned_begin). The strain energy visits every pair of bonds
 /// again (strain_energy_densities); with `strain_energy` false it is left 0 unless a position is
 /// not finite, which it then carries as NaN (runner's check_finite), and the sum costs one pass
 /// over the particles and their bond states.

@@ -22,8 +22,23 @@ struct BodyInfo {
   std::size_t slab_length = 1;  // of the passes that visit each bond once (bond_slabs.hpp), set with the bonds
   std::vector<BondRun> runs;    // its forward bonds as runs (bond_runs.hpp), slab after slab
   std::vector<std::size_t> slab_runs;  // the runs of slab q: [slab_runs[q], slab_runs[q + 1])
-  std::size_t history_base = 0;  // VES: its first slot in Bonds::back_extension (bond_slabs.hpp history_slot)
+  std::int64_t history_base = 0;  // VES: its first slot in Bonds::back_extension (bond_slabs.hpp history_slot)
+  // Where the body's numbering starts: particle i is its (i - origin)-th. It is `first`, except in a
+  // rank's window of a distributed run (pd/window.hpp), which may begin inside the body: its slabs,
+  // runs and VES history blocks count from the whole body's first particle, so every sum of an
+  // owned particle is made in the same order as on one rank.
+  std::int64_t origin = 0;
+  std::size_t first_slab = 0;  // the whole body's number of the first slab here (its parity orders the passes)
   MaterialConstants constants;
+};
+
+/// Refreshes the ghost particles' copies of a per-particle field from the ranks that own them, in a
+/// distributed run (pd/window.hpp, parallel/halo.hpp).
+class Ghosts {
+ public:
+  virtual ~Ghosts() = default;
+  /// `field`: `width` doubles per particle, in the window's numbering.
+  virtual void refresh(double* field, std::size_t width) const = 0;
 };
 
 template <int D>
@@ -56,8 +71,21 @@ struct Model {
   int dimension = D;
   double thickness = 1.0;
   double time = 0.0;
+  // A distributed run (pd/window.hpp): this rank's window of the particles, the owned ones
+  // [owned_begin, owned_end) and the ghosts around them, which `ghosts` refreshes from their owners.
+  // One rank: every particle is owned, no ghosts.
+  std::size_t owned_begin = 0, owned_end = static_cast<std::size_t>(-1);
+  const Ghosts* ghosts = nullptr;
 
   std::size_t size() const { return position.size(); }
+  std::size_t owned_last() const { return std::min(owned_end, size()); }
+  /// The ghosts' copies of a field of doubles or vectors, from their owners (nothing on one rank).
+  void refresh_ghosts(std::vector<double>& field) const {
+    if (ghosts && !field.empty()) ghosts->refresh(field.data(), 1);
+  }
+  void refresh_ghosts(std::vector<Vec<D>>& field) const {
+    if (ghosts && !field.empty()) ghosts->refresh(field.data()->data(), D);
+  }
   const MaterialConstants& constants_of(std::size_t i) const { return bodies[body[i]].constants; }
   Vec<D> displacement(std::size_t i) const { return position[i] - reference_position[i]; }
   /// The lowest and highest reference coordinate on each axis (the block's faces).

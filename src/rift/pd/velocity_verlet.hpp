@@ -39,6 +39,9 @@ void velocity_verlet_step(Model<D>& m, const load::Boundaries<D>& loads, Contact
   loads.prescribe_position(m, m.time + dt);
   m.time += dt;
   advance_stretch_limits<D>(m);
+  // a distributed run's ghosts are where their owners moved them, with their s0 (pd/window.hpp)
+  m.refresh_ghosts(m.position);
+  m.refresh_ghosts(m.stretch_limit);
   compute_forces<D>(m, contact, dt);
   loads.apply_body_forces(m, m.time);
   kick<D>(m, 0.5 * dt);

@@ -37,7 +37,7 @@ void prepare_viscous_history(Model<D>& m) {
   for (auto& body : m.bodies) {
     if (body.constants.model != scene::ModelKind::ves) continue;
     constexpr std::size_t block = Bonds::history_block;
-    body.history_base = slots;
+    body.history_base = static_cast<std::int64_t>(slots);
     slots += (body.last - body.first + block - 1) / block * (body.family_count / 2) * 2 * block;
   }
   if (slots == 0) return;

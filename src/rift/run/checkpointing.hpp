@@ -12,6 +12,7 @@
 
 #include "rift/core/error.hpp"
 #include "rift/io/checkpoint.hpp"
+#include "rift/parallel/communicator.hpp"
 #include "rift/run/runner.hpp"
 #include "rift/run/stop_signal.hpp"
 #include "rift/scene/scene.hpp"
@@ -83,12 +84,14 @@ class Checkpointing {
   /// visit(writer) writes the records; the checkpoint holds the model at `time` after `step`.
   template <class Visit>
   bool after_step(long step, double time, Result& res, Visit visit) {
-    const bool stop = stop_signal() != 0 || (stop_after_step_ > 0 && step >= stop_after_step_);
+    // every rank of a distributed run stops after the same step (a signal reaches each at its own time)
+    const auto& comm = parallel::Communicator::world();
+    const bool stop = comm.any(stop_signal() != 0 || (stop_after_step_ > 0 && step >= stop_after_step_));
     const auto& c = scene_.checkpoint;
     const bool due = (c.every_steps > 0 && step % c.every_steps == 0) ||
                      (c.every_seconds > 0.0 &&
                       std::chrono::duration<double>(std::chrono::steady_clock::now() - last_).count() >= c.every_seconds);
-    if (stop || due) {
+    if ((stop || due) && !comm.distributed()) {  // a distributed run writes none yet (Simulation::distribute)
       const std::string file = checkpoint_path(scene_, output_dir_, step);
       io::CheckpointWriter w(file, {scene_.fingerprint, step, time});
       visit(w);

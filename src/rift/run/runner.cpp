@@ -22,6 +22,7 @@
 #include "rift/pd/interface_outcome.hpp"
 #include "rift/pd/stress.hpp"
 #include "rift/run/checkpointing.hpp"
+#include "rift/run/distributed.hpp"
 #include "rift/run/mpm_runner.hpp"
 #include "rift/run/simulation.hpp"
 
@@ -149,10 +150,20 @@ std::vector<double> vector_field(const pd::Model<D>& m, const std::vector<Vec<D>
   return out;
 }
 
+/// A snapshot of the fields; a distributed run's rank 0 writes the whole run's (run/distributed.hpp).
 template <int D>
-void write_snapshot(io::FieldWriter& w, pd::Model<D>& m, const scene::Scene& s) {
+void write_snapshot(io::FieldWriter& fields, pd::Model<D>& m, const scene::Scene& s, const parallel::Communicator& comm) {
   pd::update_damage<D>(m);
-  w.begin_snapshot(m.time);
+  struct Gathered {
+    io::FieldWriter& fields;
+    const pd::Model<D>& m;
+    const parallel::Communicator& comm;
+    void write(const std::string& name, const std::vector<double>& values, int components) {
+      auto all = gather_owned<D>(comm, m, values, static_cast<std::size_t>(components));
+      if (comm.root()) fields.write(name, all, components);
+    }
+  } w{fields, m, comm};
+  if (comm.root()) fields.begin_snapshot(m.time);
   w.write("position", vector_field<D>(m, m.position, false), 3);
   for (const auto& f : s.output.fields) {
     if (f == "displacement") w.write(f, vector_field<D>(m, m.position, true), 3);
@@ -177,32 +188,59 @@ void write_snapshot(io::FieldWriter& w, pd::Model<D>& m, const scene::Scene& s) 
       w.write(f, e, 1);
     }
   }
-  w.end_snapshot();
+  if (comm.root()) fields.end_snapshot();
 }
 
+/// first_particle: the whole run's number of the model's particle 0 (a distributed run's window).
 template <int D>
-void check_finite(const pd::Model<D>& m, long step, const pd::EnergySummary& e) {
+void check_finite(const pd::Model<D>& m, long step, const pd::EnergySummary& e, std::size_t first_particle) {
   if (std::isfinite(e.kinetic) && std::isfinite(e.strain)) return;
-  for (std::size_t i = 0; i < m.size(); ++i)
+  for (std::size_t i = m.owned_begin; i < m.owned_last(); ++i)
     for (int k = 0; k < D; ++k)
       if (!std::isfinite(m.position[i][k]) || !std::isfinite(m.velocity[i][k])) {
         std::string where;
         for (int q = 0; q < D; ++q) where += (q ? ", " : "") + std::to_string(m.reference_position[i][q]);
-        throw PhysicsError("step " + std::to_string(step) + ": particle " + std::to_string(i) + " of body \"" +
+        throw PhysicsError("step " + std::to_string(step) + ": particle " + std::to_string(i + first_particle) + " of body \"" +
                            m.bodies[m.body[i]].name + "\" (reference position " + where +
                            ") has a non-finite position or velocity; the time step is likely above the stable limit or a load is unbounded");
       }
   throw PhysicsError("step " + std::to_string(step) + ": energy is not finite");
 }
 
+/// A distributed run's load balance: each rank's owned particles, ghosts and step-loop time.
+template <int D>
+std::string load_balance(const parallel::Communicator& comm, const pd::Model<D>& m, double loop_seconds, std::size_t ghosts) {
+  const auto all = comm.gather({double(m.owned_last() - m.owned_begin), double(ghosts),
+                                double(m.bonds.offset[m.owned_last()] - m.bonds.offset[m.owned_begin]), loop_seconds});
+  std::string out = fmt::format("load balance over {} ranks (owned particles, ghosts, directed bonds, loop time):", comm.size());
+  for (std::size_t r = 0; 4 * r < all.size(); ++r)
+    out += fmt::format("{} rank {}: {:.0f}, {:.0f}, {:.0f}, {:.3g} s", r ? ";" : "", r, all[4 * r], all[4 * r + 1], all[4 * r + 2], all[4 * r + 3]);
+  return out;
+}
+
 template <int D>
 Result run_dim(const scene::Scene& s, const Options& o) {
   Simulation<D> p(s);  // every scene error is raised here, before anything is written
   const auto probes = probe_particles<D>(s, p.model);
+  // mpirun -np N: each rank keeps its window of the model (pd/window.hpp); rank 0 writes the outputs
+  const auto& comm = parallel::Communicator::world();
+  const std::size_t particles = p.model.size();
+  std::size_t first_particle = 0;  // the whole run's number of the window's first particle
+  if (comm.distributed()) {
+    if (!o.restart.empty())
+      throw SceneError({s.file, 0, 0}, "--restart", "a run on more than one rank cannot restart from a checkpoint yet; restart it on one rank");
+    p.distribute(s, comm);
+    first_particle = p.partition.window_first[static_cast<std::size_t>(comm.rank())];
+  }
   auto& m = p.model;
+  // the damage of probe k: its owner's (the others add nothing)
+  auto probe_damage = [&](std::size_t g) {
+    const bool owned = g >= first_particle + m.owned_begin && g < first_particle + m.owned_last();
+    return comm.sum(owned ? m.damage[g - first_particle] : 0.0);
+  };
   Result res;
   res.output_dir = o.output_dir.empty() ? "results/" + s.name : o.output_dir;
-  io::FieldWriter fields(res.output_dir, "fields", m.size());
+  io::FieldWriter fields(res.output_dir, "fields", particles);
   res.fields_h5 = fields.h5_pattern();
   res.fields_xdmf = fields.xdmf_path();
   const bool relaxation = s.solver.kind == scene::SolverKind::dynamic_relaxation;
@@ -236,7 +274,7 @@ Result run_dim(const scene::Scene& s, const Options& o) {
   }
   const bool restarted = !o.restart.empty();
   if (restarted) require_output_file(o, res.output_dir + "/history.csv", history_bytes);
-  std::filesystem::create_directories(res.output_dir);
+  if (comm.root()) std::filesystem::create_directories(res.output_dir);
   std::vector<std::string> columns{"time", "step"};
   columns.insert(columns.end(), s.output.history.begin(), s.output.history.end());
   for (std::size_t k = 0; k < probes.size(); ++k) columns.push_back("damage_probe_" + std::to_string(k));
@@ -257,17 +295,17 @@ Result run_dim(const scene::Scene& s, const Options& o) {
   const bool at_equilibrium = s.solver.breaking == scene::Solver::Breaking::at_equilibrium;
   if (s.solver.kind == scene::SolverKind::dynamic_relaxation) columns.insert(columns.end(), {"iterations", "residual"});
   if (s.solver.kind == scene::SolverKind::dynamic_relaxation && at_equilibrium) columns.push_back("breaking_passes");
-  io::History history = restarted ? io::History(res.output_dir + "/history.csv", history_bytes)
-                                  : io::History(res.output_dir + "/history.csv", columns);
-  res.history_csv = history.path();
+  std::optional<io::History> history;  // rank 0's
+  if (comm.root() && restarted) history.emplace(res.output_dir + "/history.csv", history_bytes);
+  if (comm.root() && !restarted) history.emplace(res.output_dir + "/history.csv", columns);
+  res.history_csv = res.output_dir + "/history.csv";
   // the strain energy only where the history has a column for it (a pass over every bond)
   const bool strain_column = std::any_of(s.output.history.begin(), s.output.history.end(),
                                          [](const std::string& q) { return q == "strain_energy" || q == "total_energy"; });
   auto history_row = [&](long step, std::vector<double> extra) {
-    auto e = pd::summarize_and_update_damage<D>(m, strain_column);
-    check_finite<D>(m, step, e);
-    double dmax = 0.0;
-    for (double d : m.damage) dmax = std::max(dmax, d);
+    auto e = reduce(comm, pd::summarize_and_update_damage<D>(m, strain_column));
+    check_finite<D>(m, step, e, first_particle);
+    const double dmax = max_damage<D>(comm, m);
     std::vector<double> row{m.time, double(step)};
     for (const auto& q : s.output.history) {
       if (q == "kinetic_energy") row.push_back(e.kinetic);
@@ -276,7 +314,7 @@ Result run_dim(const scene::Scene& s, const Options& o) {
       else if (q == "broken_bonds") row.push_back(double(e.broken_bonds));
       else if (q == "max_damage") row.push_back(dmax);
     }
-    for (auto i : probes) row.push_back(m.damage[i]);
+    for (auto g : probes) row.push_back(probe_damage(g));
     bool vented = false;
     for (auto c : injected) {
       const bool v = c < m.fluid_network.broke_through.size() && m.fluid_network.broke_through[c] != 0;
@@ -287,10 +325,12 @@ Result run_dim(const scene::Scene& s, const Options& o) {
     for (const auto& o : outcomes) row.insert(row.end(), {double(o.crossed), double(o.dilated), o.crossing_distance, o.opened_length});
     if (vent_time < 0.0) outcomes_at_breakthrough = outcomes;
     if (vented && vent_time < 0.0) vent_time = m.time;
-    for (const auto& r : p.loads.reactions(m))
-      for (int k = 0; k < D; ++k) row.push_back(r[k]);
+    std::vector<double> reactions;  // the owned particles' on each rank
+    for (const auto& r : p.loads.reactions(m)) reactions.insert(reactions.end(), r.begin(), r.end());
+    comm.sum(reactions.data(), reactions.size());
+    row.insert(row.end(), reactions.begin(), reactions.end());
     row.insert(row.end(), extra.begin(), extra.end());
-    history.row(row);
+    if (history) history->row(row);
     return e;
   };
 
@@ -328,24 +368,25 @@ Result run_dim(const scene::Scene& s, const Options& o) {
   }
   const auto loop_start = std::chrono::steady_clock::now();
   PhaseTimes::run().reset();
-  Progress progress(p.steps, s.solver.end_time, o.quiet);
+  Progress progress(p.steps, s.solver.end_time, o.quiet || !comm.root());
   Checkpointing checkpoints(s, o, res.output_dir);
   // after step `step`: writes a checkpoint where one is due, and says whether the run stops here
   auto checkpoint_and_stop = [&](long step) {
     PhaseClock output_clock(Phase::output);
     return checkpoints.after_step(step, m.time, res, [&](io::CheckpointWriter& w) {
-      history_bytes = history.bytes();
+      history_bytes = history ? history->bytes() : 0;
       visit_run(w);
       if (dr) pd::visit(w, *dr);
     });
   };
   if (s.solver.kind == scene::SolverKind::explicit_dynamics) {
     if (!restarted) {
-      write_snapshot<D>(fields, m, s);
+      write_snapshot<D>(fields, m, s, comm);
       history_row(0, {});
     }
     for (long step = res.first_step; step <= p.steps; ++step) {
       p.step();
+      p.check_contact_reach(comm);
       res.bond_updates += double(m.bonds.size());
       const bool snap = step * s.output.count >= next_snapshot * p.steps;
       const bool hist = step * s.output.history_count >= next_history * p.steps;
@@ -357,7 +398,7 @@ Result run_dim(const scene::Scene& s, const Options& o) {
           while (next_history * p.steps <= step * s.output.history_count) ++next_history;
         }
         if (snap) {
-          write_snapshot<D>(fields, m, s);
+          write_snapshot<D>(fields, m, s, comm);
           while (next_snapshot * p.steps <= step * s.output.count) ++next_snapshot;
         }
       }
@@ -365,7 +406,7 @@ Result run_dim(const scene::Scene& s, const Options& o) {
     }
   } else {
     if (!dr) dr.emplace(m);
-    if (!restarted) write_snapshot<D>(fields, m, s);
+    if (!restarted) write_snapshot<D>(fields, m, s, comm);
     for (long step = res.first_step; step <= p.steps; ++step) {
       const double t = s.solver.end_time * double(step) / double(p.steps);
       auto r = p.relax(*dr, s.solver, t);
@@ -375,7 +416,7 @@ Result run_dim(const scene::Scene& s, const Options& o) {
       {
         PhaseClock output_clock(Phase::output);
         auto e = history_row(step, extra);
-        write_snapshot<D>(fields, m, s);
+        write_snapshot<D>(fields, m, s, comm);
         progress.update(step, m.time, e.broken_fraction, true);
       }
       if (!r.converged && !o.quiet) {
@@ -391,9 +432,10 @@ Result run_dim(const scene::Scene& s, const Options& o) {
   }
   res.loop_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - loop_start).count();
   res.phases = phase_summary(PhaseTimes::run(), res.loop_seconds);
-  res.final_energy = pd::summarize<D>(m);
+  res.final_energy = reduce(comm, pd::summarize<D>(m));
   pd::update_damage<D>(m);
-  for (double d : m.damage) res.max_damage = std::max(res.max_damage, d);
+  res.max_damage = max_damage<D>(comm, m);
+  if (comm.distributed()) res.notes.push_back(load_balance(comm, m, res.loop_seconds, p.halo->ghosts()));
   res.time = m.time;
   if (res.stopped) return res;  // the final state's reports belong to the run that ends
   res.steps = p.steps;
@@ -408,19 +450,23 @@ Result run_dim(const scene::Scene& s, const Options& o) {
                                     1e3 * o.crossing_distance, 1e3 * o.opened_length, when));
   }
   progress.finish(p.steps, m.time, res.final_energy.broken_fraction);
+  // the final damage and positions of every particle, on rank 0, which draws them
+  const auto damage = gather_owned<D>(comm, m, m.damage, 1);
+  const auto positions = gather_owned<D>(comm, m, vector_field<D>(m, m.position, false), 3);
+  if (!comm.root()) return res;
   if (s.output.damage_histogram) {
     std::string png = res.output_dir + "/damage_histogram.png", reason;
-    const bool drawn = io::write_damage_histogram(res.output_dir, png, io::damage_histogram(m.damage),
+    const bool drawn = io::write_damage_histogram(res.output_dir, png, io::damage_histogram(damage),
                                                   s.name + ": damage at t = " + std::to_string(m.time) + " s", reason);
     res.files.push_back({"histogram", res.output_dir + "/damage_histogram.csv"});
     if (drawn) res.files.push_back({"chart", png});
     else res.notes.push_back("damage histogram chart not written: " + reason);
   }
   if (D == 2 && s.output.damage_image) {
-    std::vector<double> x(m.size()), y(m.size());
-    for (std::size_t i = 0; i < m.size(); ++i) x[i] = m.position[i][0], y[i] = m.position[i][1];
+    std::vector<double> x(particles), y(particles);
+    for (std::size_t i = 0; i < particles; ++i) x[i] = positions[3 * i], y[i] = positions[3 * i + 1];
     std::string png = res.output_dir + "/damage.png", reason;
-    if (io::write_damage_image(res.output_dir, png, x, y, m.damage, s.name + ": damage at t = " + std::to_string(m.time) + " s", reason))
+    if (io::write_damage_image(res.output_dir, png, x, y, damage, s.name + ": damage at t = " + std::to_string(m.time) + " s", reason))
       res.files.push_back({"damage", png});
     else
       res.notes.push_back("damage image not written: " + reason);
@@ -437,6 +483,10 @@ Plan check(const scene::Scene& s, std::ostream& out) {
 
 Result run(const scene::Scene& s, const Options& o) {
   if (o.threads > 0) omp_set_num_threads(o.threads);
+  const auto& comm = parallel::Communicator::world();
+  if (s.method == scene::Method::mpm && comm.distributed())
+    throw SceneError({s.file, 0, 0}, "mpirun -np " + std::to_string(comm.size()),
+                     "the material point method runs on one rank for now; run this scene on one rank");
   if (s.method == scene::Method::mpm) return run_mpm(s, o);
   return s.dimension == 2 ? run_dim<2>(s, o) : run_dim<3>(s, o);
 }

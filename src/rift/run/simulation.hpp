@@ -1,7 +1,18 @@
 // A discretized scene ready to step: model, loads, contact and the time step. Used by the
 // command line runner and by validation cases that sample the state while it runs.
 #pragma once
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <memory>
+#include <string>
+
+#include "rift/core/error.hpp"
 #include "rift/load/boundary.hpp"
+#include "rift/parallel/communicator.hpp"
+#include "rift/parallel/halo.hpp"
 #include "rift/pd/contact.hpp"
 #include "rift/pd/discretize.hpp"
 #include "rift/pd/dynamic_relaxation.hpp"
@@ -9,6 +20,7 @@
 #include "rift/pd/static_equilibrium.hpp"
 #include "rift/pd/forces.hpp"
 #include "rift/pd/velocity_verlet.hpp"
+#include "rift/pd/window.hpp"
 #include "rift/run/time_step.hpp"
 #include "rift/scene/scene.hpp"
 
@@ -35,6 +47,48 @@ struct Simulation {
     }
   }
   pd::Contact<D>* contact_ptr() { return contact.enabled() ? &contact : nullptr; }
+  /// `mpirun -np N`: keeps this rank's window of the model (pd/window.hpp) and of the loads, its
+  /// ghosts refreshed by a halo exchange. Raises a SceneError (before anything is written) for
+  /// what a distributed run cannot take yet.
+  void distribute(const scene::Scene& s, const parallel::Communicator& comm) {
+    std::string missing = pd::not_distributable<D>(model);
+    if (s.solver.kind != scene::SolverKind::explicit_dynamics) missing = "dynamic relaxation";
+    if (s.in_situ.enabled) missing = "[in_situ_stress]";
+    if (contact.enabled() && model.bodies.size() > 1) missing = "contact between bodies ([contact] enabled = false takes it off)";
+    if (s.checkpoint.every_steps > 0 || s.checkpoint.every_seconds > 0.0) missing = "[checkpoint]";
+    if (!missing.empty())
+      throw SceneError({s.file, 0, 0}, "mpirun -np " + std::to_string(comm.size()),
+                       "a run on more than one rank cannot take " + missing + " yet; run this scene on one rank");
+    partition = pd::partition_by_bonds<D>(model, comm.size());
+    const auto r = static_cast<std::size_t>(comm.rank());
+    loads.restrict_to(partition.window_first[r], partition.window_last[r], partition.owned[r], partition.owned[r + 1]);
+    model = pd::window_of<D>(model, partition, comm.rank());
+    halo = std::make_unique<parallel::Halo>(comm.rank(), partition.owned, partition.window_first, partition.window_last);
+    model.ghosts = halo.get();
+    // contact inside the body: an owned particle's pairs are in the window while no particle has
+    // moved far enough to meet one from beyond the ghosts (check_contact_reach)
+    contact = pd::Contact<D>(s.contact, model);
+    contact_reach = std::numeric_limits<double>::max();
+    for (const auto& b : model.bodies) contact_reach = std::min(contact_reach, b.constants.horizon - (s.contact.distance + 0.5) * b.constants.spacing);
+  }
+  /// A distributed run's contact: raises a PhysicsError once an owned particle has moved half the
+  /// distance beyond which it could meet a particle outside the window (pd/window.hpp).
+  void check_contact_reach(const parallel::Communicator& comm) const {
+    if (!contact.enabled() || !comm.distributed()) return;
+    double moved2 = 0.0;
+    for (std::size_t i = model.owned_begin; i < model.owned_last(); ++i) {
+      const Vec<D> u = model.displacement(i);
+      moved2 = std::max(moved2, dot<D>(u, u));
+    }
+    moved2 = comm.max(moved2);
+    if (!(4.0 * moved2 < contact_reach * contact_reach))
+      throw PhysicsError(fmt::format("t = {:g} s: a particle moved {:.3g} m, past half the {:.3g} m within which a run on more than one rank "
+                                     "finds every contact pair; run this scene on one rank",
+                                     model.time, std::sqrt(moved2), contact_reach));
+  }
+  double contact_reach = 0.0;  // a distributed run's (check_contact_reach)
+  pd::Partition partition;  // a distributed run's (empty on one rank)
+  std::unique_ptr<parallel::Halo> halo;
   /// The in-situ stage ([in_situ_stress]): static equilibrium under the far-field stresses and
   /// every other load at t = 0, with no bond allowed to break; the run starts from it at rest.
   pd::RelaxationResult equilibrate_in_situ(const scene::InSituStress& in_situ) {

@@ -1,0 +1,53 @@
+// The ranks of a distributed run (MPI, as LAMMPS, Peridigm and Uintah use). MPI is started only when
+// the process was launched by an MPI launcher (mpirun, srun); a plain `rift run` is a world of one
+// rank that makes no MPI call. The header keeps <mpi.h> out of the rest of the code.
+#pragma once
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+namespace rift::parallel {
+
+/// Starts MPI for the life of main() where a launcher started this process (MPI_THREAD_FUNNELED:
+/// OpenMP teams inside a rank, MPI calls from its main thread only), and finalizes it.
+class MpiSession {
+ public:
+  MpiSession(int& argc, char**& argv);
+  ~MpiSession();
+  MpiSession(const MpiSession&) = delete;
+  MpiSession& operator=(const MpiSession&) = delete;
+  /// Ends every rank of the run at once with this exit status (an error on one rank while the
+  /// others wait in a collective).
+  [[noreturn]] static void abort(int status);
+};
+
+/// MPI_COMM_WORLD, or a world of one rank when MPI was not started.
+class Communicator {
+ public:
+  static const Communicator& world();
+  int rank() const { return rank_; }
+  int size() const { return size_; }
+  bool root() const { return rank_ == 0; }
+  bool distributed() const { return size_ > 1; }
+
+  /// In place, over every rank: the sums, the maxima.
+  void sum(double* values, std::size_t count) const;
+  void max(double* values, std::size_t count) const;
+  double sum(double value) const { sum(&value, 1); return value; }
+  double max(double value) const { max(&value, 1); return value; }
+  double min(double value) const { value = -value; max(&value, 1); return -value; }
+  bool any(bool value) const { return max(value ? 1.0 : 0.0) > 0.0; }
+  /// Every rank's `local` one after the other, in rank order, on rank 0 (empty elsewhere).
+  std::vector<double> gather(const std::vector<double>& local) const;
+  /// Rank 0's values on every rank.
+  void broadcast(double* values, std::size_t count) const;
+  void barrier() const;
+
+ private:
+  Communicator(int rank, int size) : rank_(rank), size_(size) {}
+  static Communicator& mutable_world();
+  int rank_ = 0, size_ = 1;
+  friend class MpiSession;
+};
+
+}  // namespace rift::parallel

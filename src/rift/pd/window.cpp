@@ -1,0 +1,135 @@
+#include "rift/pd/window.hpp"
+
+#include <algorithm>
+#include <cstdint>
+#include <map>
+#include <utility>
+
+#include "rift/pd/bond_runs.hpp"
+#include "rift/pd/bond_slabs.hpp"
+
+namespace rift::pd {
+
+template <int D>
+Partition partition_by_bonds(const Model<D>& m, int ranks) {
+  Partition p;
+  const std::size_t n = m.size();
+  const auto& offset = m.bonds.offset;
+  const auto total = static_cast<double>(offset[n]) + static_cast<double>(n);  // a particle's fields weigh as one bond
+  p.owned.assign(static_cast<std::size_t>(ranks) + 1, n);
+  p.owned[0] = 0;
+  std::size_t i = 0;
+  for (int r = 1; r < ranks; ++r) {
+    const double share = total * r / ranks;
+    while (i < n && static_cast<double>(offset[i]) + static_cast<double>(i) < share) ++i;
+    p.owned[static_cast<std::size_t>(r)] = i;
+  }
+  for (std::size_t a = 0; a < n; ++a)
+    for (auto k = offset[a]; k < offset[a + 1]; ++k) {
+      const auto j = static_cast<std::size_t>(m.bonds.neighbor[static_cast<std::size_t>(k)]);
+      p.reach = std::max(p.reach, j > a ? j - a : a - j);
+    }
+  for (int r = 0; r < ranks; ++r) {
+    const auto first = p.owned[static_cast<std::size_t>(r)], last = p.owned[static_cast<std::size_t>(r) + 1];
+    p.window_first.push_back(first == last ? first : first - std::min(first, p.reach));
+    p.window_last.push_back(first == last ? last : std::min(n, last + p.reach));
+  }
+  return p;
+}
+
+template <int D>
+std::string not_distributable(const Model<D>& m) {
+  if (!m.crack_bonds.neighbor.empty()) return "pressurized cracks and boreholes";
+  if (!m.interface_bonds.empty()) return "interfaces (pre-existing fractures)";
+  if (!m.platens.empty()) return "platens";
+  for (const auto& b : m.bodies) {
+    if (b.constants.model == scene::ModelKind::ves) return "the viscoelastic model (ves)";
+    if (b.constants.normal_stress_failure) return "bond_failure = \"normal_stress\"";
+  }
+  return {};
+}
+
+namespace {
+
+template <class T>
+std::vector<T> slice(const std::vector<T>& v, std::size_t first, std::size_t last, std::size_t width = 1) {
+  if (v.empty()) return {};
+  return std::vector<T>(v.begin() + static_cast<std::ptrdiff_t>(first * width), v.begin() + static_cast<std::ptrdiff_t>(last * width));
+}
+
+}  // namespace
+
+template <int D>
+Model<D> window_of(const Model<D>& m, const Partition& p, int rank) {
+  const auto r = static_cast<std::size_t>(rank);
+  const std::size_t w0 = p.window_first[r], w1 = p.window_last[r], n = w1 - w0;
+  Model<D> w;
+  w.reference_position = slice(m.reference_position, w0, w1);
+  w.position = slice(m.position, w0, w1);
+  w.velocity = slice(m.velocity, w0, w1);
+  w.force = slice(m.force, w0, w1);
+  w.body_force = slice(m.body_force, w0, w1);
+  w.volume = slice(m.volume, w0, w1);
+  w.weighted_volume = slice(m.weighted_volume, w0, w1);
+  w.dilatation = slice(m.dilatation, w0, w1);
+  w.dilatation_coupling = slice(m.dilatation_coupling, w0, w1);
+  w.stretch_limit = slice(m.stretch_limit, w0, w1);
+  w.next_stretch_limit = slice(m.next_stretch_limit, w0, w1);
+  w.damage = slice(m.damage, w0, w1);
+  w.body = slice(m.body, w0, w1);
+  w.constrained = slice(m.constrained, w0, w1);
+  w.dimension = m.dimension;
+  w.thickness = m.thickness;
+  w.time = m.time;
+  w.owned_begin = p.owned[r] - w0;
+  w.owned_end = p.owned[r + 1] - w0;
+  w.crack_bonds.offset.assign(n + 1, 0);
+
+  // rows of the window, each cut to the neighbours inside it (only ghosts' rows lose bonds); a
+  // row of factors (bonds.hpp) comes along once however many particles share it
+  const Bonds& b = m.bonds;
+  Bonds& c = w.bonds;
+  c.families = b.families;
+  c.offset.assign(n + 1, 0);
+  c.factor_row.resize(n);
+  std::map<std::pair<std::int64_t, std::uint32_t>, std::int64_t> factor_rows;  // (row, body) to its place here
+  for (std::size_t a = 0; a < n; ++a) {
+    const std::size_t i = w0 + a;
+    const BodyInfo& body = m.bodies[m.body[i]];
+    for (auto k = b.offset[i]; k < b.offset[i + 1]; ++k) {
+      const auto j = static_cast<std::size_t>(b.neighbor[static_cast<std::size_t>(k)]);
+      if (j < w0 || j >= w1) continue;
+      c.neighbor.push_back(static_cast<std::int32_t>(j - w0));
+      c.family.push_back(b.family[static_cast<std::size_t>(k)]);
+      c.intact.push_back(b.intact[static_cast<std::size_t>(k)]);
+    }
+    c.offset[a + 1] = c.size();
+    const auto first_family = static_cast<std::int64_t>(body.first_family), count = static_cast<std::int64_t>(body.family_count);
+    auto [row, added] = factor_rows.try_emplace({b.factor_row[i], m.body[i]}, static_cast<std::int64_t>(c.factors.size()) - first_family);
+    if (added) {
+      const auto from = b.factors.begin() + (b.factor_row[i] + first_family);
+      c.factors.insert(c.factors.end(), from, from + count);
+    }
+    c.factor_row[a] = row->second;
+  }
+  // the bodies: the part of each inside the window, numbered from the whole body's first particle
+  for (const BodyInfo& body : m.bodies) {
+    BodyInfo part = body;
+    part.first = std::clamp(body.first, w0, w1) - w0;
+    part.last = std::clamp(body.last, w0, w1) - w0;
+    part.origin = static_cast<std::int64_t>(body.first) - static_cast<std::int64_t>(w0);
+    make_bond_runs(c, part);
+    w.bodies.push_back(std::move(part));
+  }
+  return w;
+}
+
+#define RIFT_INSTANTIATE(D)                                                      \
+  template Partition partition_by_bonds<D>(const Model<D>&, int);                \
+  template std::string not_distributable<D>(const Model<D>&);                    \
+  template Model<D> window_of<D>(const Model<D>&, const Partition&, int);
+RIFT_INSTANTIATE(2)
+RIFT_INSTANTIATE(3)
+#undef RIFT_INSTANTIATE
+
+}  // namespace rift::pd
