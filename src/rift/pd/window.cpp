@@ -43,7 +43,6 @@ std::string not_distributable(const Model<D>& m) {
   if (!m.interface_bonds.empty()) return "interfaces (pre-existing fractures)";
   if (!m.platens.empty()) return "platens";
   for (const auto& b : m.bodies) {
-    if (b.constants.model == scene::ModelKind::ves) return "the viscoelastic model (ves)";
     if (b.constants.normal_stress_failure) return "bond_failure = \"normal_stress\"";
   }
   return {};
@@ -55,6 +54,37 @@ template <class T>
 std::vector<T> slice(const std::vector<T>& v, std::size_t first, std::size_t last, std::size_t width = 1) {
   if (v.empty()) return {};
   return std::vector<T>(v.begin() + static_cast<std::ptrdiff_t>(first * width), v.begin() + static_cast<std::ptrdiff_t>(last * width));
+}
+
+/// The VES history of the window's bodies (bonds.hpp, bond_slabs.hpp history_index): the whole
+/// blocks of Bonds::history_block particles that hold its particles, laid out as in the whole run
+/// from the window's first block on (each part's history_base counts from its body's first block,
+/// so it may be negative), and the per-particle sums.
+void window_viscous_history(const Bonds& b, const std::vector<BodyInfo>& bodies, std::vector<BodyInfo>& parts, std::size_t w0,
+                            std::size_t w1, Bonds& c) {
+  constexpr std::size_t block = Bonds::history_block;
+  std::size_t slots = 0;
+  for (std::size_t q = 0; q < parts.size(); ++q) {
+    BodyInfo& part = parts[q];
+    const BodyInfo& body = bodies[q];
+    if (body.constants.model != scene::ModelKind::ves || part.last <= part.first) continue;
+    const std::size_t per_block = body.family_count / 2 * 2 * block;
+    const auto index = [&](std::size_t i) { return static_cast<std::size_t>(static_cast<std::int64_t>(i) - part.origin); };
+    const std::size_t first_block = index(part.first) / block, blocks = index(part.last - 1) / block + 1 - first_block;
+    part.history_base = static_cast<std::int64_t>(slots) - static_cast<std::int64_t>(first_block * per_block);
+    const auto from = static_cast<std::size_t>(body.history_base) + first_block * per_block, count = blocks * per_block;
+    c.back_extension.insert(c.back_extension.end(), b.back_extension.begin() + static_cast<std::ptrdiff_t>(from),
+                            b.back_extension.begin() + static_cast<std::ptrdiff_t>(from + count));
+    // one pair slot per two history slots (bond_slabs.hpp pair_slot): the blocks' halves
+    c.last_extension.insert(c.last_extension.end(), b.last_extension.begin() + static_cast<std::ptrdiff_t>(from / 2),
+                            b.last_extension.begin() + static_cast<std::ptrdiff_t>((from + count) / 2));
+    slots += count;
+  }
+  c.history_dilatation = slice(b.history_dilatation, w0, w1);
+  c.deviatoric_sum = slice(b.deviatoric_sum, w0, w1);
+  c.back_sum = slice(b.back_sum, w0, w1);
+  c.intact_weighted_volume = slice(b.intact_weighted_volume, w0, w1);
+  c.summed_bonds = slice(b.summed_bonds, w0, w1);
 }
 
 }  // namespace
@@ -121,6 +151,7 @@ Model<D> window_of(const Model<D>& m, const Partition& p, int rank) {
     make_bond_runs(c, part);
     w.bodies.push_back(std::move(part));
   }
+  if (!b.back_extension.empty()) window_viscous_history(b, m.bodies, w.bodies, w0, w1, c);
   return w;
 }
 
