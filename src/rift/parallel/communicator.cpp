@@ -3,6 +3,8 @@
 #include <mpi.h>
 
 #include <cstdlib>
+#include <limits>
+#include <stdexcept>
 
 namespace rift::parallel {
 
@@ -55,20 +57,23 @@ void Communicator::max(double* values, std::size_t count) const {
   if (started && size_ > 1) MPI_Allreduce(MPI_IN_PLACE, values, static_cast<int>(count), MPI_DOUBLE, MPI_MAX, MPI_COMM_WORLD);
 }
 
-std::vector<double> Communicator::gather(const std::vector<double>& local) const {
-  if (!started || size_ == 1) return local;
-  const int count = static_cast<int>(local.size());
-  std::vector<int> counts(root() ? static_cast<std::size_t>(size_) : 0), displacements;
-  MPI_Gather(&count, 1, MPI_INT, counts.data(), 1, MPI_INT, 0, MPI_COMM_WORLD);
-  std::vector<double> all;
+void Communicator::gather_bytes_into(const void* local, std::size_t bytes, void* (*place)(void*, std::size_t), void* context) const {
+  // MPI counts are int: a rank's share up to 2 GiB per call
+  const long long mine = static_cast<long long>(bytes);
+  std::vector<long long> counts(root() ? static_cast<std::size_t>(size_) : 0);
+  MPI_Gather(&mine, 1, MPI_LONG_LONG, counts.data(), 1, MPI_LONG_LONG, 0, MPI_COMM_WORLD);
+  std::vector<int> sizes, displacements;
+  void* all = nullptr;
   if (root()) {
-    displacements.assign(counts.size(), 0);
-    long total = 0;
-    for (std::size_t r = 0; r < counts.size(); ++r) displacements[r] = static_cast<int>(total), total += counts[r];
-    all.resize(static_cast<std::size_t>(total));
+    long long total = 0;
+    for (auto c : counts) {
+      if (c > std::numeric_limits<int>::max() || total > std::numeric_limits<int>::max() - c)
+        throw std::runtime_error("a gather to rank 0 of more than 2 GiB (use more ranks)");
+      sizes.push_back(static_cast<int>(c)), displacements.push_back(static_cast<int>(total)), total += c;
+    }
+    all = place(context, static_cast<std::size_t>(total));
   }
-  MPI_Gatherv(local.data(), count, MPI_DOUBLE, all.data(), counts.data(), displacements.data(), MPI_DOUBLE, 0, MPI_COMM_WORLD);
-  return all;
+  MPI_Gatherv(local, static_cast<int>(mine), MPI_BYTE, all, sizes.data(), displacements.data(), MPI_BYTE, 0, MPI_COMM_WORLD);
 }
 
 void Communicator::broadcast(double* values, std::size_t count) const {

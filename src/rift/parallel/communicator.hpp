@@ -4,6 +4,7 @@
 #pragma once
 #include <cstddef>
 #include <cstdint>
+#include <type_traits>
 #include <vector>
 
 namespace rift::parallel {
@@ -38,12 +39,28 @@ class Communicator {
   double min(double value) const { value = -value; max(&value, 1); return -value; }
   bool any(bool value) const { return max(value ? 1.0 : 0.0) > 0.0; }
   /// Every rank's `local` one after the other, in rank order, on rank 0 (empty elsewhere).
-  std::vector<double> gather(const std::vector<double>& local) const;
+  template <class T>
+  std::vector<T> gather(const std::vector<T>& local) const {
+    if (!distributed()) return local;
+    std::vector<T> all;
+    gather_bytes(local.data(), local.size() * sizeof(T), [&](std::size_t bytes) {
+      all.resize(bytes / sizeof(T));
+      return static_cast<void*>(all.data());
+    });
+    return all;
+  }
   /// Rank 0's values on every rank.
   void broadcast(double* values, std::size_t count) const;
   void barrier() const;
 
  private:
+  /// gather's bytes: `place(total)` gives rank 0 where they go.
+  template <class Place>
+  void gather_bytes(const void* local, std::size_t bytes, Place&& place) const {
+    using P = std::remove_reference_t<Place>;
+    gather_bytes_into(local, bytes, [](void* p, std::size_t total) { return (*static_cast<P*>(p))(total); }, &place);
+  }
+  void gather_bytes_into(const void* local, std::size_t bytes, void* (*place)(void*, std::size_t), void* context) const;
   Communicator(int rank, int size) : rank_(rank), size_(size) {}
   static Communicator& mutable_world();
   int rank_ = 0, size_ = 1;

@@ -84,18 +84,27 @@ class Checkpointing {
   /// visit(writer) writes the records; the checkpoint holds the model at `time` after `step`.
   template <class Visit>
   bool after_step(long step, double time, Result& res, Visit visit) {
-    // every rank of a distributed run stops after the same step (a signal reaches each at its own time)
+    return after_step(step, time, res, [] {}, visit);
+  }
+  /// A distributed run: every rank calls gather() before rank 0 writes the records with visit.
+  template <class Gather, class Visit>
+  bool after_step(long step, double time, Result& res, Gather gather, Visit visit) {
+    // every rank of a distributed run stops after the same step (a signal reaches each at its own
+    // time) and writes the same checkpoints (their clocks differ)
     const auto& comm = parallel::Communicator::world();
     const bool stop = comm.any(stop_signal() != 0 || (stop_after_step_ > 0 && step >= stop_after_step_));
     const auto& c = scene_.checkpoint;
-    const bool due = (c.every_steps > 0 && step % c.every_steps == 0) ||
-                     (c.every_seconds > 0.0 &&
-                      std::chrono::duration<double>(std::chrono::steady_clock::now() - last_).count() >= c.every_seconds);
-    if ((stop || due) && !comm.distributed()) {  // a distributed run writes none yet (Simulation::distribute)
+    const bool due = comm.any((c.every_steps > 0 && step % c.every_steps == 0) ||
+                              (c.every_seconds > 0.0 &&
+                               std::chrono::duration<double>(std::chrono::steady_clock::now() - last_).count() >= c.every_seconds));
+    if (stop || due) {
       const std::string file = checkpoint_path(scene_, output_dir_, step);
-      io::CheckpointWriter w(file, {scene_.fingerprint, step, time});
-      visit(w);
-      w.commit();
+      gather();
+      if (comm.root()) {
+        io::CheckpointWriter w(file, {scene_.fingerprint, step, time});
+        visit(w);
+        w.commit();
+      }
       res.checkpoint = file;
       last_ = std::chrono::steady_clock::now();
     }

@@ -210,7 +210,7 @@ void check_finite(const pd::Model<D>& m, long step, const pd::EnergySummary& e, 
 /// A distributed run's load balance: each rank's owned particles, ghosts and step-loop time.
 template <int D>
 std::string load_balance(const parallel::Communicator& comm, const pd::Model<D>& m, double loop_seconds, std::size_t ghosts) {
-  const auto all = comm.gather({double(m.owned_last() - m.owned_begin), double(ghosts),
+  const auto all = comm.gather(std::vector<double>{double(m.owned_last() - m.owned_begin), double(ghosts),
                                 double(m.bonds.offset[m.owned_last()] - m.bonds.offset[m.owned_begin]), loop_seconds});
   std::string out = fmt::format("load balance over {} ranks (owned particles, ghosts, directed bonds, loop time):", comm.size());
   for (std::size_t r = 0; 4 * r < all.size(); ++r)
@@ -225,13 +225,7 @@ Result run_dim(const scene::Scene& s, const Options& o) {
   // mpirun -np N: each rank keeps its window of the model (pd/window.hpp); rank 0 writes the outputs
   const auto& comm = parallel::Communicator::world();
   const std::size_t particles = p.model.size();
-  std::size_t first_particle = 0;  // the whole run's number of the window's first particle
-  if (comm.distributed()) {
-    if (!o.restart.empty())
-      throw SceneError({s.file, 0, 0}, "--restart", "a run on more than one rank cannot restart from a checkpoint yet; restart it on one rank");
-    p.distribute(s, comm);
-    first_particle = p.partition.window_first[static_cast<std::size_t>(comm.rank())];
-  }
+  std::size_t first_particle = 0;  // the whole run's number of the window's first particle (set below)
   auto& m = p.model;
   // the damage of probe k: its owner's (the others add nothing)
   auto probe_damage = [&](std::size_t g) {
@@ -254,18 +248,19 @@ Result run_dim(const scene::Scene& s, const Options& o) {
   double vent_time = -1.0;
   long next_snapshot = 1, next_history = 1;
   std::int64_t history_bytes = 0;
-  auto visit_run = [&](auto& a) {
+  // a distributed run's checkpoint holds the whole run's model, gathered on rank 0 (`whole`)
+  auto visit_run = [&](auto& a, Simulation<D>& state) {
     a("run.next_snapshot", next_snapshot), a("run.next_history", next_history), a("run.outcomes", outcomes);
     a("run.outcomes_at_breakthrough", outcomes_at_breakthrough), a("run.vent_time", vent_time), a("run.notes", res.notes);
     a("run.history_bytes", history_bytes);
     fields.visit_state(a);
-    pd::visit(a, m);
-    pd::visit(a, p.contact);
+    pd::visit(a, state.model);
+    pd::visit(a, state.contact);
   };
   if (!o.restart.empty()) {
     // the whole checkpoint is read before any output is touched
     res.first_step = 1 + read_checkpoint(s, o, p.steps, [&](io::CheckpointReader& checkpoint) {
-                       visit_run(checkpoint);
+                       visit_run(checkpoint, p);
                        if (relaxation) {
                          dr.emplace(m);
                          pd::visit(checkpoint, *dr);
@@ -274,6 +269,13 @@ Result run_dim(const scene::Scene& s, const Options& o) {
   }
   const bool restarted = !o.restart.empty();
   if (restarted) require_output_file(o, res.output_dir + "/history.csv", history_bytes);
+  // mpirun -np N: from here on each rank holds its window of the model (a restart read the whole
+  // run's checkpoint first, so it continues on any number of ranks)
+  std::optional<Simulation<D>> whole;  // rank 0's, for the checkpoints of a distributed run
+  if (comm.distributed()) {
+    p.distribute(s, comm);
+    first_particle = p.partition.window_first[static_cast<std::size_t>(comm.rank())];
+  }
   if (comm.root()) std::filesystem::create_directories(res.output_dir);
   std::vector<std::string> columns{"time", "step"};
   columns.insert(columns.end(), s.output.history.begin(), s.output.history.end());
@@ -373,9 +375,16 @@ Result run_dim(const scene::Scene& s, const Options& o) {
   // after step `step`: writes a checkpoint where one is due, and says whether the run stops here
   auto checkpoint_and_stop = [&](long step) {
     PhaseClock output_clock(Phase::output);
-    return checkpoints.after_step(step, m.time, res, [&](io::CheckpointWriter& w) {
+    auto gather = [&] {
+      if (!comm.distributed()) return;
+      if (comm.root() && !whole) whole.emplace(s);
+      gather_model<D>(comm, m, comm.root() ? &whole->model : nullptr);
+      // its contact pairs as one rank would find them (the forces do not depend on when they were found)
+      if (comm.root()) whole->contact = pd::Contact<D>(s.contact, whole->model);
+    };
+    return checkpoints.after_step(step, m.time, res, gather, [&](io::CheckpointWriter& w) {
       history_bytes = history ? history->bytes() : 0;
-      visit_run(w);
+      visit_run(w, whole ? *whole : p);
       if (dr) pd::visit(w, *dr);
     });
   };

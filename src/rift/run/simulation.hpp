@@ -55,7 +55,6 @@ struct Simulation {
     if (s.solver.kind != scene::SolverKind::explicit_dynamics) missing = "dynamic relaxation";
     if (s.in_situ.enabled) missing = "[in_situ_stress]";
     if (contact.enabled() && model.bodies.size() > 1) missing = "contact between bodies ([contact] enabled = false takes it off)";
-    if (s.checkpoint.every_steps > 0 || s.checkpoint.every_seconds > 0.0) missing = "[checkpoint]";
     if (!missing.empty())
       throw SceneError({s.file, 0, 0}, "mpirun -np " + std::to_string(comm.size()),
                        "a run on more than one rank cannot take " + missing + " yet; run this scene on one rank");
