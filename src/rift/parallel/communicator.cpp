@@ -76,6 +76,21 @@ void Communicator::gather_bytes_into(const void* local, std::size_t bytes, void*
   MPI_Gatherv(local, static_cast<int>(mine), MPI_BYTE, all, sizes.data(), displacements.data(), MPI_BYTE, 0, MPI_COMM_WORLD);
 }
 
+void Communicator::all_gather_bytes_into(const void* local, std::size_t bytes, void* (*place)(void*, std::size_t), void* context) const {
+  const long long mine = static_cast<long long>(bytes);
+  std::vector<long long> counts(static_cast<std::size_t>(size_));
+  MPI_Allgather(&mine, 1, MPI_LONG_LONG, counts.data(), 1, MPI_LONG_LONG, MPI_COMM_WORLD);
+  std::vector<int> sizes, displacements;
+  long long total = 0;
+  for (auto c : counts) {
+    if (c > std::numeric_limits<int>::max() || total > std::numeric_limits<int>::max() - c)
+      throw std::runtime_error("an all-gather of more than 2 GiB");
+    sizes.push_back(static_cast<int>(c)), displacements.push_back(static_cast<int>(total)), total += c;
+  }
+  void* all = place(context, static_cast<std::size_t>(total));
+  MPI_Allgatherv(local, static_cast<int>(mine), MPI_BYTE, all, sizes.data(), displacements.data(), MPI_BYTE, MPI_COMM_WORLD);
+}
+
 void Communicator::broadcast(double* values, std::size_t count) const {
   if (started && size_ > 1) MPI_Bcast(values, static_cast<int>(count), MPI_DOUBLE, 0, MPI_COMM_WORLD);
 }

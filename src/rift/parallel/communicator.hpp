@@ -49,6 +49,17 @@ class Communicator {
     });
     return all;
   }
+  /// Every rank's `local` one after the other, in rank order, on every rank.
+  template <class T>
+  std::vector<T> all_gather(const std::vector<T>& local) const {
+    if (!distributed()) return local;
+    std::vector<T> all;
+    all_gather_bytes(local.data(), local.size() * sizeof(T), [&](std::size_t bytes) {
+      all.resize(bytes / sizeof(T));
+      return static_cast<void*>(all.data());
+    });
+    return all;
+  }
   /// Rank 0's values on every rank.
   void broadcast(double* values, std::size_t count) const;
   void barrier() const;
@@ -61,6 +72,12 @@ class Communicator {
     gather_bytes_into(local, bytes, [](void* p, std::size_t total) { return (*static_cast<P*>(p))(total); }, &place);
   }
   void gather_bytes_into(const void* local, std::size_t bytes, void* (*place)(void*, std::size_t), void* context) const;
+  template <class Place>
+  void all_gather_bytes(const void* local, std::size_t bytes, Place&& place) const {
+    using P = std::remove_reference_t<Place>;
+    all_gather_bytes_into(local, bytes, [](void* p, std::size_t total) { return (*static_cast<P*>(p))(total); }, &place);
+  }
+  void all_gather_bytes_into(const void* local, std::size_t bytes, void* (*place)(void*, std::size_t), void* context) const;
   Communicator(int rank, int size) : rank_(rank), size_(size) {}
   static Communicator& mutable_world();
   int rank_ = 0, size_ = 1;

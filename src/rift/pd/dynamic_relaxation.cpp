@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <limits>
 
+#include "rift/parallel/communicator.hpp"
 #include "rift/parallel/ordered_sum.hpp"
 #include "rift/pd/effective_stretch.hpp"
 #include "rift/pd/forces.hpp"
@@ -121,8 +122,11 @@ RelaxationResult DynamicRelaxation<D>::relax(Model<D>& m, const load::Boundaries
     return sum;
   };
   double load_norm = squared_load();
-  // held by tractions alone, no component of any particle prescribed: no rigid motion (rigid_acceleration)
-  const bool free_body = std::none_of(m.constrained.begin(), m.constrained.end(), [](std::uint8_t c) { return c != 0; });
+  // held by tractions alone, no component of any particle prescribed: no rigid motion
+  // (rigid_acceleration; a distributed run, pd/window.hpp, has a constrained one somewhere)
+  const auto& comm = parallel::Communicator::world();
+  const bool distributed = m.ghosts != nullptr;
+  const bool free_body = !distributed && std::none_of(m.constrained.begin(), m.constrained.end(), [](std::uint8_t c) { return c != 0; });
   const std::vector<std::uint8_t> on_platen = platen_components(m);
   // the displacement of Rayleigh's quotient: from the reference, or from where this call started
   std::vector<Vec<D>> start;
@@ -130,6 +134,9 @@ RelaxationResult DynamicRelaxation<D>::relax(Model<D>& m, const load::Boundaries
   const std::vector<Vec<D>>& origin = damping_from_start_ ? start : m.reference_position;
   for (int it = 0; it < max_iterations; ++it) {
     advance_stretch_limits<D>(m);
+    // a distributed run's ghosts are where their owners moved them, with their s0
+    m.refresh_ghosts(m.position);
+    m.refresh_ghosts(m.stretch_limit);
     compute_forces<D>(m, contact);
     if (loads.state_dependent() && it > 0) {  // an injected fluid's pressure follows the cavity volume
       loads.apply_body_forces(m, t);
@@ -139,7 +146,11 @@ RelaxationResult DynamicRelaxation<D>::relax(Model<D>& m, const load::Boundaries
     // U^T K U with the local diagonal stiffness K_ii = -(F^n - F^{n-1}) / (lambda V^{n-1/2}) (eq. 12), U^T U,
     // squared residual of the free components and squared reactions of the constrained ones
     // (a platen's particle carries the plate's reaction; the plate's own residual is its net force)
-    auto sums = parallel::ordered_sums<4>(n, [&](std::size_t i, std::array<double, 4>& acc) {
+    // over the owned particles; a distributed run's ranks add each other's block sums in the
+    // one-rank order (ordered_sum.hpp), so the damping and the residual are its bits
+    const std::size_t owned = m.owned_last() - m.owned_begin;
+    auto sum_over = [&](auto&& f) { return distributed ? parallel::ordered_sums<4>(comm, m.owned_begin, owned, f) : parallel::ordered_sums<4>(n, f); };
+    auto sums = sum_over([&](std::size_t i, std::array<double, 4>& acc) {
       const Vec<D> rigid_i = free_body ? rigid.at(m.position[i]) : Vec<D>{};
       for (int k = 0; k < D; ++k) {
         const double total = m.force[i][k] + m.body_force[i][k] - fictitious_density_[i] * rigid_i[k];
@@ -185,6 +196,7 @@ RelaxationResult DynamicRelaxation<D>::relax(Model<D>& m, const load::Boundaries
     }
     move_with_platens(m, [&](std::size_t i) { return fictitious_density_[i] * m.volume[i]; });
   }
+  m.refresh_ghosts(m.position);  // the last iteration's moves
   compute_forces<D>(m, contact);
   for (auto& v : m.velocity) v = Vec<D>{};
   equilibrate_pore_pressure<D>(m);  // the wet rock feels the fluid of this equilibrium (effective_stretch.hpp)
@@ -220,7 +232,8 @@ RelaxationResult DynamicRelaxation<D>::relax_breaking_at_equilibrium(Model<D>& m
     if (broken_through_sources<D>(m) > broken_through) break;  // the test is over: no more growth
     const std::size_t before = failed_bonds<D>(m);
     compute_forces<D>(m, contact);  // breaks what is past its limit at this equilibrium
-    if (failed_bonds<D>(m) == before) break;
+    // (a bond a rank breaks its owner breaks too: every rank of a distributed run goes on alike)
+    if (!parallel::Communicator::world().any(failed_bonds<D>(m) != before)) break;
     total.converged = false;  // bonds broke after the last equilibrium (if the passes run out here)
   }
   return total;

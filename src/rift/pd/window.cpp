@@ -11,7 +11,7 @@
 namespace rift::pd {
 
 template <int D>
-Partition partition_by_bonds(const Model<D>& m, int ranks) {
+Partition partition_by_bonds(const Model<D>& m, int ranks, std::size_t granularity) {
   Partition p;
   const std::size_t n = m.size();
   const auto& offset = m.bonds.offset;
@@ -22,7 +22,8 @@ Partition partition_by_bonds(const Model<D>& m, int ranks) {
   for (int r = 1; r < ranks; ++r) {
     const double share = total * r / ranks;
     while (i < n && static_cast<double>(offset[i]) + static_cast<double>(i) < share) ++i;
-    p.owned[static_cast<std::size_t>(r)] = i;
+    const std::size_t cut = std::min(n, (i + granularity / 2) / granularity * granularity);
+    p.owned[static_cast<std::size_t>(r)] = std::max(cut, p.owned[static_cast<std::size_t>(r) - 1]);
   }
   for (std::size_t a = 0; a < n; ++a)
     for (auto k = offset[a]; k < offset[a + 1]; ++k) {
@@ -156,7 +157,7 @@ Model<D> window_of(const Model<D>& m, const Partition& p, int rank) {
 }
 
 #define RIFT_INSTANTIATE(D)                                                      \
-  template Partition partition_by_bonds<D>(const Model<D>&, int);                \
+  template Partition partition_by_bonds<D>(const Model<D>&, int, std::size_t);   \
   template std::string not_distributable<D>(const Model<D>&);                    \
   template Model<D> window_of<D>(const Model<D>&, const Partition&, int);
 RIFT_INSTANTIATE(2)

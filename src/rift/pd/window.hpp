@@ -20,10 +20,12 @@ struct Partition {
   std::size_t reach = 0;  // the farthest bond in the numbering, max |i - j|
 };
 
-/// Cuts the model's particles into `ranks` consecutive ranges of about equal bond counts (a rank
-/// may own none where there are more ranks than particles).
+/// Cuts the model's particles into `ranks` consecutive ranges of about equal bond counts, at
+/// multiples of `granularity` (a rank may own none where there are more ranks than particles).
+/// Dynamic relaxation cuts at whole blocks of its sums (parallel::ordered_sum_block), whose damping
+/// and residual are then the one-rank run's bits.
 template <int D>
-Partition partition_by_bonds(const Model<D>& m, int ranks);
+Partition partition_by_bonds(const Model<D>& m, int ranks, std::size_t granularity = 1);
 
 /// What the distributed run cannot take yet, as a sentence; empty when the model can be
 /// distributed (pressurized cracks, boreholes and fluids, interfaces, platens and normal-stress

@@ -272,9 +272,11 @@ Result run_dim(const scene::Scene& s, const Options& o) {
   // mpirun -np N: from here on each rank holds its window of the model (a restart read the whole
   // run's checkpoint first, so it continues on any number of ranks)
   std::optional<Simulation<D>> whole;  // rank 0's, for the checkpoints of a distributed run
+  std::optional<pd::DynamicRelaxation<D>> whole_dr;  // and of its relaxation
   if (comm.distributed()) {
     p.distribute(s, comm);
     first_particle = p.partition.window_first[static_cast<std::size_t>(comm.rank())];
+    if (dr) dr.emplace(m);  // its fictitious densities from the window's rows (an owned row is whole)
   }
   if (comm.root()) std::filesystem::create_directories(res.output_dir);
   std::vector<std::string> columns{"time", "step"};
@@ -379,13 +381,15 @@ Result run_dim(const scene::Scene& s, const Options& o) {
       if (!comm.distributed()) return;
       if (comm.root() && !whole) whole.emplace(s);
       gather_model<D>(comm, m, comm.root() ? &whole->model : nullptr);
-      // its contact pairs as one rank would find them (the forces do not depend on when they were found)
+      // its contact pairs as one rank would find them (the forces do not depend on when they were
+      // found); the fictitious densities of its relaxation, as one rank makes them
       if (comm.root()) whole->contact = pd::Contact<D>(s.contact, whole->model);
+      if (comm.root() && dr && !whole_dr) whole_dr.emplace(whole->model);
     };
     return checkpoints.after_step(step, m.time, res, gather, [&](io::CheckpointWriter& w) {
       history_bytes = history ? history->bytes() : 0;
       visit_run(w, whole ? *whole : p);
-      if (dr) pd::visit(w, *dr);
+      if (dr) pd::visit(w, whole_dr ? *whole_dr : *dr);
     });
   };
   if (s.solver.kind == scene::SolverKind::explicit_dynamics) {

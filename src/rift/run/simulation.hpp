@@ -13,6 +13,7 @@
 #include "rift/load/boundary.hpp"
 #include "rift/parallel/communicator.hpp"
 #include "rift/parallel/halo.hpp"
+#include "rift/parallel/ordered_sum.hpp"
 #include "rift/pd/contact.hpp"
 #include "rift/pd/discretize.hpp"
 #include "rift/pd/dynamic_relaxation.hpp"
@@ -52,13 +53,15 @@ struct Simulation {
   /// what a distributed run cannot take yet.
   void distribute(const scene::Scene& s, const parallel::Communicator& comm) {
     std::string missing = pd::not_distributable<D>(model);
-    if (s.solver.kind != scene::SolverKind::explicit_dynamics) missing = "dynamic relaxation";
+    const bool relaxation = s.solver.kind != scene::SolverKind::explicit_dynamics;
+    if (relaxation && std::none_of(model.constrained.begin(), model.constrained.end(), [](std::uint8_t c) { return c != 0; }))
+      missing = "dynamic relaxation of a body held by tractions alone (its rigid motion is taken out over the whole body)";
     if (s.in_situ.enabled) missing = "[in_situ_stress]";
     if (contact.enabled() && model.bodies.size() > 1) missing = "contact between bodies ([contact] enabled = false takes it off)";
     if (!missing.empty())
       throw SceneError({s.file, 0, 0}, "mpirun -np " + std::to_string(comm.size()),
                        "a run on more than one rank cannot take " + missing + " yet; run this scene on one rank");
-    partition = pd::partition_by_bonds<D>(model, comm.size());
+    partition = pd::partition_by_bonds<D>(model, comm.size(), relaxation ? parallel::ordered_sum_block : 1);
     const auto r = static_cast<std::size_t>(comm.rank());
     loads.restrict_to(partition.window_first[r], partition.window_last[r], partition.owned[r], partition.owned[r + 1]);
     model = pd::window_of<D>(model, partition, comm.rank());
