@@ -188,6 +188,18 @@ refused() {  # scene file, what the message says
 refused "$tmp/relax.toml" "held by tractions alone"
 refused "$(dirname "$0")/../examples/mpm_cantilever.toml" "material point method runs on one rank"
 echo "ok: what a distributed run cannot take is refused with exit status 2"
+
+# contact is found among a rank's ghosts: a plate squeezed until its layers of two ranks may touch
+# past the ghosts stops with exit status 1 and says why (one rank runs it to the end)
+sed -e 's/type = "traction"/type = "velocity"/' -e 's/^y = 4.0e6/y = -50.0/' -e 's/^y = -4.0e6/y = 0.0/' \
+    -e 's/end_time = 2.5e-5/end_time = 4e-5/' "$tmp/plate.toml" > "$tmp/squeeze.toml"
+set +e
+"${mpirun[@]}" -np 2 "$rift" run "$tmp/squeeze.toml" -o "$tmp/squeeze-out" -q > "$tmp/squeeze.log" 2>&1
+status=$?
+set -e
+[ "$status" -eq 1 ] || { cat "$tmp/squeeze.log"; fail "squeezed plate on 2 ranks: exit status $status, not 1"; }
+grep -q "finds contact among its ghosts only" "$tmp/squeeze.log" || { cat "$tmp/squeeze.log"; fail "squeezed plate: no message"; }
+echo "ok: a distributed run whose contact could reach past the ghosts stops with exit status 1"
 exit 0
 
 DR_SCENE

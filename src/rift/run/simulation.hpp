@@ -63,32 +63,58 @@ struct Simulation {
                        "a run on more than one rank cannot take " + missing + " yet; run this scene on one rank");
     partition = pd::partition_by_bonds<D>(model, comm.size(), relaxation ? parallel::ordered_sum_block : 1);
     const auto r = static_cast<std::size_t>(comm.rank());
-    loads.restrict_to(partition.window_first[r], partition.window_last[r], partition.owned[r], partition.owned[r + 1]);
+    const std::size_t w0 = partition.window_first[r], w1 = partition.window_last[r];
+    // contact inside the body (one body: check_contact_reach): how far apart, along the layers'
+    // normal (the lattice's slowest axis, along which the numbering climbs), the owned particles
+    // are from the first particles beyond the window on either side, less the contact distance
+    if (contact.enabled() && partition.owned[r] < partition.owned[r + 1]) {
+      constexpr int axis = D - 1;
+      const auto& x = model.reference_position;
+      double low = std::numeric_limits<double>::max(), high = -low, distance = 0.0;
+      for (std::size_t i = partition.owned[r]; i < partition.owned[r + 1]; ++i) low = std::min(low, x[i][axis]), high = std::max(high, x[i][axis]);
+      for (const auto& b : model.bodies) distance = std::max(distance, s.contact.distance * b.constants.spacing);
+      closing_above = w1 < model.size() ? x[w1][axis] - high - distance : std::numeric_limits<double>::max();
+      closing_below = w0 > 0 ? low - x[w0 - 1][axis] - distance : std::numeric_limits<double>::max();
+    }
+    loads.restrict_to(w0, w1, partition.owned[r], partition.owned[r + 1]);
     model = pd::window_of<D>(model, partition, comm.rank());
     halo = std::make_unique<parallel::Halo>(comm.rank(), partition.owned, partition.window_first, partition.window_last);
     model.ghosts = halo.get();
-    // contact inside the body: an owned particle's pairs are in the window while no particle has
-    // moved far enough to meet one from beyond the ghosts (check_contact_reach)
-    contact = pd::Contact<D>(s.contact, model);
-    contact_reach = std::numeric_limits<double>::max();
-    for (const auto& b : model.bodies) contact_reach = std::min(contact_reach, b.constants.horizon - (s.contact.distance + 0.5) * b.constants.spacing);
+    contact = pd::Contact<D>(s.contact, model);  // its pairs among the window's particles
   }
-  /// A distributed run's contact: raises a PhysicsError once an owned particle has moved half the
-  /// distance beyond which it could meet a particle outside the window (pd/window.hpp).
+  /// A distributed run's contact finds an owned particle's pairs among the window's particles: it
+  /// raises a PhysicsError (on every rank) once a particle beyond a rank's window may have come
+  /// within the contact distance of one it owns, that is once the displacements along the layers'
+  /// normal of the owned particles and of another rank's beyond the window have closed the gap
+  /// between them (distribute: closing_above, closing_below). Sufficient: contact needs the
+  /// distance along that axis below the contact distance too.
   void check_contact_reach(const parallel::Communicator& comm) const {
     if (!contact.enabled() || !comm.distributed()) return;
-    double moved2 = 0.0;
+    constexpr int axis = D - 1;
+    double low = std::numeric_limits<double>::max(), high = -low;
     for (std::size_t i = model.owned_begin; i < model.owned_last(); ++i) {
-      const Vec<D> u = model.displacement(i);
-      moved2 = std::max(moved2, dot<D>(u, u));
+      const double u = model.position[i][axis] - model.reference_position[i][axis];
+      low = std::min(low, u), high = std::max(high, u);
     }
-    moved2 = comm.max(moved2);
-    if (!(4.0 * moved2 < contact_reach * contact_reach))
-      throw PhysicsError(fmt::format("t = {:g} s: a particle moved {:.3g} m, past half the {:.3g} m within which a run on more than one rank "
-                                     "finds every contact pair; run this scene on one rank",
-                                     model.time, std::sqrt(moved2), contact_reach));
+    const auto extremes = comm.all_gather(std::vector<double>{low, high});
+    const auto r = static_cast<std::size_t>(comm.rank());
+    double closed = -1.0;  // how far two ranks' particles have closed past their gap's allowance; -1: nowhere
+    for (std::size_t q = 0; q + 1 < partition.owned.size(); ++q) {
+      if (partition.owned[q] == partition.owned[q + 1] || q == r) continue;
+      const double q_low = extremes[2 * q], q_high = extremes[2 * q + 1];
+      if (partition.owned[q + 1] > partition.window_last[r] && high - q_low >= closing_above) closed = std::max(closed, high - q_low);
+      if (partition.owned[q] < partition.window_first[r] && q_high - low >= closing_below) closed = std::max(closed, q_high - low);
+    }
+    closed = comm.max(closed);
+    if (closed >= 0.0)
+      throw PhysicsError(fmt::format("t = {:g} s: particles of two ranks have moved {:.3g} m toward each other along the layers' normal, "
+                                     "which may bring one within the contact distance of a particle beyond the other's ghosts; a run on "
+                                     "more than one rank finds contact among its ghosts only: run this scene on one rank",
+                                     model.time, closed));
   }
-  double contact_reach = 0.0;  // a distributed run's (check_contact_reach)
+  // a distributed run's (check_contact_reach): how far the owned particles and those beyond the
+  // window above (below) may close on each other along the layers' normal before they may touch
+  double closing_above = std::numeric_limits<double>::max(), closing_below = std::numeric_limits<double>::max();
   pd::Partition partition;  // a distributed run's (empty on one rank)
   std::unique_ptr<parallel::Halo> halo;
   /// The in-situ stage ([in_situ_stress]): static equilibrium under the far-field stresses and
