@@ -432,7 +432,7 @@ Result run_dim(const scene::Scene& s, const Options& o) {
         write_snapshot<D>(fields, m, s, comm);
         progress.update(step, m.time, e.broken_fraction, true);
       }
-      if (!r.converged && !o.quiet) {
+      if (!r.converged && !o.quiet && comm.root()) {  // rank 0 speaks for a distributed run
         if (at_equilibrium && r.residual <= s.solver.tolerance)  // the last equilibrium was reached but broke bonds
           std::fprintf(stderr, "rift: warning: load step %ld: bonds still breaking after %d equilibria (solver max_breaking_passes)\n",
                        step, r.breaking_passes);
