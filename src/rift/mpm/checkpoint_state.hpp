@@ -48,7 +48,8 @@ namespace rift::mpm {
 #if defined(__x86_64__) && defined(__GLIBCXX__)
 // 24 bytes per std::vector, 32 per std::string (libstdc++, x86_64)
 static_assert(sizeof(Particles<2>) == 11 * 24, "a member was added to Particles: list it in mpm/checkpoint_state.hpp");
-static_assert(sizeof(Grid<2>) == 2 * 8 + 8 + 3 * 8 + 8 + 8 * 24, "a member was added to Grid: list it in mpm/checkpoint_state.hpp");
+// (Grid::offset is not listed: a checkpoint holds the whole grid, offset 0)
+static_assert(sizeof(Grid<2>) == 2 * 8 + 8 + 3 * 8 + 8 + 3 * 8 + 8 * 24, "a member was added to Grid: list it in mpm/checkpoint_state.hpp");
 static_assert(sizeof(BodyInfo) == 32 + 2 * 8 + sizeof(material::Constants), "a member was added to BodyInfo: list it in mpm/checkpoint_state.hpp");
 static_assert(sizeof(Model<2>) == sizeof(Particles<2>) + sizeof(Grid<2>) + 24 + 4 * 8, "a member was added to Model: list it in mpm/checkpoint_state.hpp");
 static_assert(sizeof(CrackSet::Crack) == 3 * 24 + 2 * 16, "a member was added to CrackSet::Crack: list it in mpm/checkpoint_state.hpp");

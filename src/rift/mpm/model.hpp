@@ -26,7 +26,7 @@ struct Particles {
   std::size_t size() const { return position.size(); }
 };
 
-/// Regular background grid: node (i, j, k) sits at origin + h (i, j, k). Every node carries
+/// Regular background grid: node (i, j, k) sits at origin + h (i, j, k) + h offset. Every node carries
 /// `fields` velocity fields (one per body with multi-material contact, else one); the quantities of
 /// field f at node n are at slot n * fields + f.
 template <int D>
@@ -35,6 +35,9 @@ struct Grid {
   double cell_size = 0.0;
   std::array<long, 3> nodes{1, 1, 1};  // per axis
   int fields = 1;
+  /// A distributed run's part of the whole grid (mpm/domain.hpp): the whole grid's index of node
+  /// (0, 0, 0) along each axis; 0 for the whole grid, the one a checkpoint holds.
+  std::array<long, 3> offset{0, 0, 0};
   std::vector<double> mass;
   std::vector<Vec<D>> momentum, force, velocity, velocity_start;  // velocity_start: before the force update
   std::vector<Vec<D>> mass_gradient;  // sum m_p grad S_ip per field (contact normals; empty with one field)
@@ -52,7 +55,7 @@ struct Grid {
     const long j = rest % nodes[1];
     const long k = rest / nodes[1];
     const long ijk[3] = {i, j, k};
-    for (int a = 0; a < D; ++a) x[a] = origin[a] + cell_size * double(ijk[a]);
+    for (int a = 0; a < D; ++a) x[a] = origin[a] + cell_size * double(ijk[a] + offset[a]);
     return x;
   }
   void resize() {

@@ -86,18 +86,54 @@ Solver<D>::Solver(const scene::Scene& s, Model<D>& m) : settings_(s.mpm) {
     }
   }
   thread_buffers_.resize(static_cast<std::size_t>(omp_get_max_threads()));
+  index_conditions(m.grid.size());
+  for (auto& l : loads_) l.ids.assign(l.particles.begin(), l.particles.end());
+  tiny_mass_ = 1e-12 * (m.particles.size() ? m.particles.mass[0] : 1.0);
+  cell_volume_ = std::pow(m.grid.cell_size, D) * (D == 2 ? s.thickness : 1.0);
+}
+
+template <int D>
+void Solver<D>::index_conditions(std::size_t nodes) {
   // the conditions of each node, for the node-by-node grid passes
-  node_conditions_.first.assign(m.grid.size() + 1, 0);
+  node_conditions_.first.assign(nodes + 1, 0);
   for (const auto& c : conditions_)
     for (auto node : c.nodes) ++node_conditions_.first[node + 1];
-  for (std::size_t node = 0; node < m.grid.size(); ++node) node_conditions_.first[node + 1] += node_conditions_.first[node];
+  for (std::size_t node = 0; node < nodes; ++node) node_conditions_.first[node + 1] += node_conditions_.first[node];
   node_conditions_.condition.resize(node_conditions_.first.back());
-  {
-    auto next = node_conditions_.first;
-    for (std::size_t c = 0; c < conditions_.size(); ++c)
-      for (auto node : conditions_[c].nodes) node_conditions_.condition[next[node]++] = static_cast<std::uint32_t>(c);
+  auto next = node_conditions_.first;
+  for (std::size_t c = 0; c < conditions_.size(); ++c)
+    for (auto node : conditions_[c].nodes) node_conditions_.condition[next[node]++] = static_cast<std::uint32_t>(c);
+}
+
+template <int D>
+void Solver<D>::select_loads(const std::vector<std::uint64_t>& id) {
+  for (auto& l : loads_) {
+    l.particles.clear();
+    for (std::size_t p = 0; p < id.size(); ++p)
+      if (std::binary_search(l.ids.begin(), l.ids.end(), id[p])) l.particles.push_back(p);
   }
-  cell_volume_ = std::pow(m.grid.cell_size, D) * (D == 2 ? s.thickness : 1.0);
+}
+
+template <int D>
+void Solver<D>::distribute(const Model<D>& whole, const Model<D>& part, Domain<D>& domain) {
+  domain_ = &domain;
+  // the grid conditions' nodes in this rank's part of the grid
+  const auto& wg = whole.grid;
+  const auto& pg = part.grid;
+  for (auto& c : conditions_) {
+    std::vector<std::size_t> mine;
+    for (auto n : c.nodes) {
+      long rest = static_cast<long>(n), ijk[3];
+      ijk[0] = rest % wg.nodes[0], rest /= wg.nodes[0];
+      ijk[1] = rest % wg.nodes[1], ijk[2] = rest / wg.nodes[1];
+      bool inside = true;
+      for (int a = 0; a < 3; ++a) ijk[a] -= pg.offset[a], inside = inside && ijk[a] >= 0 && ijk[a] < pg.nodes[a];
+      if (inside) mine.push_back(pg.index(ijk[0], ijk[1], ijk[2]));
+    }
+    c.nodes = std::move(mine);
+  }
+  index_conditions(pg.size());
+  select_loads(domain.id());
 }
 
 template <int D>
@@ -206,6 +242,8 @@ void Solver<D>::scatter(Model<D>& m, bool momentum_only, bool internal_force) {
       if (normals) g.mass_gradient[n] = grad, g.volume[n] = volume, g.displacement[n] = u;
     }
   }
+  // a distributed run: the neighbours' parts of the sums at the shared nodes (domain.hpp)
+  if (domain_) domain_->sum_shared_nodes(g, !momentum_only, normals);
 }
 
 template <int D>
@@ -251,7 +289,7 @@ bool Solver<D>::apply_contact(Model<D>& m, std::size_t node) const {
   // corrections conserve momentum.
   auto& g = m.grid;
   const std::size_t fields = static_cast<std::size_t>(g.fields);
-  const double tiny = tiny_mass(m);
+  const double tiny = tiny_mass_;
   using C = scene::Mpm::Contact;
   const std::size_t base = node * fields;
   int present = 0;
@@ -344,7 +382,7 @@ void Solver<D>::node_velocities(Model<D>& m, std::size_t node, double tiny, bool
 template <int D>
 void Solver<D>::grid_velocities(Model<D>& m, double t, bool record_start, bool contact, bool restore_stage) {
   auto& g = m.grid;
-  const double tiny = tiny_mass(m);
+  const double tiny = tiny_mass_;
   const std::size_t fields = static_cast<std::size_t>(g.fields);
   const auto amplitude = condition_amplitudes(t);
   if (fields > 1 && contact) touching_.resize(g.size());
@@ -362,7 +400,7 @@ void Solver<D>::grid_update(Model<D>& m, double t, double dt) {
   // contact and conditions; the momentum update with mass-proportional damping,
   // dp/dt = f - damping p; velocities at t^n+1, contact and conditions again
   auto& g = m.grid;
-  const double tiny = tiny_mass(m), alpha = settings_.damping;
+  const double tiny = tiny_mass_, alpha = settings_.damping;
   const std::size_t fields = static_cast<std::size_t>(g.fields);
   const auto amplitude_start = condition_amplitudes(t), amplitude_end = condition_amplitudes(t + dt);
   if (fields > 1) touching_.resize(g.size());
@@ -406,6 +444,7 @@ void Solver<D>::step(Model<D>& m, double dt) {
   auto& ps = m.particles;
   auto& g = m.grid;
   const double t = m.time;
+  if (domain_ && domain_->migrate(m)) select_loads(domain_->id());
   stencils_.fill(m, ps.position, &start_position_);  // S_ip(x_p^n) for every transfer of the step, and x_p^n
   if constexpr (D == 2) {
     if (!cracks_.empty()) {
@@ -494,6 +533,11 @@ void Solver<D>::step(Model<D>& m, double dt) {
     energy_.kinetic = parallel::ordered_sums<1>(ps.size(), [&](std::size_t p, std::array<double, 1>& acc) {
       acc[0] += 0.5 * ps.mass[p] * dot<D>(start_velocity_[p], ps.velocity[p]);
     })[0];
+    if (domain_) {  // every rank's points
+      double sums[2] = {energy_.kinetic, energy_.strain};
+      domain_->communicator().sum(sums, 2);
+      energy_.kinetic = sums[0], energy_.strain = sums[1];
+    }
   }
   if (settings_.scheme == S::usl) {
     update_stress(m, dt);

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "rift/mpm/crack.hpp"
+#include "rift/mpm/domain.hpp"
 #include "rift/mpm/model.hpp"
 #include "rift/mpm/stencil_cache.hpp"
 #include "rift/scene/scene.hpp"
@@ -24,6 +25,9 @@ class Solver {
   /// Selects grid nodes and particles for the scene's boundary conditions (SceneError when a region
   /// selects nothing).
   Solver(const scene::Scene& s, Model<D>& m);
+  /// A distributed run (domain.hpp): from here on `part` is this rank's part of `whole`, the model
+  /// the solver was made for; each step migrates its points and completes the shared nodes' sums.
+  void distribute(const Model<D>& whole, const Model<D>& part, Domain<D>& domain);
   /// Largest stable step: cell size / (dilatational wave speed + fastest particle).
   double stable_time_step(const Model<D>& m) const;
   void step(Model<D>& m, double dt);
@@ -63,10 +67,15 @@ class Solver {
   };
   struct ParticleLoad {
     std::vector<std::size_t> particles;
+    std::vector<std::uint64_t> ids;    // the whole run's numbers of the particles (a distributed run's points migrate)
     std::array<double, 3> density{};  // force per unit volume (traction / layer depth, or body force)
     scene::TimeFunction time;
   };
   void scatter(Model<D>& m, bool momentum_only, bool internal_force);
+  /// node_conditions_ of a grid of `nodes` nodes from conditions_.
+  void index_conditions(std::size_t nodes);
+  /// The loads' particles among this rank's points, by their whole run's numbers.
+  void select_loads(const std::vector<std::uint64_t>& id);
   /// Grid velocities from the scattered momenta at time t, node by node (node_velocities);
   /// restore_stage: then the velocities grid_update kept at the nodes in contact.
   void grid_velocities(Model<D>& m, double t, bool record_start, bool contact = true, bool restore_stage = false);
@@ -91,10 +100,10 @@ class Solver {
   /// over all fields (probe null) or the field of the material on the crack side of `probe`.
   template <class Weighted>
   std::optional<Vec<2>> side_mean(const Model<D>& m, const Vec<2>& x, const Vec<2>* probe, Weighted weighted) const;
-  /// Grid slots lighter than this carry no material (velocity 0, not a contact field).
-  static double tiny_mass(const Model<D>& m) { return 1e-12 * (m.particles.size() ? m.particles.mass[0] : 1.0); }
 
   scene::Mpm settings_;
+  Domain<D>* domain_ = nullptr;  // a distributed run's
+  double tiny_mass_ = 0.0;       // grid slots lighter than this carry no material (velocity 0, not a contact field)
   std::vector<GridCondition> conditions_;
   struct NodeConditions {  // the conditions of each node, in scene order: condition[first[n] .. first[n + 1])
     std::vector<std::uint32_t> first, condition;

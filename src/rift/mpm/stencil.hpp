@@ -45,6 +45,7 @@ bool make_stencil(const Model<D>& m, const Vec<D>& x, Stencil<D>& st) {
   for (int a = 0; a < 3; ++a) {
     if (a < D) {
       s[a] = stencil_1d(m.shape, x[a] - g.origin[a], g.cell_size, m.particle_half_width);
+      s[a].first -= g.offset[a];  // the whole grid's node numbers to this rank's part of it (mpm/domain.hpp)
       if (s[a].first < 0 || s[a].first + s[a].count > g.nodes[a] || !std::isfinite(x[a])) return false;
     } else {
       s[a].first = 0, s[a].count = 1, s[a].weight = {1, 0, 0, 0}, s[a].gradient = {0, 0, 0, 0};

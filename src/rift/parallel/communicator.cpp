@@ -57,38 +57,50 @@ void Communicator::max(double* values, std::size_t count) const {
   if (started && size_ > 1) MPI_Allreduce(MPI_IN_PLACE, values, static_cast<int>(count), MPI_DOUBLE, MPI_MAX, MPI_COMM_WORLD);
 }
 
-void Communicator::gather_bytes_into(const void* local, std::size_t bytes, void* (*place)(void*, std::size_t), void* context) const {
-  // MPI counts are int: a rank's share up to 2 GiB per call
+void Communicator::gather_bytes(const void* local, std::size_t bytes, bool everyone, void* (*place)(void*, std::size_t),
+                                void* context) const {
+  // MPI counts are int: up to 2 GiB per call
   const long long mine = static_cast<long long>(bytes);
-  std::vector<long long> counts(root() ? static_cast<std::size_t>(size_) : 0);
-  MPI_Gather(&mine, 1, MPI_LONG_LONG, counts.data(), 1, MPI_LONG_LONG, 0, MPI_COMM_WORLD);
+  std::vector<long long> counts(everyone || root() ? static_cast<std::size_t>(size_) : 0);
+  if (everyone) MPI_Allgather(&mine, 1, MPI_LONG_LONG, counts.data(), 1, MPI_LONG_LONG, MPI_COMM_WORLD);
+  else MPI_Gather(&mine, 1, MPI_LONG_LONG, counts.data(), 1, MPI_LONG_LONG, 0, MPI_COMM_WORLD);
   std::vector<int> sizes, displacements;
   void* all = nullptr;
-  if (root()) {
+  if (!counts.empty()) {
     long long total = 0;
     for (auto c : counts) {
       if (c > std::numeric_limits<int>::max() || total > std::numeric_limits<int>::max() - c)
-        throw std::runtime_error("a gather to rank 0 of more than 2 GiB (use more ranks)");
+        throw std::runtime_error("a gather of more than 2 GiB (use more ranks)");
       sizes.push_back(static_cast<int>(c)), displacements.push_back(static_cast<int>(total)), total += c;
     }
     all = place(context, static_cast<std::size_t>(total));
   }
-  MPI_Gatherv(local, static_cast<int>(mine), MPI_BYTE, all, sizes.data(), displacements.data(), MPI_BYTE, 0, MPI_COMM_WORLD);
+  if (everyone)
+    MPI_Allgatherv(local, static_cast<int>(mine), MPI_BYTE, all, sizes.data(), displacements.data(), MPI_BYTE, MPI_COMM_WORLD);
+  else
+    MPI_Gatherv(local, static_cast<int>(mine), MPI_BYTE, all, sizes.data(), displacements.data(), MPI_BYTE, 0, MPI_COMM_WORLD);
 }
 
-void Communicator::all_gather_bytes_into(const void* local, std::size_t bytes, void* (*place)(void*, std::size_t), void* context) const {
-  const long long mine = static_cast<long long>(bytes);
-  std::vector<long long> counts(static_cast<std::size_t>(size_));
-  MPI_Allgather(&mine, 1, MPI_LONG_LONG, counts.data(), 1, MPI_LONG_LONG, MPI_COMM_WORLD);
-  std::vector<int> sizes, displacements;
-  long long total = 0;
-  for (auto c : counts) {
-    if (c > std::numeric_limits<int>::max() || total > std::numeric_limits<int>::max() - c)
-      throw std::runtime_error("an all-gather of more than 2 GiB");
-    sizes.push_back(static_cast<int>(c)), displacements.push_back(static_cast<int>(total)), total += c;
+void Communicator::exchange(std::vector<Parcel>& parcels) const {
+  if (!started || size_ < 2) return;
+  std::vector<MPI_Request> requests;
+  requests.reserve(2 * parcels.size());
+  std::vector<long long> sizes(parcels.size()), theirs(parcels.size());
+  for (std::size_t k = 0; k < parcels.size(); ++k) {
+    sizes[k] = static_cast<long long>(parcels[k].send.size());
+    MPI_Irecv(&theirs[k], 1, MPI_LONG_LONG, parcels[k].peer, 1, MPI_COMM_WORLD, &requests.emplace_back());
+    MPI_Isend(&sizes[k], 1, MPI_LONG_LONG, parcels[k].peer, 1, MPI_COMM_WORLD, &requests.emplace_back());
   }
-  void* all = place(context, static_cast<std::size_t>(total));
-  MPI_Allgatherv(local, static_cast<int>(mine), MPI_BYTE, all, sizes.data(), displacements.data(), MPI_BYTE, MPI_COMM_WORLD);
+  MPI_Waitall(static_cast<int>(requests.size()), requests.data(), MPI_STATUSES_IGNORE);
+  requests.clear();
+  for (std::size_t k = 0; k < parcels.size(); ++k) {
+    if (theirs[k] > std::numeric_limits<int>::max() || sizes[k] > std::numeric_limits<int>::max())
+      throw std::runtime_error("a message of more than 2 GiB between two ranks (use more ranks)");
+    parcels[k].receive.resize(static_cast<std::size_t>(theirs[k]));
+    MPI_Irecv(parcels[k].receive.data(), static_cast<int>(theirs[k]), MPI_BYTE, parcels[k].peer, 2, MPI_COMM_WORLD, &requests.emplace_back());
+    MPI_Isend(parcels[k].send.data(), static_cast<int>(sizes[k]), MPI_BYTE, parcels[k].peer, 2, MPI_COMM_WORLD, &requests.emplace_back());
+  }
+  MPI_Waitall(static_cast<int>(requests.size()), requests.data(), MPI_STATUSES_IGNORE);
 }
 
 void Communicator::broadcast(double* values, std::size_t count) const {

@@ -41,43 +41,43 @@ class Communicator {
   /// Every rank's `local` one after the other, in rank order, on rank 0 (empty elsewhere).
   template <class T>
   std::vector<T> gather(const std::vector<T>& local) const {
-    if (!distributed()) return local;
-    std::vector<T> all;
-    gather_bytes(local.data(), local.size() * sizeof(T), [&](std::size_t bytes) {
-      all.resize(bytes / sizeof(T));
-      return static_cast<void*>(all.data());
-    });
-    return all;
+    return gather_to(local, false);
   }
   /// Every rank's `local` one after the other, in rank order, on every rank.
   template <class T>
   std::vector<T> all_gather(const std::vector<T>& local) const {
-    if (!distributed()) return local;
-    std::vector<T> all;
-    all_gather_bytes(local.data(), local.size() * sizeof(T), [&](std::size_t bytes) {
-      all.resize(bytes / sizeof(T));
-      return static_cast<void*>(all.data());
-    });
-    return all;
+    return gather_to(local, true);
   }
+  /// Point to point: what this rank sends to one other rank, and what it receives from it.
+  struct Parcel {
+    int peer = 0;
+    std::vector<std::byte> send, receive;
+  };
+  /// Sends each parcel's bytes to its peer and receives the peer's into `receive` (its size comes
+  /// first); every peer must name this rank in a parcel of its own. No rank waits on one it does
+  /// not exchange with.
+  void exchange(std::vector<Parcel>& parcels) const;
   /// Rank 0's values on every rank.
   void broadcast(double* values, std::size_t count) const;
   void barrier() const;
 
  private:
-  /// gather's bytes: `place(total)` gives rank 0 where they go.
-  template <class Place>
-  void gather_bytes(const void* local, std::size_t bytes, Place&& place) const {
-    using P = std::remove_reference_t<Place>;
-    gather_bytes_into(local, bytes, [](void* p, std::size_t total) { return (*static_cast<P*>(p))(total); }, &place);
+  /// Every rank's `local` in rank order, on rank 0 or (everyone) on every rank.
+  template <class T>
+  std::vector<T> gather_to(const std::vector<T>& local, bool everyone) const {
+    if (!distributed()) return local;
+    std::vector<T> all;
+    auto place = [&](std::size_t bytes) {
+      all.resize(bytes / sizeof(T));
+      return static_cast<void*>(all.data());
+    };
+    using P = decltype(place);
+    gather_bytes(local.data(), local.size() * sizeof(T), everyone, [](void* p, std::size_t total) { return (*static_cast<P*>(p))(total); },
+                 &place);
+    return all;
   }
-  void gather_bytes_into(const void* local, std::size_t bytes, void* (*place)(void*, std::size_t), void* context) const;
-  template <class Place>
-  void all_gather_bytes(const void* local, std::size_t bytes, Place&& place) const {
-    using P = std::remove_reference_t<Place>;
-    all_gather_bytes_into(local, bytes, [](void* p, std::size_t total) { return (*static_cast<P*>(p))(total); }, &place);
-  }
-  void all_gather_bytes_into(const void* local, std::size_t bytes, void* (*place)(void*, std::size_t), void* context) const;
+  /// The gathers' bytes: place(context, total) gives the receiving rank where they go.
+  void gather_bytes(const void* local, std::size_t bytes, bool everyone, void* (*place)(void*, std::size_t), void* context) const;
   Communicator(int rank, int size) : rank_(rank), size_(size) {}
   static Communicator& mutable_world();
   int rank_ = 0, size_ = 1;

@@ -22,8 +22,8 @@ Halo::Halo(int rank, const std::vector<std::size_t>& owned, const std::vector<st
 }
 
 void Halo::refresh(double* field, std::size_t width) const {
-  std::vector<MPI_Request> requests;
-  requests.reserve(receive_.size() + send_.size());
+  static thread_local std::vector<MPI_Request> requests;  // kept from call to call: no allocation per step
+  requests.clear();
   // a message per neighbour and direction: the ranges are contiguous in both windows
   for (const auto& r : receive_)
     MPI_Irecv(field + r.first * width, static_cast<int>(r.count * width), MPI_DOUBLE, r.rank, 0, MPI_COMM_WORLD, &requests.emplace_back());

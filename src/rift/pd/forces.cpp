@@ -1,5 +1,6 @@
 #include "rift/pd/forces.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -42,8 +43,9 @@ void compute_forces(Model<D>& m, Contact<D>* contact, double history_dt) {
   }
   // the second pass of the state-based models needs every dilatation of the step (bodies may
   // neighbour through contact only); a distributed run's ghosts take theirs, and P, from their
-  // owners, who summed them over whole families (pd/window.hpp)
-  if (m.ghosts) {
+  // owners, who summed them over whole families (pd/window.hpp); PMB alone reads neither
+  const bool state_based = std::any_of(m.bodies.begin(), m.bodies.end(), [](const auto& b) { return b.constants.model != scene::ModelKind::pmb; });
+  if (m.ghosts && state_based) {
     m.refresh_ghosts(m.dilatation);
     m.refresh_ghosts(m.dilatation_coupling);
   }

@@ -16,9 +16,11 @@
 #include "rift/mpm/checkpoint_state.hpp"
 #include "rift/mpm/crack_growth.hpp"
 #include "rift/mpm/discretize.hpp"
+#include "rift/mpm/domain.hpp"
 #include "rift/mpm/energy.hpp"
 #include "rift/mpm/j_integral.hpp"
 #include "rift/mpm/solver.hpp"
+#include "rift/parallel/communicator.hpp"
 #include "rift/run/checkpointing.hpp"
 #include "rift/run/time_step.hpp"
 
@@ -89,21 +91,28 @@ Plan check_dim(const scene::Scene& s, std::ostream& out) {
   return plan;
 }
 
+/// A snapshot of the fields; a distributed run's rank 0 writes the whole run's, in its order.
 template <int D>
-void write_snapshot(io::FieldWriter& w, const mpm::Model<D>& m, const scene::Scene& s) {
+void write_snapshot(io::FieldWriter& w, const mpm::Model<D>& m, const scene::Scene& s, const mpm::Domain<D>* domain) {
   const auto& ps = m.particles;
   const std::size_t n = ps.size();
+  const bool root = !domain || domain->communicator().root();
+  auto write = [&](const std::string& name, const std::vector<double>& values, int components) {
+    if (!domain) return w.write(name, values, components);
+    auto all = domain->gather(values, static_cast<std::size_t>(components));
+    if (root) w.write(name, all, components);
+  };
   auto vec = [&](auto get) {
     std::vector<double> out(3 * n, 0.0);
     for (std::size_t p = 0; p < n; ++p)
       for (int a = 0; a < D; ++a) out[3 * p + a] = get(p, a);
     return out;
   };
-  w.begin_snapshot(m.time);
-  w.write("position", vec([&](std::size_t p, int a) { return ps.position[p][a]; }), 3);
+  if (root) w.begin_snapshot(m.time);
+  write("position", vec([&](std::size_t p, int a) { return ps.position[p][a]; }), 3);
   for (const auto& f : s.output.fields) {
-    if (f == "displacement") w.write(f, vec([&](std::size_t p, int a) { return ps.position[p][a] - ps.reference_position[p][a]; }), 3);
-    else if (f == "velocity") w.write(f, vec([&](std::size_t p, int a) { return ps.velocity[p][a]; }), 3);
+    if (f == "displacement") write(f, vec([&](std::size_t p, int a) { return ps.position[p][a] - ps.reference_position[p][a]; }), 3);
+    else if (f == "velocity") write(f, vec([&](std::size_t p, int a) { return ps.velocity[p][a]; }), 3);
     else if (f == "stress") {
       // xx, yy, zz, xy, yz, xz (zz and the out-of-plane shears are 0 in 2D)
       std::vector<double> out(6 * n, 0.0);
@@ -112,7 +121,7 @@ void write_snapshot(io::FieldWriter& w, const mpm::Model<D>& m, const scene::Sce
         out[6 * p + 0] = sg(0, 0), out[6 * p + 1] = sg(1, 1), out[6 * p + 3] = sg(0, 1);
         if constexpr (D == 3) out[6 * p + 2] = sg(2, 2), out[6 * p + 4] = sg(1, 2), out[6 * p + 5] = sg(0, 2);
       }
-      w.write(f, out, 6);
+      write(f, out, 6);
     } else {
       std::vector<double> out(n, 0.0);
       for (std::size_t p = 0; p < n; ++p) {
@@ -122,10 +131,10 @@ void write_snapshot(io::FieldWriter& w, const mpm::Model<D>& m, const scene::Sce
         else if (f == "strain_energy_density")
           out[p] = material::strain_energy_density<D>(m.bodies[ps.body[p]].constants, ps.state[p], ps.deformation_gradient[p]);
       }
-      w.write(f, out, 1);
+      write(f, out, 1);
     }
   }
-  w.end_snapshot();
+  if (root) w.end_snapshot();
 }
 
 /// Per-tip fracture parameters at the history rows of a cracked 2D run (crack_tips.csv).
@@ -172,11 +181,16 @@ class CrackTipHistory {
 
 template <int D>
 Result run_dim(const scene::Scene& s, const Options& o) {
+  const auto& comm = parallel::Communicator::world();
+  if (comm.distributed() && !s.cracks.empty())
+    throw SceneError(s.cracks.front().where, "cracks",
+                     "explicit cracks in the material point method run on one rank for now; run this scene on one rank");
   MpmRun<D> r(s);  // every scene error is raised here, before anything is written
   auto& m = r.model;
+  const std::size_t points = m.particles.size();  // the whole run's
   Result res;
   res.output_dir = o.output_dir.empty() ? "results/" + s.name : o.output_dir;
-  io::FieldWriter fields(res.output_dir, "fields", m.particles.size());
+  io::FieldWriter fields(res.output_dir, "fields", points);
   res.fields_h5 = fields.h5_pattern();
   res.fields_xdmf = fields.xdmf_path();
   const bool cracked = D == 2 && !s.cracks.empty();
@@ -188,11 +202,12 @@ Result run_dim(const scene::Scene& s, const Options& o) {
   long next_snapshot = 1, next_history = 0;
   std::int64_t history_bytes = 0, tip_bytes = 0;
   std::vector<mpm::CrackTip> tip_list;
-  auto visit_run = [&](auto& a) {
+  // (a distributed run's checkpoint holds the whole run's points, gathered on rank 0 into `whole`)
+  auto visit_run = [&](auto& a, mpm::Model<D>& model) {
     a("run.next_snapshot", next_snapshot), a("run.next_history", next_history), a("run.history_bytes", history_bytes);
     a("run.crack_growth_events", res.crack_growth_events);
     fields.visit_state(a);
-    mpm::visit(a, m);
+    mpm::visit(a, model);
     r.solver.visit_state(a);
     if (cracked) a("run.tips", tip_list), a("run.tip_bytes", tip_bytes);
     if (propagation) propagation->visit_state(a);
@@ -200,25 +215,38 @@ Result run_dim(const scene::Scene& s, const Options& o) {
   const bool restarted = !o.restart.empty();
   if (restarted) {
     // the whole checkpoint is read before any output is touched
-    res.first_step = 1 + read_checkpoint(s, o, r.steps, [&](io::CheckpointReader& checkpoint) { visit_run(checkpoint); });
+    res.first_step = 1 + read_checkpoint(s, o, r.steps, [&](io::CheckpointReader& checkpoint) { visit_run(checkpoint, m); });
   }
+  // mpirun -np N: from here on each rank holds its slab of the model (a restart read the whole
+  // run's checkpoint first, so it continues on any number of ranks)
+  std::optional<mpm::Domain<D>> domain;
+  std::optional<mpm::Model<D>> whole;  // rank 0's, for the checkpoints of a distributed run
+  if (comm.distributed()) {
+    domain.emplace(comm, mpm::cut_into_slabs<D>(m, comm.size(), s.file), m);
+    auto part = domain->part_of(m);
+    r.solver.distribute(m, part, *domain);
+    if (comm.root()) whole.emplace(std::move(m));
+    m = std::move(part);
+  }
+  const mpm::Domain<D>* in = domain ? &*domain : nullptr;
   if (restarted) {
     require_output_file(o, res.output_dir + "/history.csv", history_bytes);
     if (cracked) require_output_file(o, res.output_dir + "/crack_tips.csv", tip_bytes);
   }
-  std::filesystem::create_directories(res.output_dir);
+  if (comm.root()) std::filesystem::create_directories(res.output_dir);
   std::vector<std::string> columns{"time", "step"};
   columns.insert(columns.end(), s.output.history.begin(), s.output.history.end());
-  io::History history = restarted ? io::History(res.output_dir + "/history.csv", history_bytes)
-                                  : io::History(res.output_dir + "/history.csv", columns);
-  res.history_csv = history.path();
+  std::optional<io::History> history;  // rank 0 writes the history
+  if (comm.root() && restarted) history.emplace(res.output_dir + "/history.csv", history_bytes);
+  if (comm.root() && !restarted) history.emplace(res.output_dir + "/history.csv", columns);
+  res.history_csv = res.output_dir + "/history.csv";
   // rows hold the time-centred energy at the start of the sampled step (see Solver::measure_energy)
   auto history_row = [&](long step, double time, double kinetic, double strain) {
     if (!std::isfinite(kinetic) || !std::isfinite(strain))
       throw PhysicsError("step " + std::to_string(step) + ": energy is not finite; the time step may be above the stable limit");
     std::vector<double> row{time, double(step)};
     for (const auto& q : s.output.history) row.push_back(q == "kinetic_energy" ? kinetic : q == "strain_energy" ? strain : kinetic + strain);
-    history.row(row);
+    if (history) history->row(row);
   };
   std::optional<CrackTipHistory> tips;
   if constexpr (D == 2) {
@@ -231,14 +259,25 @@ Result run_dim(const scene::Scene& s, const Options& o) {
   }
   Checkpointing checkpoints(s, o, res.output_dir);
   const auto start = std::chrono::steady_clock::now();
-  Progress progress(r.steps, s.solver.end_time, o.quiet);
-  if (!restarted) write_snapshot<D>(fields, m, s);
+  Progress progress(r.steps, s.solver.end_time, o.quiet || !comm.root());
+  if (!restarted) write_snapshot<D>(fields, m, s, in);
   for (long step = res.first_step; step <= r.steps; ++step) {
     // history rows at the starts of steps 1 + k steps / rows: energy at t = 0 first
     const bool sample = (step - 1) * s.output.history_count >= next_history * r.steps;
     if (sample) r.solver.measure_energy();
-    r.solver.step(m, r.dt);
-    res.particle_steps += double(m.particles.size());
+    if (!domain) {
+      r.solver.step(m, r.dt);
+    } else {
+      // a point lost off the grid, or too fast for its slab, is found by its rank alone, while the
+      // others wait for it in an exchange: it ends them all
+      try {
+        r.solver.step(m, r.dt);
+      } catch (const PhysicsError& e) {
+        std::fprintf(stderr, "rift: run stopped (rank %d): %s\n", comm.rank(), e.what());
+        parallel::MpiSession::abort(1);
+      }
+    }
+    res.particle_steps += double(points);
     if constexpr (D == 2)
       if (propagation) res.crack_growth_events += propagation->check(m, r.solver, step);
     if (sample) {
@@ -250,13 +289,16 @@ Result run_dim(const scene::Scene& s, const Options& o) {
       while (next_history * r.steps <= (step - 1) * s.output.history_count) ++next_history;
     }
     if (step * s.output.count >= next_snapshot * r.steps) {
-      write_snapshot<D>(fields, m, s);
+      write_snapshot<D>(fields, m, s, in);
       while (next_snapshot * r.steps <= step * s.output.count) ++next_snapshot;
     }
-    const bool stop = checkpoints.after_step(step, m.time, res, [&](io::CheckpointWriter& w) {
-      history_bytes = history.bytes();
+    auto gather = [&] {
+      if (domain) domain->gather_points(m, whole ? &*whole : nullptr);
+    };
+    const bool stop = checkpoints.after_step(step, m.time, res, gather, [&](io::CheckpointWriter& w) {
+      history_bytes = history->bytes();
       if (tips) tip_list = tips->tips(), tip_bytes = tips->bytes();
-      visit_run(w);
+      visit_run(w, whole ? *whole : m);
     });
     if (stop) break;
   }
@@ -275,8 +317,11 @@ Result run_dim(const scene::Scene& s, const Options& o) {
       res.notes.push_back("crack tip plot not written: " + reason);
   }
   auto e = mpm::summarize<D>(m);
-  res.final_energy.kinetic = e.kinetic;
-  res.final_energy.strain = e.strain;
+  double sums[2] = {e.kinetic, e.strain};
+  comm.sum(sums, 2);
+  res.final_energy.kinetic = sums[0];
+  res.final_energy.strain = sums[1];
+  if (domain) res.notes.push_back(domain->load_balance(m, res.loop_seconds));
   res.steps = r.steps;
   res.time = m.time;
   return res;

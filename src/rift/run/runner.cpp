@@ -496,10 +496,6 @@ Plan check(const scene::Scene& s, std::ostream& out) {
 
 Result run(const scene::Scene& s, const Options& o) {
   if (o.threads > 0) omp_set_num_threads(o.threads);
-  const auto& comm = parallel::Communicator::world();
-  if (s.method == scene::Method::mpm && comm.distributed())
-    throw SceneError({s.file, 0, 0}, "mpirun -np " + std::to_string(comm.size()),
-                     "the material point method runs on one rank for now; run this scene on one rank");
   if (s.method == scene::Method::mpm) return run_mpm(s, o);
   return s.dimension == 2 ? run_dim<2>(s, o) : run_dim<3>(s, o);
 }
