@@ -286,6 +286,34 @@ void Domain<D>::gather_points(Model<D>& part, Model<D>* whole) const {
 }
 
 template <int D>
+void Domain<D>::gather_grid(Grid<D>& part, Grid<D>* whole) const {
+  // each rank's own layers of nodes (its cells' lower nodes; the last rank's top layer too), whose
+  // sums are whole there, in the whole grid's order
+  auto own_layers = [&](int r) {
+    const auto q = static_cast<std::size_t>(r);
+    return std::pair<long, long>{slabs_.first_cell[q], r + 1 == comm_.size() ? whole_nodes_ - 1 : slabs_.first_cell[q + 1] - 1};
+  };
+  auto each_array = [](Grid<D>& g, auto f) {
+    f(g.mass), f(g.momentum), f(g.force), f(g.velocity), f(g.velocity_start), f(g.mass_gradient), f(g.volume), f(g.displacement);
+  };
+  const auto [lo, hi] = own_layers(comm_.rank());
+  std::vector<std::byte> mine;
+  each_array(part, [&](auto& v) {
+    if (!v.empty()) each_slot_in_layers<D>(part, slabs_.axis, lo, hi, [&](std::size_t n) { append(mine, v[n]); });
+  });
+  const auto all = comm_.gather(mine);
+  if (!whole) return;
+  std::size_t at = 0;
+  for (int r = 0; r < comm_.size(); ++r) {
+    const auto [first, last] = own_layers(r);
+    each_array(*whole, [&](auto& v) {
+      using T = typename std::decay_t<decltype(v)>::value_type;
+      if (!v.empty()) each_slot_in_layers<D>(*whole, slabs_.axis, first, last, [&](std::size_t n) { v[n] = take<T>(all, at); });
+    });
+  }
+}
+
+template <int D>
 std::string Domain<D>::load_balance(const Model<D>& part, double loop_seconds) const {
   const auto all = comm_.gather(std::vector<double>{double(part.particles.size()), loop_seconds});
   static const char* axis[3] = {"x", "y", "z"};

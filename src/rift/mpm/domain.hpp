@@ -16,6 +16,7 @@
 #pragma once
 #include <cstdint>
 #include <cstring>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -62,6 +63,14 @@ class Domain {
   /// them (mass and momentum; the force; the contact quantities).
   void sum_shared_nodes(Grid<D>& g, bool force, bool contact) const;
 
+  /// Whether x lies in this rank's slab (its cell's owner is this rank).
+  bool owns(const Grid<D>& g, const Vec<D>& x) const {
+    const long c = cell_of(g, x);
+    return c != -2 && slabs_.owner(c) == comm_.rank();
+  }
+  /// The nodes' sums and velocities of every rank's slab into the whole grid `whole` on rank 0 (null
+  /// elsewhere), as one rank's grid after the same step.
+  void gather_grid(Grid<D>& part, Grid<D>* whole) const;
   /// A per-point array (`width` entries per point) of every rank, on rank 0 in the whole run's
   /// order (empty elsewhere).
   template <class T>
@@ -69,6 +78,7 @@ class Domain {
     const auto ids = comm_.gather(id_);
     const auto all = comm_.gather(local);
     if (!comm_.root()) return {};
+    if (all.size() != ids.size() * width) throw std::logic_error("Domain::gather: an array that is not one per point");
     std::vector<T> whole(whole_points_ * width);
     for (std::size_t k = 0; k < ids.size(); ++k)
       for (std::size_t c = 0; c < width; ++c) whole[ids[k] * width + c] = all[k * width + c];

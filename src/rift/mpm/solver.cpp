@@ -622,13 +622,18 @@ void Solver<D>::move_cracks(const Model<D>& m, double dt) {
       const double eps = 1e-6 * g.cell_size;
       // a crack particle's three velocities take three stencils and their crossing tests against the
       // crack: the work of some tens of grid-node updates, so a few dozen particles fill a team
+      // (a distributed run: the rank whose slab holds a position, whose grid holds its stencil, takes
+      // its velocity, the others 0, and the ranks add them up, so all move the crack alike)
+      auto mine = [&](const Vec<2>& x) { return !domain_ || domain_->owns(g, x); };
 #pragma omp parallel for if(rift::parallel::worth_a_team(n * 32)) schedule(dynamic, 4)
       for (std::size_t k = 0; k < n; ++k) {
         const Vec<2> above = cracks_.side_point(c, k, crack.above[k], 1, eps), below = cracks_.side_point(c, k, crack.below[k], 2, eps);
-        v_mid[k] = velocity(crack.points[k], nullptr);
-        v_up[k] = velocity(crack.above[k], &above);
-        v_down[k] = velocity(crack.below[k], &below);
+        v_mid[k] = mine(crack.points[k]) ? velocity(crack.points[k], nullptr) : Vec<2>{};
+        v_up[k] = mine(crack.above[k]) ? velocity(crack.above[k], &above) : Vec<2>{};
+        v_down[k] = mine(crack.below[k]) ? velocity(crack.below[k], &below) : Vec<2>{};
       }
+      if (domain_)
+        for (auto* v : {&v_mid, &v_up, &v_down}) domain_->communicator().sum(v->data()->data(), 2 * n);
       for (std::size_t k = 0; k < n; ++k) {
         crack.points[k] = crack.points[k] + dt * v_mid[k];
         crack.above[k] = crack.above[k] + dt * v_up[k];

@@ -49,6 +49,16 @@ class Solver {
   void visit_state(A& a) {
     a("solver.cracks", cracks_.cracks());
   }
+  /// A distributed run: the cracks rank 0 grew (every rank holds them all).
+  void set_cracks(CrackSet cracks) { cracks_ = std::move(cracks); }
+  /// Rank 0's solver of the whole model in a distributed run, for the crack-tip integrals
+  /// (j_integral.hpp): the cracks and the points' accelerations and velocity gradients of the last
+  /// step, gathered from the ranks.
+  void mirror(const CrackSet& cracks, std::vector<Vec<D>> acceleration, std::vector<Tensor<D>> velocity_gradient) {
+    cracks_ = cracks;
+    acceleration_ = std::move(acceleration);
+    velocity_gradient_ = std::move(velocity_gradient);
+  }
   /// Crack propagation: a new crack particle at x beyond the given tip.
   void extend_crack(const CrackTip& tip, const Vec<2>& x) { cracks_.extend(tip, x); }
   /// With cracks: each material point's acceleration and velocity gradient in the last step (for

@@ -107,6 +107,11 @@ void Communicator::broadcast(double* values, std::size_t count) const {
   if (started && size_ > 1) MPI_Bcast(values, static_cast<int>(count), MPI_DOUBLE, 0, MPI_COMM_WORLD);
 }
 
+void Communicator::broadcast_bytes(void* bytes, std::size_t count) const {
+  if (count > static_cast<std::size_t>(std::numeric_limits<int>::max())) throw std::runtime_error("a broadcast of more than 2 GiB");
+  if (started && size_ > 1) MPI_Bcast(bytes, static_cast<int>(count), MPI_BYTE, 0, MPI_COMM_WORLD);
+}
+
 void Communicator::barrier() const {
   if (started && size_ > 1) MPI_Barrier(MPI_COMM_WORLD);
 }

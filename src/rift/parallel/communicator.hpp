@@ -59,6 +59,15 @@ class Communicator {
   void exchange(std::vector<Parcel>& parcels) const;
   /// Rank 0's values on every rank.
   void broadcast(double* values, std::size_t count) const;
+  /// Rank 0's array on every rank (its size too).
+  template <class T>
+  void broadcast(std::vector<T>& values) const {
+    if (!distributed()) return;
+    double size = double(values.size());
+    broadcast(&size, 1);
+    values.resize(static_cast<std::size_t>(size));
+    broadcast_bytes(static_cast<void*>(values.data()), values.size() * sizeof(T));
+  }
   void barrier() const;
 
  private:
@@ -76,6 +85,7 @@ class Communicator {
                  &place);
     return all;
   }
+  void broadcast_bytes(void* bytes, std::size_t count) const;
   /// The gathers' bytes: place(context, total) gives the receiving rank where they go.
   void gather_bytes(const void* local, std::size_t bytes, bool everyone, void* (*place)(void*, std::size_t), void* context) const;
   Communicator(int rank, int size) : rank_(rank), size_(size) {}

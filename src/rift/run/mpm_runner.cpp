@@ -179,12 +179,31 @@ class CrackTipHistory {
   std::vector<mpm::CrackTip> tips_;
 };
 
+/// Rank 0's cracks, on every rank of a distributed run (every rank holds them all).
+mpm::CrackSet broadcast_cracks(const parallel::Communicator& comm, const mpm::CrackSet& cracks) {
+  std::vector<double> flat;  // per crack: its particle count, then the particles' and surfaces' coordinates
+  for (const auto& c : cracks.cracks()) {
+    flat.push_back(double(c.points.size()));
+    for (const auto* v : {&c.points, &c.above, &c.below})
+      for (const auto& x : *v) flat.insert(flat.end(), x.begin(), x.end());
+  }
+  comm.broadcast(flat);
+  mpm::CrackSet out = cracks;
+  std::size_t at = 0;
+  for (auto& c : out.cracks()) {
+    const auto n = static_cast<std::size_t>(flat[at++]);
+    for (auto* v : {&c.points, &c.above, &c.below}) {
+      v->resize(n);
+      for (auto& x : *v) x = {flat[at], flat[at + 1]}, at += 2;
+    }
+  }
+  out.update_bounds();
+  return out;
+}
+
 template <int D>
 Result run_dim(const scene::Scene& s, const Options& o) {
   const auto& comm = parallel::Communicator::world();
-  if (comm.distributed() && !s.cracks.empty())
-    throw SceneError(s.cracks.front().where, "cracks",
-                     "explicit cracks in the material point method run on one rank for now; run this scene on one rank");
   MpmRun<D> r(s);  // every scene error is raised here, before anything is written
   auto& m = r.model;
   const std::size_t points = m.particles.size();  // the whole run's
@@ -221,14 +240,43 @@ Result run_dim(const scene::Scene& s, const Options& o) {
   // run's checkpoint first, so it continues on any number of ranks)
   std::optional<mpm::Domain<D>> domain;
   std::optional<mpm::Model<D>> whole;  // rank 0's, for the checkpoints of a distributed run
+  // and for its crack tips: rank 0 takes J, K and crack growth on the whole model, with a solver of
+  // its own holding the cracks and the points' last accelerations and velocity gradients
+  std::optional<mpm::Solver<D>> whole_solver;
   if (comm.distributed()) {
     domain.emplace(comm, mpm::cut_into_slabs<D>(m, comm.size(), s.file), m);
     auto part = domain->part_of(m);
     r.solver.distribute(m, part, *domain);
     if (comm.root()) whole.emplace(std::move(m));
     m = std::move(part);
+    if (comm.root() && cracked) whole_solver.emplace(s, *whole);
   }
   const mpm::Domain<D>* in = domain ? &*domain : nullptr;
+  // a distributed run's failure found by one rank (a point off the grid; J not finite at a tip)
+  // while the others wait for it in an exchange ends them all
+  auto on_this_rank = [&](auto&& f) {
+    if (!domain) return f();
+    try {
+      f();
+    } catch (const PhysicsError& e) {
+      std::fprintf(stderr, "rift: run stopped (rank %d): %s\n", comm.rank(), e.what());
+      parallel::MpiSession::abort(1);
+    }
+  };
+  // rank 0's whole model and solver as they stand after `step` (collective; once a step)
+  long mirrored = -1;
+  auto mirror = [&](long step) {
+    if (!domain || mirrored == step) return;
+    mirrored = step;
+    domain->gather_points(m, whole ? &*whole : nullptr);
+    domain->gather_grid(m.grid, whole ? &whole->grid : nullptr);
+    if (!cracked) return;
+    auto acceleration = domain->gather(r.solver.accelerations());
+    auto velocity_gradient = domain->gather(r.solver.velocity_gradients());
+    if (whole_solver) whole_solver->mirror(r.solver.cracks(), std::move(acceleration), std::move(velocity_gradient));
+  };
+  mpm::Model<D>& tip_model = whole ? *whole : m;
+  mpm::Solver<D>& tip_solver = whole_solver ? *whole_solver : r.solver;
   if (restarted) {
     require_output_file(o, res.output_dir + "/history.csv", history_bytes);
     if (cracked) require_output_file(o, res.output_dir + "/crack_tips.csv", tip_bytes);
@@ -248,12 +296,12 @@ Result run_dim(const scene::Scene& s, const Options& o) {
     for (const auto& q : s.output.history) row.push_back(q == "kinetic_energy" ? kinetic : q == "strain_energy" ? strain : kinetic + strain);
     if (history) history->row(row);
   };
-  std::optional<CrackTipHistory> tips;
+  std::optional<CrackTipHistory> tips;  // rank 0 writes them
   if constexpr (D == 2) {
-    if (cracked) {
+    if (cracked && comm.root()) {
       const std::string path = res.output_dir + "/crack_tips.csv";
       if (restarted) tips.emplace(path, tip_list, tip_bytes, s.mpm);
-      else tips.emplace(path, m, r.solver, s.mpm);
+      else tips.emplace(path, tip_model, tip_solver, s.mpm);
       res.files.push_back({"cracks", tips->path()});
     }
   }
@@ -265,26 +313,23 @@ Result run_dim(const scene::Scene& s, const Options& o) {
     // history rows at the starts of steps 1 + k steps / rows: energy at t = 0 first
     const bool sample = (step - 1) * s.output.history_count >= next_history * r.steps;
     if (sample) r.solver.measure_energy();
-    if (!domain) {
-      r.solver.step(m, r.dt);
-    } else {
-      // a point lost off the grid, or too fast for its slab, is found by its rank alone, while the
-      // others wait for it in an exchange: it ends them all
-      try {
-        r.solver.step(m, r.dt);
-      } catch (const PhysicsError& e) {
-        std::fprintf(stderr, "rift: run stopped (rank %d): %s\n", comm.rank(), e.what());
-        parallel::MpiSession::abort(1);
+    on_this_rank([&] { r.solver.step(m, r.dt); });
+    res.particle_steps += double(points);
+    if constexpr (D == 2) {
+      if (propagation && step % s.crack_growth.check_every == 0) {
+        // rank 0 grows the cracks of its whole model, and every rank takes them
+        mirror(step);
+        if (comm.root()) on_this_rank([&] { res.crack_growth_events += propagation->check(tip_model, tip_solver, step); });
+        if (domain) r.solver.set_cracks(broadcast_cracks(comm, tip_solver.cracks()));
       }
     }
-    res.particle_steps += double(points);
-    if constexpr (D == 2)
-      if (propagation) res.crack_growth_events += propagation->check(m, r.solver, step);
     if (sample) {
       const auto& e = r.solver.measured_energy();
       history_row(step - 1, e.time, e.kinetic, e.strain);
-      if constexpr (D == 2)
-        if (tips) tips->row(m, r.solver, step);
+      if constexpr (D == 2) {
+        if (cracked) mirror(step);
+        if (tips) on_this_rank([&] { tips->row(tip_model, tip_solver, step); });
+      }
       progress.update(step, m.time, 0.0);
       while (next_history * r.steps <= (step - 1) * s.output.history_count) ++next_history;
     }
@@ -292,9 +337,7 @@ Result run_dim(const scene::Scene& s, const Options& o) {
       write_snapshot<D>(fields, m, s, in);
       while (next_snapshot * r.steps <= step * s.output.count) ++next_snapshot;
     }
-    auto gather = [&] {
-      if (domain) domain->gather_points(m, whole ? &*whole : nullptr);
-    };
+    auto gather = [&] { mirror(step); };
     const bool stop = checkpoints.after_step(step, m.time, res, gather, [&](io::CheckpointWriter& w) {
       history_bytes = history->bytes();
       if (tips) tip_list = tips->tips(), tip_bytes = tips->bytes();
