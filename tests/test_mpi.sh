@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Distributed runs (issue 6; pd/window.hpp): the same scene under `mpirun -np 1, 2, 3` writes the
-# same bytes as a plain one-rank run: every field of every snapshot (so every broken bond: damage
+# same bytes as a plain one-rank run (the ranks write each snapshot file together, MPI-IO): every field of every snapshot (so every broken bond: damage
 # is their volume share), the XDMF index and the history (energies, broken bonds, reactions,
 # probes). Scenes whose cracks run along or across the cuts between ranks: a 2D PMB plate whose
 # pre-crack grows and branches along the cut of two ranks (Ha and Bobaru 2010's set-up, coarse,

@@ -11,7 +11,9 @@ namespace rift::io {
 
 class FieldWriter {
  public:
-  FieldWriter(std::string directory, std::string stem, std::size_t particles);
+  /// together: the ranks of a distributed run write each snapshot file together (HDF5 over MPI-IO),
+  /// each its own rows (write_rows); every rank then makes every call, and rank 0 the XDMF index.
+  FieldWriter(std::string directory, std::string stem, std::size_t particles, bool together = false);
   ~FieldWriter();
   FieldWriter(const FieldWriter&) = delete;
   FieldWriter& operator=(const FieldWriter&) = delete;
@@ -19,6 +21,13 @@ class FieldWriter {
   void begin_snapshot(double time);
   /// A field with `components` values per particle (1 = scalar, 3 = vector), row-major.
   void write(const std::string& name, const std::vector<double>& values, int components);
+  /// Particles [first, first + count) of the whole run.
+  struct Rows {
+    std::size_t first = 0, count = 0;
+  };
+  /// This rank's part of a field: `values` holds the rows of `rows`, one after the other (written
+  /// together: every rank calls it with its own).
+  void write_rows(const std::string& name, const std::vector<double>& values, int components, const std::vector<Rows>& rows);
   void end_snapshot();
   /// The snapshots' files: stem_??????.h5 in the directory.
   std::string h5_pattern() const { return directory_ + "/" + stem_ + "_??????.h5"; }
@@ -52,6 +61,8 @@ class FieldWriter {
   void write_xdmf() const;
   std::string directory_, stem_, xdmf_path_;
   std::size_t particles_;
+  bool together_ = false;
+  bool index_ = true;  // this rank writes the XDMF index and names the files (rank 0)
   long long file_ = -1;
   std::vector<Snapshot> snapshots_;
 };

@@ -91,16 +91,21 @@ Plan check_dim(const scene::Scene& s, std::ostream& out) {
   return plan;
 }
 
-/// A snapshot of the fields; a distributed run's rank 0 writes the whole run's, in its order.
+/// A snapshot of the fields; the ranks of a distributed run write it together, each its points'
+/// rows (runs of consecutive numbers of the whole run).
 template <int D>
 void write_snapshot(io::FieldWriter& w, const mpm::Model<D>& m, const scene::Scene& s, const mpm::Domain<D>* domain) {
   const auto& ps = m.particles;
   const std::size_t n = ps.size();
-  const bool root = !domain || domain->communicator().root();
+  std::vector<io::FieldWriter::Rows> rows;
+  if (domain)
+    for (auto id : domain->id()) {
+      if (rows.empty() || rows.back().first + rows.back().count != id) rows.push_back({id, 0});
+      ++rows.back().count;
+    }
   auto write = [&](const std::string& name, const std::vector<double>& values, int components) {
-    if (!domain) return w.write(name, values, components);
-    auto all = domain->gather(values, static_cast<std::size_t>(components));
-    if (root) w.write(name, all, components);
+    if (domain) w.write_rows(name, values, components, rows);
+    else w.write(name, values, components);
   };
   auto vec = [&](auto get) {
     std::vector<double> out(3 * n, 0.0);
@@ -108,7 +113,7 @@ void write_snapshot(io::FieldWriter& w, const mpm::Model<D>& m, const scene::Sce
       for (int a = 0; a < D; ++a) out[3 * p + a] = get(p, a);
     return out;
   };
-  if (root) w.begin_snapshot(m.time);
+  w.begin_snapshot(m.time);
   write("position", vec([&](std::size_t p, int a) { return ps.position[p][a]; }), 3);
   for (const auto& f : s.output.fields) {
     if (f == "displacement") write(f, vec([&](std::size_t p, int a) { return ps.position[p][a] - ps.reference_position[p][a]; }), 3);
@@ -134,7 +139,7 @@ void write_snapshot(io::FieldWriter& w, const mpm::Model<D>& m, const scene::Sce
       write(f, out, 1);
     }
   }
-  if (root) w.end_snapshot();
+  w.end_snapshot();
 }
 
 /// Per-tip fracture parameters at the history rows of a cracked 2D run (crack_tips.csv).
@@ -209,7 +214,7 @@ Result run_dim(const scene::Scene& s, const Options& o) {
   const std::size_t points = m.particles.size();  // the whole run's
   Result res;
   res.output_dir = o.output_dir.empty() ? "results/" + s.name : o.output_dir;
-  io::FieldWriter fields(res.output_dir, "fields", points);
+  io::FieldWriter fields(res.output_dir, "fields", points, comm.distributed());
   res.fields_h5 = fields.h5_pattern();
   res.fields_xdmf = fields.xdmf_path();
   const bool cracked = D == 2 && !s.cracks.empty();
@@ -282,6 +287,7 @@ Result run_dim(const scene::Scene& s, const Options& o) {
     if (cracked) require_output_file(o, res.output_dir + "/crack_tips.csv", tip_bytes);
   }
   if (comm.root()) std::filesystem::create_directories(res.output_dir);
+  comm.barrier();  // before the ranks open the snapshot files together
   std::vector<std::string> columns{"time", "step"};
   columns.insert(columns.end(), s.output.history.begin(), s.output.history.end());
   std::optional<io::History> history;  // rank 0 writes the history

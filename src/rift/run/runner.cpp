@@ -150,20 +150,26 @@ std::vector<double> vector_field(const pd::Model<D>& m, const std::vector<Vec<D>
   return out;
 }
 
-/// A snapshot of the fields; a distributed run's rank 0 writes the whole run's (run/distributed.hpp).
+/// A snapshot of the fields; the ranks of a distributed run write it together, each its owned
+/// particles' rows (first_particle: the whole run's number of the window's particle 0).
 template <int D>
-void write_snapshot(io::FieldWriter& fields, pd::Model<D>& m, const scene::Scene& s, const parallel::Communicator& comm) {
+void write_snapshot(io::FieldWriter& fields, pd::Model<D>& m, const scene::Scene& s, const parallel::Communicator& comm,
+                    std::size_t first_particle) {
   pd::update_damage<D>(m);
-  struct Gathered {
+  struct Together {
     io::FieldWriter& fields;
     const pd::Model<D>& m;
     const parallel::Communicator& comm;
+    std::size_t first_particle;
     void write(const std::string& name, const std::vector<double>& values, int components) {
-      auto all = gather_owned<D>(comm, m, values, static_cast<std::size_t>(components));
-      if (comm.root()) fields.write(name, all, components);
+      if (!comm.distributed()) return fields.write(name, values, components);
+      const auto width = static_cast<std::size_t>(components);
+      const auto first = static_cast<std::ptrdiff_t>(m.owned_begin * width), last = static_cast<std::ptrdiff_t>(m.owned_last() * width);
+      fields.write_rows(name, std::vector<double>(values.begin() + first, values.begin() + last), components,
+                        {{first_particle + m.owned_begin, m.owned_last() - m.owned_begin}});
     }
-  } w{fields, m, comm};
-  if (comm.root()) fields.begin_snapshot(m.time);
+  } w{fields, m, comm, first_particle};
+  fields.begin_snapshot(m.time);
   w.write("position", vector_field<D>(m, m.position, false), 3);
   for (const auto& f : s.output.fields) {
     if (f == "displacement") w.write(f, vector_field<D>(m, m.position, true), 3);
@@ -188,7 +194,7 @@ void write_snapshot(io::FieldWriter& fields, pd::Model<D>& m, const scene::Scene
       w.write(f, e, 1);
     }
   }
-  if (comm.root()) fields.end_snapshot();
+  fields.end_snapshot();
 }
 
 /// first_particle: the whole run's number of the model's particle 0 (a distributed run's window).
@@ -234,7 +240,7 @@ Result run_dim(const scene::Scene& s, const Options& o) {
   };
   Result res;
   res.output_dir = o.output_dir.empty() ? "results/" + s.name : o.output_dir;
-  io::FieldWriter fields(res.output_dir, "fields", particles);
+  io::FieldWriter fields(res.output_dir, "fields", particles, comm.distributed());
   res.fields_h5 = fields.h5_pattern();
   res.fields_xdmf = fields.xdmf_path();
   const bool relaxation = s.solver.kind == scene::SolverKind::dynamic_relaxation;
@@ -279,6 +285,7 @@ Result run_dim(const scene::Scene& s, const Options& o) {
     if (dr) dr.emplace(m);  // its fictitious densities from the window's rows (an owned row is whole)
   }
   if (comm.root()) std::filesystem::create_directories(res.output_dir);
+  comm.barrier();  // before the ranks open the snapshot files together
   std::vector<std::string> columns{"time", "step"};
   columns.insert(columns.end(), s.output.history.begin(), s.output.history.end());
   for (std::size_t k = 0; k < probes.size(); ++k) columns.push_back("damage_probe_" + std::to_string(k));
@@ -394,7 +401,7 @@ Result run_dim(const scene::Scene& s, const Options& o) {
   };
   if (s.solver.kind == scene::SolverKind::explicit_dynamics) {
     if (!restarted) {
-      write_snapshot<D>(fields, m, s, comm);
+      write_snapshot<D>(fields, m, s, comm, first_particle);
       history_row(0, {});
     }
     for (long step = res.first_step; step <= p.steps; ++step) {
@@ -411,7 +418,7 @@ Result run_dim(const scene::Scene& s, const Options& o) {
           while (next_history * p.steps <= step * s.output.history_count) ++next_history;
         }
         if (snap) {
-          write_snapshot<D>(fields, m, s, comm);
+          write_snapshot<D>(fields, m, s, comm, first_particle);
           while (next_snapshot * p.steps <= step * s.output.count) ++next_snapshot;
         }
       }
@@ -419,7 +426,7 @@ Result run_dim(const scene::Scene& s, const Options& o) {
     }
   } else {
     if (!dr) dr.emplace(m);
-    if (!restarted) write_snapshot<D>(fields, m, s, comm);
+    if (!restarted) write_snapshot<D>(fields, m, s, comm, first_particle);
     for (long step = res.first_step; step <= p.steps; ++step) {
       const double t = s.solver.end_time * double(step) / double(p.steps);
       auto r = p.relax(*dr, s.solver, t);
@@ -429,7 +436,7 @@ Result run_dim(const scene::Scene& s, const Options& o) {
       {
         PhaseClock output_clock(Phase::output);
         auto e = history_row(step, extra);
-        write_snapshot<D>(fields, m, s, comm);
+        write_snapshot<D>(fields, m, s, comm, first_particle);
         progress.update(step, m.time, e.broken_fraction, true);
       }
       if (!r.converged && !o.quiet && comm.root()) {  // rank 0 speaks for a distributed run
