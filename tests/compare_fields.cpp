@@ -24,6 +24,7 @@ namespace {
 struct Worst {
   std::string name;
   double error = 0.0, scale = 0.0;
+  std::size_t worst_at = 0;  // the value that differs most, in its snapshot's dataset (row-major)
   // a column of a CSV file, printed to 10 significant digits (history.csv, io/history.cpp) or 9
   // (crack_tips.csv; its angle 6): one unit in the last digit, 1e-9 or 1e-8 of the value, is the best it can agree
   double printed = 0.0;
@@ -33,8 +34,8 @@ struct Worst {
     if (a.size() != b.size()) error = INFINITY;
     for (std::size_t k = 0; k < std::min(a.size(), b.size()); ++k) {
       scale = std::max(scale, std::abs(a[k]));
-      const double d = std::abs(a[k] - b[k]);
-      error = std::max(error, std::isnan(d) ? INFINITY : d);
+      const double d = std::isnan(a[k] - b[k]) ? INFINITY : std::abs(a[k] - b[k]);
+      if (d > error) error = d, worst_at = k;
     }
   }
 };
@@ -147,6 +148,7 @@ int main(int argc, char** argv) {
       char name[64];
       std::snprintf(name, sizeof name, "/fields_%06zu.h5", snapshots);
       if (!std::filesystem::exists(a + name)) break;
+      if (!std::filesystem::exists(b + name)) throw std::runtime_error(b + name + " is missing");
       compare_h5(a + name, b + name, fields);
     }
     char next[64];
@@ -157,8 +159,8 @@ int main(int argc, char** argv) {
     bool ok = true;
     for (const auto& w : fields) {
       if (w.agrees(tolerance)) continue;
-      std::printf("%s vs %s: %s differs by %.3g (its largest value %.3g, tolerance %.3g relative)\n", a.c_str(), b.c_str(),
-                  w.name.c_str(), w.error, w.scale, tolerance);
+      std::printf("%s vs %s: %s differs by %.3g at value %zu (its largest value %.3g, tolerance %.3g relative)\n", a.c_str(), b.c_str(),
+                  w.name.c_str(), w.error, w.worst_at, w.scale, tolerance);
       ok = false;
     }
     std::printf("%s vs %s: %zu snapshots and the history %s to %g relative\n", a.c_str(), b.c_str(), snapshots, ok ? "agree" : "do not agree",

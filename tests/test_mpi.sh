@@ -229,14 +229,19 @@ history_rows = 20
 SCENE
 for scene in mpm_cantilever mpm_disks mpm_block; do
   "$rift" run "$tmp/$scene.toml" -o "$tmp/$scene-serial" -q > /dev/null
-  for np in 2 3; do
+  for np in 1 2 3; do
     out="$tmp/$scene-np$np"
     "${mpirun[@]}" -np "$np" "$rift" run "$tmp/$scene.toml" -o "$out" -q > "$out.log" 2>&1 || { cat "$out.log"; fail "$scene: mpirun -np $np"; }
     "$compare_fields" "$tmp/$scene-serial" "$out" 1e-12 || fail "$scene on $np ranks differs from the one-rank run"
-    grep -q "load balance over $np ranks" "$out.log" || fail "$scene: no load-balance report on $np ranks"
+    [ "$np" -eq 1 ] || grep -q "load balance over $np ranks" "$out.log" || fail "$scene: no load-balance report on $np ranks"
   done
-  echo "ok: $scene on 2 and 3 ranks: every field of every snapshot, and the history, within 1e-12 of the one-rank run's"
+  echo "ok: $scene on 1, 2 and 3 ranks: every field of every snapshot, and the history, within 1e-12 of the one-rank run's"
 done
+# --cut-along: the block (cut along z, its longest axis, above) cut along x on 2 ranks
+"${mpirun[@]}" -np 2 "$rift" run "$tmp/mpm_block.toml" -o "$tmp/mpm_block-x" -q --cut-along x > "$tmp/mpm_block-x.log" 2>&1 ||
+  { cat "$tmp/mpm_block-x.log"; fail "mpm_block: --cut-along x"; }
+grep -q "slabs of cells along x" "$tmp/mpm_block-x.log" || fail "mpm_block: --cut-along x did not cut along x"
+"$compare_fields" "$tmp/mpm_block-serial" "$tmp/mpm_block-x" 1e-12 || fail "mpm_block cut along x differs from the one-rank run"
 # the disks must have met (else the test shows nothing about contact across a cut): strain energy
 awk -F, 'NR > 1 && $4 > s { s = $4 } END { exit !(s > 1e-4) }' "$tmp/mpm_disks-serial/history.csv" || fail "mpm_disks: the disks did not collide"
 # explicit cracks (CRAMP) across the cuts: the DCB's crack runs along x, the axis cut into slabs, and
@@ -282,15 +287,16 @@ echo "ok: mpm_disks and mpm_dcb: a checkpoint of 2 ranks continues on 3, within 
 # refused on more than one rank, exit status 2, nothing written: relaxation of a body held by
 # tractions alone (the plate), MPM
 sed -e 's/type = "explicit"/type = "dynamic_relaxation"\nload_steps = 2/' "$tmp/plate.toml" > "$tmp/relax.toml"
-refused() {  # scene file, what the message says, ranks (2 unless given)
-  local name status np="${3:-2}"
-  name=$(basename "$1" .toml)
+refused() {  # scene file, what the message says, ranks (2 unless given), more options of `rift run`
+  local scene="$1" message="$2" np="${3:-2}" name status
+  shift $(($# < 3 ? $# : 3))
+  name=$(basename "$scene" .toml)
   set +e
-  "${mpirun[@]}" -np "$np" "$rift" run "$1" -o "$tmp/$name-out" -q > "$tmp/$name.log" 2>&1
+  "${mpirun[@]}" -np "$np" "$rift" run "$scene" -o "$tmp/$name-out" -q "$@" > "$tmp/$name.log" 2>&1
   status=$?
   set -e
   [ "$status" -eq 2 ] || { cat "$tmp/$name.log"; fail "$name on $np ranks: exit status $status, not 2"; }
-  grep -q "$2" "$tmp/$name.log" || { cat "$tmp/$name.log"; fail "$name on $np ranks: no message \"$2\""; }
+  grep -q "$message" "$tmp/$name.log" || { cat "$tmp/$name.log"; fail "$name on $np ranks: no message \"$message\""; }
   [ ! -e "$tmp/$name-out" ] || fail "$name on $np ranks wrote its output directory"
 }
 refused "$tmp/relax.toml" "held by tractions alone"
@@ -298,6 +304,9 @@ refused "$tmp/relax.toml" "held by tractions alone"
 sed -e 's/cell_size = 0.025/cell_size = 0.25/' -e 's/particles_per_cell = 2/particles_per_cell = 4/' \
   "$examples/mpm_colliding_disks.toml" > "$tmp/coarse_disks.toml"
 refused "$tmp/coarse_disks.toml" "a rank needs 4 of them" 3
+# --cut-along: a peridynamic run is cut across its slowest axis alone; a 2D grid has no z
+refused "$tmp/bar.toml" "cut across its lattice's slowest axis" 2 --cut-along x
+refused "$tmp/mpm_disks.toml" "has no z axis" 2 --cut-along z
 echo "ok: what a distributed run cannot take is refused with exit status 2"
 
 # contact is found among a rank's ghosts: a plate squeezed until its layers of two ranks may touch

@@ -34,7 +34,7 @@ int rift_main(int argc, char** argv) {
   CLI::App app{"rift: fracture of solids with peridynamics"};
   app.set_version_flag("--version", std::string("rift ") + rift::version);
   app.require_subcommand(1);
-  std::string scene_path, output_dir, restart;
+  std::string scene_path, output_dir, restart, cut_along;
   int threads = 0;
   bool quiet = false;
   auto* run = app.add_subcommand("run", "Run a scene and write its results");
@@ -43,6 +43,10 @@ int rift_main(int argc, char** argv) {
   run->add_option("--threads", threads, "OpenMP threads (default: all cores)")->check(CLI::PositiveNumber);
   run->add_flag("-q,--quiet", quiet, "No progress output");
   run->add_option("--restart", restart, "Continue the run from this checkpoint (written by [checkpoint] or on SIGTERM/SIGINT)");
+  run->add_option("--cut-along", cut_along,
+                  "mpirun: the axis across which the ranks' slabs are cut (default: the material point grid's longest axis; "
+                  "peridynamics: the lattice's slowest axis, z in 3D and y in 2D, the only one it takes)")
+      ->check(CLI::IsMember({"x", "y", "z"}));
   auto* check = app.add_subcommand("check", "Validate a scene and print particles, bonds, memory, time step and outputs");
   check->add_option("scene", scene_path, "Scene file (TOML)")->required();
   try {
@@ -58,6 +62,7 @@ int rift_main(int argc, char** argv) {
       return 0;
     }
     rift::run::Options options{output_dir, threads, quiet, restart};
+    if (!cut_along.empty()) options.cut_axis = cut_along[0] - 'x';
     rift::run::catch_stop_signals();
     auto r = rift::run::run(scene, options);
     if (r.stopped) {

@@ -80,17 +80,24 @@ std::pair<long, long> Slabs::node_layers(int r, long nodes) const {
 }
 
 template <int D>
-Slabs cut_into_slabs(const Model<D>& whole, int ranks, const std::string& file) {
+Slabs cut_into_slabs(const Model<D>& whole, int ranks, const std::string& file, int axis) {
   const auto& g = whole.grid;
+  const char* names = "xyz";
+  if (axis >= D)
+    throw SceneError({file, 0, 0}, "--cut-along", fmt::format("a {}D scene has no {} axis; give x{}", D, names[axis], D == 3 ? ", y or z" : " or y"));
   Slabs slabs;
-  slabs.axis = D - 1;
-  for (int a = D - 2; a >= 0; --a)
-    if (g.nodes[a] > g.nodes[slabs.axis]) slabs.axis = a;
+  slabs.axis = axis;
+  if (axis < 0) {
+    slabs.axis = D - 1;
+    for (int a = D - 2; a >= 0; --a)
+      if (g.nodes[a] > g.nodes[slabs.axis]) slabs.axis = a;
+  }
   const long cells = g.nodes[slabs.axis] - 1;
   if (cells < Slabs::min_cells * ranks)
     throw SceneError({file, 0, 0}, "mpirun -np " + std::to_string(ranks),
-                     fmt::format("the grid has {} cells along its longest axis and a rank needs {} of them; run this scene on at most {} ranks",
-                                 cells, Slabs::min_cells, std::max(1L, cells / Slabs::min_cells)));
+                     fmt::format("the grid has {} cells along {} and a rank needs {} of them; run this scene on at most {} ranks{}", cells,
+                                 names[slabs.axis], Slabs::min_cells, std::max(1L, cells / Slabs::min_cells),
+                                 axis < 0 ? "" : " or cut it along another axis"));
   // points per layer of cells, then cuts where the running count passes each rank's share
   std::vector<std::size_t> per_layer(static_cast<std::size_t>(cells), 0);
   for (const auto& x : whole.particles.position) {
@@ -324,7 +331,7 @@ std::string Domain<D>::load_balance(const Model<D>& part, double loop_seconds) c
 }
 
 #define RIFT_INSTANTIATE(D)                                                            \
-  template Slabs cut_into_slabs<D>(const Model<D>&, int, const std::string&);          \
+  template Slabs cut_into_slabs<D>(const Model<D>&, int, const std::string&, int);     \
   template class Domain<D>;
 RIFT_INSTANTIATE(2)
 RIFT_INSTANTIATE(3)

@@ -37,10 +37,11 @@ struct Slabs {
   std::pair<long, long> node_layers(int r, long nodes) const;
 };
 
-/// Slabs across the axis with the most cells, each holding about the same number of material
-/// points; a SceneError (for `file`) when the grid has fewer than Slabs::min_cells cells per rank.
+/// Slabs across `axis` (-1: the axis with the most cells), each holding about the same number of
+/// material points; a SceneError (for `file`) when the grid has fewer than Slabs::min_cells cells
+/// per rank along it.
 template <int D>
-Slabs cut_into_slabs(const Model<D>& whole, int ranks, const std::string& file);
+Slabs cut_into_slabs(const Model<D>& whole, int ranks, const std::string& file, int axis = -1);
 
 template <int D>
 class Domain {

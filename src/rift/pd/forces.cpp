@@ -23,7 +23,12 @@ void compute_forces(Model<D>& m, Contact<D>* contact, double history_dt) {
   using I = scene::Influence;
   PhaseClock clock(Phase::bond_passes);
   apply_interface_law<D>(m);  // bonds across pre-existing fractures, with the last stresses
-  if (!m.failure_strain.empty()) update_failure_strain<D>(m);  // what the first pass breaks on
+  if (!m.failure_strain.empty()) {
+    update_failure_strain<D>(m);  // what the first pass breaks on
+    // a bond between two ranks reads both ends' strains: the ghosts' from their owners, whose
+    // rows are whole (a ghost's row is cut to the window)
+    m.refresh_ghosts(m.failure_strain, stress_components<D>);
+  }
   // each state-based body's rows of bond states as its dilatation pass left them, for its force
   // pass (bond_runs.hpp RowStates: the states read once a step)
   std::vector<RowStates> rows(m.bodies.size());

@@ -80,8 +80,8 @@ struct Model {
   std::size_t size() const { return position.size(); }
   std::size_t owned_last() const { return std::min(owned_end, size()); }
   /// The ghosts' copies of a field of doubles or vectors, from their owners (nothing on one rank).
-  void refresh_ghosts(std::vector<double>& field) const {
-    if (ghosts && !field.empty()) ghosts->refresh(field.data(), 1);
+  void refresh_ghosts(std::vector<double>& field, std::size_t width = 1) const {
+    if (ghosts && !field.empty()) ghosts->refresh(field.data(), width);
   }
   void refresh_ghosts(std::vector<Vec<D>>& field) const {
     if (ghosts && !field.empty()) ghosts->refresh(field.data()->data(), D);

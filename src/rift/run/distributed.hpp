@@ -10,6 +10,7 @@
 #include "rift/pd/bond_slabs.hpp"
 #include "rift/pd/forces.hpp"
 #include "rift/pd/model.hpp"
+#include "rift/pd/normal_stress_failure.hpp"
 
 namespace rift::run {
 
@@ -60,6 +61,7 @@ void gather_model(const parallel::Communicator& comm, const pd::Model<D>& m, pd:
   gather_into<D>(comm, m, m.stretch_limit, whole ? &whole->stretch_limit : nullptr);
   gather_into<D>(comm, m, m.next_stretch_limit, whole ? &whole->next_stretch_limit : nullptr);
   gather_into<D>(comm, m, m.damage, whole ? &whole->damage : nullptr);
+  gather_into<D>(comm, m, m.failure_strain, whole ? &whole->failure_strain : nullptr, pd::stress_components<D>);
   const pd::Bonds& b = m.bonds;
   pd::Bonds* w = whole ? &whole->bonds : nullptr;
   {

@@ -249,7 +249,7 @@ Result run_dim(const scene::Scene& s, const Options& o) {
   // its own holding the cracks and the points' last accelerations and velocity gradients
   std::optional<mpm::Solver<D>> whole_solver;
   if (comm.distributed()) {
-    domain.emplace(comm, mpm::cut_into_slabs<D>(m, comm.size(), s.file), m);
+    domain.emplace(comm, mpm::cut_into_slabs<D>(m, comm.size(), s.file, o.cut_axis), m);
     auto part = domain->part_of(m);
     r.solver.distribute(m, part, *domain);
     if (comm.root()) whole.emplace(std::move(m));

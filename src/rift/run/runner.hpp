@@ -17,6 +17,9 @@ struct Options {
   bool quiet = false;
   std::string restart;     // a checkpoint to continue from (io/checkpoint.hpp); empty: from the start
   long stop_after_step = 0;  // tests: stop after this step as a stop signal would (checkpoint, then return); 0: never
+  /// mpirun: the axis (0, 1, 2: x, y, z) across which the ranks' slabs are cut; -1: chosen (material
+  /// points: the grid's longest; peridynamics: the lattice's slowest, the only one it takes)
+  int cut_axis = -1;
 };
 
 struct Plan {

@@ -51,7 +51,12 @@ struct Simulation {
   /// `mpirun -np N`: keeps this rank's window of the model (pd/window.hpp) and of the loads, its
   /// ghosts refreshed by a halo exchange. Raises a SceneError (before anything is written) for
   /// what a distributed run cannot take yet.
-  void distribute(const scene::Scene& s, const parallel::Communicator& comm) {
+  /// cut_axis: Options::cut_axis (-1, or the lattice's slowest axis: the layers are contiguous in
+  /// the particles' numbering, which keeps the run bitwise the one-rank run's).
+  void distribute(const scene::Scene& s, const parallel::Communicator& comm, int cut_axis = -1) {
+    if (cut_axis >= 0 && cut_axis != D - 1)
+      throw SceneError({s.file, 0, 0}, "--cut-along", std::string("a peridynamic run is cut across its lattice's slowest axis, ") +
+                                                          (D == 3 ? "z" : "y") + ", alone (its layers of particles are ranges of their numbering)");
     std::string missing = pd::not_distributable<D>(model);
     const bool relaxation = s.solver.kind != scene::SolverKind::explicit_dynamics;
     if (relaxation && std::none_of(model.constrained.begin(), model.constrained.end(), [](std::uint8_t c) { return c != 0; }))
