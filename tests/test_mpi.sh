@@ -179,7 +179,7 @@ done
 # between ranks), and a 3D block (USL, APIC, uGIMP, a traction, fixed nodes) cut along z. The nodes
 # two ranks share add their points' parts in another order than one rank does, so the fields agree
 # to round-off: 1e-12 of each field's largest value in the run.
-sed -e 's/end_time = 0.05/end_time = 0.002/' "$examples/mpm_cantilever.toml" > "$tmp/mpm_cantilever.toml"
+sed -e 's/end_time = 0.05/end_time = 0.001/' "$examples/mpm_cantilever.toml" > "$tmp/mpm_cantilever.toml"
 sed -e 's/snapshots = 35/snapshots = 7/' "$examples/mpm_colliding_disks.toml" > "$tmp/mpm_disks.toml"
 cat > "$tmp/mpm_block.toml" <<'SCENE'
 [scene]

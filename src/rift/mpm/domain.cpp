@@ -15,6 +15,11 @@ namespace {
 
 using Parcel = parallel::Communicator::Parcel;
 
+/// memcpy that takes no pointer when there is nothing to copy (an empty vector's may be null).
+void copy_bytes(void* to, const void* from, std::size_t count) {
+  if (count) std::memcpy(to, from, count);
+}
+
 template <class T>
 void append(std::vector<std::byte>& out, const T& value) {
   const auto at = out.size();
@@ -164,7 +169,7 @@ Model<D> Domain<D>::part_of(const Model<D>& whole) {
     mine.reserve(id_.size());
     for (auto p : id_) mine.push_back(v[p]);
     auto& bytes = columns.emplace_back(mine.size() * sizeof(T));
-    std::memcpy(bytes.data(), mine.data(), bytes.size());
+    copy_bytes(bytes.data(), mine.data(), bytes.size());
   };
   each_member(copy, from);
   std::size_t column = 0;
@@ -172,7 +177,7 @@ Model<D> Domain<D>::part_of(const Model<D>& whole) {
     using T = typename std::decay_t<decltype(v)>::value_type;
     const auto& bytes = columns[column++];
     v.resize(bytes.size() / sizeof(T));
-    std::memcpy(static_cast<void*>(v.data()), bytes.data(), bytes.size());
+    copy_bytes(static_cast<void*>(v.data()), bytes.data(), bytes.size());
   };
   each_member(place, part.particles);
   return part;
@@ -276,7 +281,7 @@ void Domain<D>::gather_points(Model<D>& part, Model<D>* whole) const {
         using T = typename std::decay_t<decltype(v)>::value_type;
         auto all = gather(v);
         auto& bytes = columns.emplace_back(all.size() * sizeof(T));
-        std::memcpy(bytes.data(), static_cast<const void*>(all.data()), bytes.size());
+        copy_bytes(bytes.data(), static_cast<const void*>(all.data()), bytes.size());
       },
       part.particles);
   if (!whole) return;
@@ -286,7 +291,7 @@ void Domain<D>::gather_points(Model<D>& part, Model<D>* whole) const {
         using T = typename std::decay_t<decltype(v)>::value_type;
         const auto& bytes = columns[column++];
         v.resize(bytes.size() / sizeof(T));
-        std::memcpy(static_cast<void*>(v.data()), bytes.data(), bytes.size());
+        copy_bytes(static_cast<void*>(v.data()), bytes.data(), bytes.size());
       },
       whole->particles);
   whole->time = part.time;
