@@ -41,6 +41,28 @@ void each_member(F f, Particles<D>& p) {
   visit(f, p);
 }
 
+/// An array's elements as bytes, one column of a transfer of Particles between models.
+template <class T>
+std::vector<std::byte> column_of(const std::vector<T>& v) {
+  std::vector<std::byte> bytes(v.size() * sizeof(T));
+  copy_bytes(bytes.data(), static_cast<const void*>(v.data()), bytes.size());
+  return bytes;
+}
+
+/// The columns (one per member, in each_member's order) into the members of `to`.
+template <int D>
+void place_columns(const std::vector<std::vector<std::byte>>& columns, Particles<D>& to) {
+  std::size_t column = 0;
+  each_member(
+      [&](const char*, auto& v) {
+        using T = typename std::decay_t<decltype(v)>::value_type;
+        const auto& bytes = columns[column++];
+        v.resize(bytes.size() / sizeof(T));
+        copy_bytes(static_cast<void*>(v.data()), bytes.data(), bytes.size());
+      },
+      to);
+}
+
 /// Runs f on every slot of the nodes of g whose index along `axis` (the whole grid's) lies in [lo, hi],
 /// in the whole grid's order: two ranks visit the nodes they share in the same order.
 template <int D, class F>
@@ -163,23 +185,15 @@ Model<D> Domain<D>::part_of(const Model<D>& whole) {
   }
   auto& from = const_cast<Particles<D>&>(whole.particles);  // each_member() takes its members by reference; only read here
   std::vector<std::vector<std::byte>> columns;
-  auto copy = [&](const char*, auto& v) {
-    using T = typename std::decay_t<decltype(v)>::value_type;
-    std::vector<T> mine;
-    mine.reserve(id_.size());
-    for (auto p : id_) mine.push_back(v[p]);
-    auto& bytes = columns.emplace_back(mine.size() * sizeof(T));
-    copy_bytes(bytes.data(), mine.data(), bytes.size());
-  };
-  each_member(copy, from);
-  std::size_t column = 0;
-  auto place = [&](const char*, auto& v) {
-    using T = typename std::decay_t<decltype(v)>::value_type;
-    const auto& bytes = columns[column++];
-    v.resize(bytes.size() / sizeof(T));
-    copy_bytes(static_cast<void*>(v.data()), bytes.data(), bytes.size());
-  };
-  each_member(place, part.particles);
+  each_member(
+      [&](const char*, auto& v) {
+        std::decay_t<decltype(v)> mine;
+        mine.reserve(id_.size());
+        for (auto p : id_) mine.push_back(v[p]);
+        columns.push_back(column_of(mine));
+      },
+      from);
+  place_columns(columns, part.particles);
   return part;
 }
 
@@ -276,24 +290,9 @@ void Domain<D>::sum_shared_nodes(Grid<D>& g, bool force, bool contact) const {
 template <int D>
 void Domain<D>::gather_points(Model<D>& part, Model<D>* whole) const {
   std::vector<std::vector<std::byte>> columns;
-  each_member(
-      [&](const char*, auto& v) {
-        using T = typename std::decay_t<decltype(v)>::value_type;
-        auto all = gather(v);
-        auto& bytes = columns.emplace_back(all.size() * sizeof(T));
-        copy_bytes(bytes.data(), static_cast<const void*>(all.data()), bytes.size());
-      },
-      part.particles);
+  each_member([&](const char*, auto& v) { columns.push_back(column_of(gather(v))); }, part.particles);
   if (!whole) return;
-  std::size_t column = 0;
-  each_member(
-      [&](const char*, auto& v) {
-        using T = typename std::decay_t<decltype(v)>::value_type;
-        const auto& bytes = columns[column++];
-        v.resize(bytes.size() / sizeof(T));
-        copy_bytes(static_cast<void*>(v.data()), bytes.data(), bytes.size());
-      },
-      whole->particles);
+  place_columns(columns, whole->particles);
   whole->time = part.time;
 }
 
