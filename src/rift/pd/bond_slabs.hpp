@@ -115,8 +115,11 @@ template <class Row>
 void for_each_row_by_slabs(const BodyInfo& body, Row&& row) {
   const std::size_t first = body.first, last = body.last, length = body.slab_length;
   if (last <= first) return;
-  // the whole body's slabs (BodyInfo::origin): the first here may be cut short
-  const auto start = [&](std::size_t slab) { return static_cast<std::size_t>(body.origin + static_cast<std::int64_t>(slab * length)); };
+  // the whole body's slabs (BodyInfo::origin): the first here may be cut short, and start before
+  // the window's first particle (a distributed run's window, pd/window.hpp: origin < 0)
+  const auto start = [&](std::size_t slab) {
+    return static_cast<std::size_t>(std::max(body.origin + static_cast<std::int64_t>(slab * length), std::int64_t{0}));
+  };
   const std::size_t first_slab = static_cast<std::size_t>(static_cast<std::int64_t>(first) - body.origin) / length;
   const std::size_t end_slab = static_cast<std::size_t>(static_cast<std::int64_t>(last - 1) - body.origin) / length + 1;
   for (std::size_t parity = 0; parity < 2; ++parity) {

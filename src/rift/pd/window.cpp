@@ -44,10 +44,6 @@ std::string not_distributable(const Model<D>& m) {
   if (!m.crack_bonds.neighbor.empty()) return "pressurized cracks and boreholes";
   if (!m.interface_bonds.empty()) return "interfaces (pre-existing fractures)";
   if (!m.platens.empty()) return "platens";
-  // (the ghosts' strains are exchanged, forces.cpp, but the row-by-row dilatation pass of these bodies
-  // differs from one rank's in the last bits just past a cut: not bitwise yet)
-  for (const auto& b : m.bodies)
-    if (b.constants.normal_stress_failure) return "bond_failure = \"normal_stress\"";
   return {};
 }
 
