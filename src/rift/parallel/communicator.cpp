@@ -49,6 +49,11 @@ Communicator& Communicator::mutable_world() {
 
 const Communicator& Communicator::world() { return mutable_world(); }
 
+const Communicator& Communicator::one() {
+  static const Communicator alone(0, 1);
+  return alone;
+}
+
 void Communicator::sum(double* values, std::size_t count) const {
   if (started && size_ > 1) MPI_Allreduce(MPI_IN_PLACE, values, static_cast<int>(count), MPI_DOUBLE, MPI_SUM, MPI_COMM_WORLD);
 }

@@ -26,6 +26,8 @@ class MpiSession {
 class Communicator {
  public:
   static const Communicator& world();
+  /// This process alone (a rank's local work in a distributed run): no MPI call.
+  static const Communicator& one();
   int rank() const { return rank_; }
   int size() const { return size_; }
   bool root() const { return rank_ == 0; }

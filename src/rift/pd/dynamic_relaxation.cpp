@@ -1,6 +1,7 @@
 #include "rift/pd/dynamic_relaxation.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdint>
 #include <limits>
@@ -96,14 +97,15 @@ double DynamicRelaxation<D>::measure_fictitious_density(Model<D>& m, const load:
 // (2,333 without the turn); a square block turned by 0.02 rad before its in-situ stage turned on to
 // 180 degrees, where the compressive tractions pull (tests/test_in_situ_stress.cpp).
 template <int D>
-RigidAcceleration<D> rigid_acceleration(const Model<D>& m, const std::vector<double>& mass) {
+RigidAcceleration<D> rigid_acceleration(const Model<D>& m, const std::vector<double>& mass, const parallel::Communicator& comm) {
   return rigid_acceleration<D>(
       m.position, [&](std::size_t i) { return mass[i] * m.volume[i]; },
       [&](std::size_t i) {
         Vec<D> f;
         for (int k = 0; k < D; ++k) f[k] = (m.force[i][k] + m.body_force[i][k]) * m.volume[i];
         return f;
-      });
+      },
+      &comm, m.owned_begin, m.owned_last() - m.owned_begin);
 }
 
 template <int D>
@@ -116,17 +118,20 @@ RelaxationResult DynamicRelaxation<D>::relax(Model<D>& m, const load::Boundaries
   for (auto& v : m.velocity) v = Vec<D>{};
   std::vector<Vec<D>> previous(n);  // F^{n-1} / lambda
   RelaxationResult result;
+  // sums over the owned particles; a distributed run's ranks add each other's block sums in the
+  // one-rank order (ordered_sum.hpp), so the damping and the residual are its bits
+  const auto& comm = parallel::Communicator::world();
+  const bool distributed = m.ghosts != nullptr;
+  const std::size_t owned = m.owned_last() - m.owned_begin;
+  auto sum_over = [&](auto&& f) { return distributed ? parallel::ordered_sums<4>(comm, m.owned_begin, owned, f) : parallel::ordered_sums<4>(n, f); };
   auto squared_load = [&] {  // ||external force||^2
-    double sum = 0.0;
-    for (std::size_t i = 0; i < n; ++i) sum += dot<D>(m.body_force[i], m.body_force[i]) * m.volume[i] * m.volume[i];
-    return sum;
+    return sum_over([&](std::size_t i, std::array<double, 4>& acc) { acc[0] += dot<D>(m.body_force[i], m.body_force[i]) * m.volume[i] * m.volume[i]; })[0];
   };
   double load_norm = squared_load();
   // held by tractions alone, no component of any particle prescribed: no rigid motion
-  // (rigid_acceleration; a distributed run, pd/window.hpp, has a constrained one somewhere)
-  const auto& comm = parallel::Communicator::world();
-  const bool distributed = m.ghosts != nullptr;
-  const bool free_body = !distributed && std::none_of(m.constrained.begin(), m.constrained.end(), [](std::uint8_t c) { return c != 0; });
+  // (rigid_acceleration; a distributed run, pd/window.hpp: on no rank)
+  const bool held_here = std::any_of(m.constrained.begin(), m.constrained.end(), [](std::uint8_t c) { return c != 0; });
+  const bool free_body = !(distributed ? comm.any(held_here) : held_here);
   const std::vector<std::uint8_t> on_platen = platen_components(m);
   // the displacement of Rayleigh's quotient: from the reference, or from where this call started
   std::vector<Vec<D>> start;
@@ -142,14 +147,11 @@ RelaxationResult DynamicRelaxation<D>::relax(Model<D>& m, const load::Boundaries
       loads.apply_body_forces(m, t);
       load_norm = squared_load();
     }
-    const RigidAcceleration<D> rigid = free_body ? rigid_acceleration<D>(m, fictitious_density_) : RigidAcceleration<D>{};
+    const RigidAcceleration<D> rigid = free_body ? rigid_acceleration<D>(m, fictitious_density_, comm) : RigidAcceleration<D>{};
     // U^T K U with the local diagonal stiffness K_ii = -(F^n - F^{n-1}) / (lambda V^{n-1/2}) (eq. 12), U^T U,
     // squared residual of the free components and squared reactions of the constrained ones
     // (a platen's particle carries the plate's reaction; the plate's own residual is its net force)
-    // over the owned particles; a distributed run's ranks add each other's block sums in the
-    // one-rank order (ordered_sum.hpp), so the damping and the residual are its bits
-    const std::size_t owned = m.owned_last() - m.owned_begin;
-    auto sum_over = [&](auto&& f) { return distributed ? parallel::ordered_sums<4>(comm, m.owned_begin, owned, f) : parallel::ordered_sums<4>(n, f); };
+    // over the owned particles
     auto sums = sum_over([&](std::size_t i, std::array<double, 4>& acc) {
       const Vec<D> rigid_i = free_body ? rigid.at(m.position[i]) : Vec<D>{};
       for (int k = 0; k < D; ++k) {

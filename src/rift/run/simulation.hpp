@@ -59,8 +59,6 @@ struct Simulation {
                                                           (D == 3 ? "z" : "y") + ", alone (its layers of particles are ranges of their numbering)");
     std::string missing = pd::not_distributable<D>(model);
     const bool relaxation = s.solver.kind != scene::SolverKind::explicit_dynamics;
-    if (relaxation && std::none_of(model.constrained.begin(), model.constrained.end(), [](std::uint8_t c) { return c != 0; }))
-      missing = "dynamic relaxation of a body held by tractions alone (its rigid motion is taken out over the whole body)";
     if (s.in_situ.enabled) missing = "[in_situ_stress]";
     if (contact.enabled() && model.bodies.size() > 1) missing = "contact between bodies ([contact] enabled = false takes it off)";
     if (!missing.empty())
