@@ -6,7 +6,9 @@
 # pre-crack grows and branches along the cut of two ranks (Ha and Bobaru 2010's set-up, coarse,
 # with contact), the same plate as LPS whose bonds fail on the normal stress (the ghosts' strains
 # exchanged), and a 3D LPS bar pulled apart (the dilatation's halo exchange), also as VES (the
-# bonds' viscous history on both sides of a cut). The material point method (mpm/domain.hpp) adds
+# bonds' viscous history on both sides of a cut), and a rock block's in-situ stage (between
+# platens, or under tractions by conjugate gradients or dynamic relaxation) followed by explicit
+# steps that break its bonds. The material point method (mpm/domain.hpp) adds
 # the nodes' sums of neighbouring ranks in another order than one rank: its fields agree with the
 # one-rank run's to 1e-12 of their size (compare_fields, the second argument). What a distributed
 # run cannot take yet is refused with exit status 2 before anything is written.
@@ -175,6 +177,75 @@ for case in "relax_plate 100" "free_plate 1000"; do
   awk -F, -v least="$least" 'NR > 1 { b = $4 } END { exit !(b > least) }' "$tmp/$scene-serial/history.csv" || fail "$scene: fewer than $least bonds broke"
 done
 echo "ok: relax_plate (dynamic relaxation, breaking at equilibrium) and free_plate (held by tractions alone) on 2 and 3 ranks: the same bytes as one rank"
+
+# the in-situ stage (static_equilibrium.cpp, dynamic_relaxation.cpp) on N ranks, then explicit
+# steps in which a core pushed along x breaks bonds: a 10,201-particle plane-strain LPS block
+# between rigid platens (platens.hpp: each plate's sums gather every rank's face particles in the
+# face's order; conjugate gradients without the coarse space), the same block under tractions
+# alone (conjugate gradients with the coarse space, summed in fixed point, and the free body's
+# rigid motions projected out) and under tractions by dynamic relaxation from the uniform in-situ
+# strain (its measured fictitious density)
+cat > "$tmp/insitu_platens.toml" <<'SCENE'
+[scene]
+name = "insitu_platens"
+dimension = 2
+plane = "strain"
+thickness = 0.001
+[materials.rock]
+model = "lps"
+density = 2500.0
+youngs_modulus = 10e9
+poisson_ratio = 0.25
+fracture_energy = 20.0
+[regions.block]
+shape = "box"
+min = [-0.05, -0.05]
+max = [0.05, 0.05]
+[regions.core]
+shape = "box"
+min = [-0.003, -0.003]
+max = [0.003, 0.003]
+[bodies.rock]
+material = "rock"
+region = "block"
+spacing = 0.001
+horizon = 3.015
+[[boundaries]]
+region = "core"
+type = "traction"
+x = 4e8
+time = { function = "ramp", start = 0.0, end = 2e-6 }
+[in_situ_stress]
+sigma_H = -10e6
+sigma_h = -5e6
+faces = "platens"
+tolerance = 1e-8
+[solver]
+end_time = 1e-5
+[output]
+snapshots = 2
+fields = ["displacement", "damage"]
+history = ["kinetic_energy", "broken_bonds"]
+history_rows = 10
+SCENE
+sed -e 's/faces = "platens"/faces = "tractions"/' -e 's/name = "insitu_platens"/name = "insitu_coarse"/' \
+  "$tmp/insitu_platens.toml" > "$tmp/insitu_coarse.toml"
+sed -e 's/faces = "platens"/faces = "tractions"\nsolver = "dynamic_relaxation"\nstart = "uniform_strain"/' -e 's/tolerance = 1e-8/tolerance = 1e-6/' \
+  -e 's/name = "insitu_platens"/name = "insitu_dr"/' "$tmp/insitu_platens.toml" > "$tmp/insitu_dr.toml"
+# scene, how its one-rank run's in-situ stage reached equilibrium
+for case in "insitu_platens force evaluations of preconditioned conjugate gradients" \
+  "insitu_coarse force evaluations of preconditioned conjugate gradients" "insitu_dr iterations of dynamic relaxation"; do
+  read -r scene how <<< "$case"
+  "$rift" run "$tmp/$scene.toml" -o "$tmp/$scene-serial" > "$tmp/$scene-serial.log" 2>&1 || { cat "$tmp/$scene-serial.log"; fail "$scene: one rank"; }
+  grep -q "in-situ stage: equilibrium in [0-9]* $how" "$tmp/$scene-serial.log" || fail "$scene: its in-situ stage did not reach equilibrium by $how"
+  awk -F, 'NR > 1 { b = $4 } END { exit !(b > 1000) }' "$tmp/$scene-serial/history.csv" || fail "$scene: fewer than 1000 bonds broke"
+  for np in 2 3; do
+    out="$tmp/$scene-np$np"
+    "${mpirun[@]}" -np "$np" "$rift" run "$tmp/$scene.toml" -o "$out" -q > "$out.log" 2>&1 || { cat "$out.log"; fail "$scene: mpirun -np $np"; }
+    same_outputs "$tmp/$scene-serial" "$out" "$scene on $np ranks"
+  done
+done
+echo "ok: the in-situ stage (platens, the coarse space, dynamic relaxation) and the explicit steps after it on 2 and 3 ranks: the same bytes as one rank"
 
 # checkpoints written by 2 ranks restart on 3 and on 1, and the continued runs write the bytes of
 # the uninterrupted one-rank run (rank 0 gathers the whole run's state: any number of ranks reads it)

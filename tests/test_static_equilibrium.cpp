@@ -231,7 +231,7 @@ type = "dynamic_relaxation"
   ASSERT_TRUE(coarse.make_aggregates(m.reference_position, edge));
   ASSERT_EQ(coarse.aggregates(), 9u);
   Eigen::VectorXd response(static_cast<Eigen::Index>(N));
-  const bool factored = coarse.assemble(n, [](std::size_t, int) { return false; }, [&](auto direction) {
+  const bool factored = coarse.assemble([](std::size_t, int) { return false; }, [&](auto direction) {
     Eigen::VectorXd u(static_cast<Eigen::Index>(N));
     for (std::size_t i = 0; i < n; ++i)
       for (int k = 0; k < 2; ++k) u[static_cast<Eigen::Index>(2 * i + static_cast<std::size_t>(k))] = direction(i)[k];

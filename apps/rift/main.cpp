@@ -85,8 +85,9 @@ int rift_main(int argc, char** argv) {
                            ? fmt::format("{:.4g} M particle-steps/s", 1e-6 * r.particle_steps * per_second)
                            : fmt::format("{:.4g} M bonds/s", 1e-6 * r.bond_updates * per_second);
     const long steps_run = r.steps - r.first_step + 1;  // by this process
-    std::printf("rift: loop time %.6g s (%.4g s per step, %d threads; %s)\n", r.loop_seconds, r.loop_seconds / double(std::max(1L, steps_run)),
-                omp_get_max_threads(), rate.c_str());
+    const int threads = omp_get_max_threads();
+    std::printf("rift: loop time %.6g s (%.4g s per step, %d thread%s; %s)\n", r.loop_seconds, r.loop_seconds / double(std::max(1L, steps_run)),
+                threads, threads == 1 ? "" : "s", rate.c_str());
     if (!r.phases.empty()) std::printf("rift: by phase: %s\n", r.phases.c_str());
     // peak resident memory of the process (getrusage: kilobytes on Linux), for the memory targets
     rusage usage{};

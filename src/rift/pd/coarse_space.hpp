@@ -11,7 +11,9 @@
 // times D axes: K couples particles up to two horizons apart (a state-based force reads both ends'
 // dilatations), so with H > 2 horizons the aggregates of one colour (two aggregates apart) reach no
 // particle together, and a particle's response to a colour's probe comes from the one aggregate of
-// that colour among its own and its 3^D - 1 neighbours. K_c is factored once (sparse LDL^T,
+// that colour among its own and its 3^D - 1 neighbours. Its entries and the coarse right-hand sides
+// are sums in fixed point (parallel/fixed_point_sums.hpp), whose bits do not depend on the order
+// of the particles nor on how a distributed run cuts them. K_c is factored once (sparse LDL^T,
 // Eigen's SimplicialLDLT) at the first base of the Newton steps: the geometric terms the later bases
 // change are of the order of the strain.
 #pragma once
@@ -24,6 +26,8 @@
 #include <vector>
 
 #include "rift/core/vec.hpp"
+#include "rift/parallel/communicator.hpp"
+#include "rift/parallel/fixed_point_sums.hpp"
 
 namespace rift::pd {
 
@@ -33,32 +37,54 @@ class CoarseSpace {
   static constexpr std::uint32_t none = 0xffffffffu;
   static constexpr int colours = D == 2 ? 9 : 27;  // also the neighbour slots of an aggregate
 
-  /// Groups the particles at reference positions x into aggregates of edge `edge`. False where the
-  /// body spans fewer than three aggregates on an axis (no coarse space: the diagonal alone serves).
-  bool make_aggregates(const std::vector<Vec<D>>& x, double edge) {
+  /// Groups the particles at reference positions x into aggregates of edge `edge`, numbered in
+  /// the order of their cells on the grid from the body's lowest corner. False where the body spans
+  /// fewer than three aggregates on an axis (no coarse space: the diagonal alone serves). A
+  /// distributed run's window (pd/window.hpp) gives its owned range [owned_first, owned_first +
+  /// owned) and the ranks' communicator: the aggregates are the whole body's on every rank, and
+  /// every sum over particles (assemble, solve) adds every rank's owned particles' terms.
+  bool make_aggregates(const std::vector<Vec<D>>& x, double edge, const parallel::Communicator& comm = parallel::Communicator::one(),
+                       std::size_t owned_first = 0, std::size_t owned = static_cast<std::size_t>(-1)) {
     const std::size_t n = x.size();
-    if (n == 0 || !(edge > 0.0)) return false;
+    comm_ = &comm, owned_first_ = std::min(owned_first, n), owned_last_ = owned_first_ + std::min(owned, n - owned_first_);
+    if (!(edge > 0.0)) return false;
     Vec<D> low, high;
     for (int k = 0; k < D; ++k) low[k] = 1e300, high[k] = -1e300;
-    for (const auto& p : x)
-      for (int k = 0; k < D; ++k) low[k] = std::min(low[k], p[k]), high[k] = std::max(high[k], p[k]);
+    for (std::size_t i = owned_first_; i < owned_last_; ++i)
+      for (int k = 0; k < D; ++k) low[k] = std::min(low[k], x[i][k]), high[k] = std::max(high[k], x[i][k]);
+    for (int k = 0; k < D; ++k) low[k] = comm.min(low[k]), high[k] = comm.max(high[k]);
+    if (!(low[0] <= high[0])) return false;  // no particle
     for (int k = 0; k < D; ++k) {
       cells_[k] = static_cast<std::int64_t>(std::floor((high[k] - low[k]) / edge)) + 1;
       if (cells_[k] < 3) return false;
     }
     std::size_t grid = 1;
     for (int k = 0; k < D; ++k) grid *= static_cast<std::size_t>(cells_[k]);
-    std::vector<std::uint32_t> of_cell(grid, none);
-    aggregate_.assign(n, none);
-    cell_.clear();
-    for (std::size_t i = 0; i < n; ++i) {
+    auto cell_of = [&](const Vec<D>& p) {
       std::array<std::int64_t, D> c;
-      for (int k = 0; k < D; ++k) c[k] = std::min(cells_[k] - 1, static_cast<std::int64_t>(std::floor((x[i][k] - low[k]) / edge)));
-      const std::size_t g = grid_index(c);
-      if (of_cell[g] == none) of_cell[g] = static_cast<std::uint32_t>(cell_.size()), cell_.push_back(c);
-      aggregate_[i] = of_cell[g];
+      for (int k = 0; k < D; ++k) c[k] = std::min(cells_[k] - 1, static_cast<std::int64_t>(std::floor((p[k] - low[k]) / edge)));
+      return grid_index(c);
+    };
+    // the cells that hold a particle, every rank's owned ones, in grid order
+    std::vector<std::uint64_t> occupied;
+    for (std::size_t i = owned_first_; i < owned_last_; ++i) occupied.push_back(cell_of(x[i]));
+    auto sort_unique = [](std::vector<std::uint64_t>& v) {
+      std::sort(v.begin(), v.end());
+      v.erase(std::unique(v.begin(), v.end()), v.end());
+    };
+    sort_unique(occupied);
+    if (comm.distributed()) occupied = comm.all_gather(occupied), sort_unique(occupied);
+    of_cell_.assign(grid, none);
+    cell_.clear();
+    for (const std::uint64_t g : occupied) {
+      of_cell_[g] = static_cast<std::uint32_t>(cell_.size());
+      std::array<std::int64_t, D> c;
+      std::uint64_t rest = g;
+      for (int k = 0; k < D; ++k) c[k] = static_cast<std::int64_t>(rest % static_cast<std::uint64_t>(cells_[k])), rest /= static_cast<std::uint64_t>(cells_[k]);
+      cell_.push_back(c);
     }
-    of_cell_ = std::move(of_cell);
+    aggregate_.resize(n);
+    for (std::size_t i = 0; i < n; ++i) aggregate_[i] = of_cell_[cell_of(x[i])];
     blocks_.assign(cell_.size() * colours * D * D, 0.0);
     return true;
   }
@@ -75,9 +101,11 @@ class CoarseSpace {
   /// the displacement direction(i) (a unit along the axis on that colour's aggregates, zero on held
   /// components) and returns the force response r(i) (N per unit displacement; zero on held
   /// components), which goes to K_c's block of (i's aggregate, that colour's aggregate among its
-  /// neighbours). False if the factorization fails.
+  /// neighbours), summed over the owned particles in fixed point (parallel/fixed_point_sums.hpp: the
+  /// same bits on any number of ranks). False if the factorization fails.
   template <class Held, class StiffnessTimes>
-  bool assemble(std::size_t n, Held&& held, StiffnessTimes&& stiffness_times) {
+  bool assemble(Held&& held, StiffnessTimes&& stiffness_times) {
+    const std::size_t count = cell_.size();
     for (int colour = 0; colour < colours; ++colour)
       for (int axis = 0; axis < D; ++axis) {
         auto response = stiffness_times([&](std::size_t i) {
@@ -86,7 +114,14 @@ class CoarseSpace {
           if (a != none && colour_of(a) == colour && !held(i, axis)) u[axis] = 1.0;
           return u;
         });
-        for (std::size_t i = 0; i < n; ++i) add_response(i, colour, axis, response(i));
+        // K_c's column (colour, axis): for each aggregate, its block with that colour's neighbour
+        const auto column = sum_over_aggregates([&](std::size_t i) { return slot_of(aggregate_[i], colour) >= 0; }, response);
+        for (std::size_t a = 0; a < count; ++a) {
+          const int slot = slot_of(static_cast<std::uint32_t>(a), colour);
+          if (slot < 0) continue;
+          double* block = &blocks_[((a * colours + static_cast<std::size_t>(slot)) * D) * D];
+          for (int row = 0; row < D; ++row) block[row * D + axis] = column[a * D + static_cast<std::size_t>(row)];
+        }
       }
     return factor();
   }
@@ -134,17 +169,13 @@ class CoarseSpace {
   }
   bool ready() const { return ready_; }
 
-  /// u_c = K_c^-1 P^T y, y(i) a particle's force (N; zero on held components); a sum in particle
-  /// order.
+  /// u_c = K_c^-1 P^T y, y(i) a particle's force (N; zero on held components); P^T y summed over
+  /// the owned particles in fixed point (the same bits on any number of ranks).
   template <class Y>
-  const Eigen::VectorXd& solve(std::size_t n, Y&& y) {
-    rhs_.setZero(static_cast<Eigen::Index>(cell_.size() * D));
-    for (std::size_t i = 0; i < n; ++i) {
-      const std::uint32_t a = aggregate_[i];
-      if (a == none) continue;
-      const Vec<D> f = y(i);
-      for (int k = 0; k < D; ++k) rhs_[static_cast<Eigen::Index>(std::size_t{a} * D + static_cast<std::size_t>(k))] += f[k];
-    }
+  const Eigen::VectorXd& solve(Y&& y) {
+    const auto sums = sum_over_aggregates([](std::size_t) { return true; }, y);
+    rhs_.resize(static_cast<Eigen::Index>(sums.size()));
+    for (std::size_t q = 0; q < sums.size(); ++q) rhs_[static_cast<Eigen::Index>(q)] = sums[q];
     solution_ = solver_.solve(rhs_);
     return solution_;
   }
@@ -158,9 +189,10 @@ class CoarseSpace {
   }
 
  private:
-  void add_response(std::size_t i, int colour, int axis, const Vec<D>& r) {
-    const std::uint32_t a = aggregate_[i];
-    if (a == none) return;
+  /// The slot among aggregate a's neighbours of the aggregate of this colour; -1 where that cell is
+  /// off the grid or empty.
+  int slot_of(std::uint32_t a, int colour) const {
+    if (a == none) return -1;
     int slot = 0, scale = 1;
     std::array<std::int64_t, D> c;
     for (int k = 0; k < D; ++k) {
@@ -169,12 +201,32 @@ class CoarseSpace {
       for (; o <= 1; ++o)
         if (((cell_[a][k] + o) % 3 + 3) % 3 == want) break;
       c[k] = cell_[a][k] + o;
-      if (c[k] < 0 || c[k] >= cells_[k]) return;
+      if (c[k] < 0 || c[k] >= cells_[k]) return -1;
       slot += static_cast<int>(o + 1) * scale, scale *= 3;
     }
-    if (of_cell_[grid_index(c)] == none) return;
-    double* block = &blocks_[((static_cast<std::size_t>(a) * colours + static_cast<std::size_t>(slot)) * D) * D];
-    for (int row = 0; row < D; ++row) block[row * D + axis] += r[row];
+    return of_cell_[grid_index(c)] == none ? -1 : slot;
+  }
+  /// sum_{i in aggregate a, counts(i)} value(i) over every rank's owned particles, per aggregate and
+  /// axis (D values per aggregate), in fixed point.
+  template <class Counts, class Value>
+  std::vector<double> sum_over_aggregates(Counts&& counts, Value&& value) const {
+    std::vector<Vec<D>> values(owned_last_ - owned_first_);
+    double largest = 0.0;
+    for (std::size_t i = owned_first_; i < owned_last_; ++i) {
+      if (aggregate_[i] == none || !counts(i)) continue;
+      const Vec<D> v = value(i);
+      values[i - owned_first_] = v;
+      for (int k = 0; k < D; ++k) largest = std::max(largest, std::abs(v[k]));
+    }
+    parallel::FixedPointSums sums(cell_.size() * D, comm_->max(largest));
+    for (std::size_t i = owned_first_; i < owned_last_; ++i) {
+      if (aggregate_[i] == none || !counts(i)) continue;
+      for (int k = 0; k < D; ++k) sums.add(std::size_t{aggregate_[i]} * D + static_cast<std::size_t>(k), values[i - owned_first_][k]);
+    }
+    sums.add_over(*comm_);
+    std::vector<double> out(sums.size());
+    for (std::size_t q = 0; q < out.size(); ++q) out[q] = sums[q];
+    return out;
   }
 
   std::size_t grid_index(const std::array<std::int64_t, D>& c) const {
@@ -186,6 +238,8 @@ class CoarseSpace {
   std::vector<std::uint32_t> aggregate_, of_cell_;
   std::vector<std::array<std::int64_t, D>> cell_;
   std::vector<double> blocks_;  // per aggregate, neighbour slot: the D x D block of K_c
+  const parallel::Communicator* comm_ = &parallel::Communicator::one();
+  std::size_t owned_first_ = 0, owned_last_ = 0;  // the particles whose terms this rank adds
   Eigen::SparseMatrix<double> matrix_;
   Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> solver_;
   Eigen::VectorXd rhs_, solution_;

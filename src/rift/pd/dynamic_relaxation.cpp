@@ -39,7 +39,11 @@ template <int D>
 double DynamicRelaxation<D>::measure_fictitious_density(Model<D>& m, const load::Boundaries<D>& loads, Contact<D>* contact, double t,
                                                         int iterations, double safety) {
   const std::size_t n = m.size();
-  if (n == 0) return row_sum_factor;
+  // sums and maxima over the owned particles (a distributed run's: every rank's, in the one-rank
+  // order, parallel/ordered_sum.hpp); the ghosts' probe from their owners
+  const auto& comm = m.ghosts ? parallel::Communicator::world() : parallel::Communicator::one();
+  const std::size_t owned_begin = m.owned_begin, owned = m.owned_last() - m.owned_begin;
+  if (comm.sum(static_cast<double>(owned)) == 0.0) return row_sum_factor;
   // the row-sum bound of eq. 10, lambda_i / row_sum_factor
   std::vector<double> bound(n);
   for (std::size_t i = 0; i < n; ++i) bound[i] = fictitious_density_[i] / row_sum_factor;
@@ -55,11 +59,12 @@ double DynamicRelaxation<D>::measure_fictitious_density(Model<D>& m, const load:
     return f;
   };
   const std::vector<Vec<D>> at_start = total_force();
-  // a start with every mode in it: a fixed pseudo-random sign per component (splitmix64 of i d + q)
+  // a start with every mode in it: a fixed pseudo-random sign per component (splitmix64 of i d + q,
+  // i the particle's number in the whole run)
   std::vector<Vec<D>> v(n);
   for (std::size_t i = 0; i < n; ++i)
     for (int q = 0; q < D; ++q) {
-      std::uint64_t z = (i * D + static_cast<std::size_t>(q) + 1) * 0x9e3779b97f4a7c15ull;
+      std::uint64_t z = ((m.window_first + i) * D + static_cast<std::size_t>(q) + 1) * 0x9e3779b97f4a7c15ull;
       z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ull, z = (z ^ (z >> 27)) * 0x94d049bb133111ebull, z ^= z >> 31;
       v[i][q] = m.constrained[i] >> q & 1 ? 0.0 : ((z & 1) ? 1.0 : -1.0);
     }
@@ -69,18 +74,22 @@ double DynamicRelaxation<D>::measure_fictitious_density(Model<D>& m, const load:
     for (std::size_t i = 0; i < n; ++i) m.position[i] = start[i] + probe * v[i];
     const std::vector<Vec<D>> moved = total_force();
     // w = K v / bound (K v = -(F(x + probe v) - F(x)) / probe); Rayleigh's quotient in the bound's metric
-    double num = 0.0, den = 0.0, largest = 0.0;
-    for (std::size_t i = 0; i < n; ++i)
+    const auto sums = parallel::ordered_sums<2>(comm, owned_begin, owned, [&](std::size_t i, std::array<double, 2>& acc) {
       for (int q = 0; q < D; ++q) {
         const double kv = m.constrained[i] >> q & 1 ? 0.0 : -(moved[i][q] - at_start[i][q]) / probe;
-        num += m.volume[i] * v[i][q] * kv;
-        den += m.volume[i] * bound[i] * v[i][q] * v[i][q];
+        acc[0] += m.volume[i] * v[i][q] * kv;
+        acc[1] += m.volume[i] * bound[i] * v[i][q] * v[i][q];
         v[i][q] = bound[i] > 0.0 ? kv / bound[i] : 0.0;
-        largest = std::max(largest, std::abs(v[i][q]));
       }
-    if (den > 0.0) mu = num / den;
+    });
+    double largest = 0.0;
+    for (std::size_t i = owned_begin; i < owned_begin + owned; ++i)
+      for (int q = 0; q < D; ++q) largest = std::max(largest, std::abs(v[i][q]));
+    largest = comm.max(largest);
+    if (sums[1] > 0.0) mu = sums[0] / sums[1];
     if (!(largest > 0.0) || !std::isfinite(largest)) break;
     for (auto& x : v) x = (1.0 / largest) * x;
+    m.refresh_ghosts(v);
   }
   m.position = start;
   compute_forces<D>(m, contact);
@@ -171,8 +180,9 @@ RelaxationResult DynamicRelaxation<D>::relax(Model<D>& m, const load::Boundaries
     });
     double residual = sums[2];
     for (const Platen& p : m.platens) {
-      double net = 0.0;
-      for (const auto i : p.particles) net += (m.force[i][p.axis] + m.body_force[i][p.axis]) * m.volume[i];
+      const double net = platen_sums<1>(m, p, [&](std::size_t i) {
+        return std::array<double, 1>{(m.force[i][p.axis] + m.body_force[i][p.axis]) * m.volume[i]};
+      })[0];
       residual += net * net;
     }
     const double num = sums[0], den = sums[1], reaction = sums[3];

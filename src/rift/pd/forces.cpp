@@ -184,8 +184,10 @@ template <int D>
 std::size_t failed_bonds(const Model<D>& m) {
   std::size_t failed = 0;
   const auto& intact = m.bonds.intact;
-#pragma omp parallel for if(rift::parallel::worth_a_team(intact.size())) schedule(static) reduction(+ : failed)
-  for (std::size_t k = 0; k < intact.size(); ++k) failed += intact[k] != bond_intact;
+  if (m.bonds.offset.size() <= m.owned_last()) return 0;
+  const auto first = static_cast<std::size_t>(m.bonds.offset[m.owned_begin]), last = static_cast<std::size_t>(m.bonds.offset[m.owned_last()]);
+#pragma omp parallel for if(rift::parallel::worth_a_team(last - first)) schedule(static) reduction(+ : failed)
+  for (std::size_t k = first; k < last; ++k) failed += intact[k] != bond_intact;
   return failed;
 }
 

@@ -54,7 +54,8 @@ EnergySummary summarize(const Model<D>& m, bool strain_energy = true);
 template <int D>
 EnergySummary summarize_and_update_damage(Model<D>& m, bool strain_energy);
 
-/// Directed bonds no longer intact (broken, and failed interface bonds).
+/// Directed bonds no longer intact (broken, and failed interface bonds): the owned particles' (a
+/// distributed run's rank adds its owned rows).
 template <int D>
 std::size_t failed_bonds(const Model<D>& m);
 

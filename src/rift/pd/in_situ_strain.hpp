@@ -7,6 +7,7 @@
 // Displacements count from the lowest lattice coordinate on each axis, which a platen holds
 // (platens.hpp); a component that a boundary condition constrains keeps its position.
 #pragma once
+#include "rift/parallel/communicator.hpp"
 #include "rift/pd/model.hpp"
 #include "rift/scene/scene.hpp"
 
@@ -26,7 +27,9 @@ Vec<D> in_situ_strain(const MaterialConstants& c, const scene::InSituStress& s) 
 /// Moves every particle to the uniform in-situ strain of its body.
 template <int D>
 void apply_in_situ_strain(Model<D>& m, const scene::InSituStress& s) {
-  const Vec<D> low = m.reference_bounds()[0];
+  Vec<D> low = m.reference_bounds()[0];
+  if (m.ghosts)  // a distributed run's window: the whole block's lowest coordinates
+    for (int k = 0; k < D; ++k) low[k] = parallel::Communicator::world().min(low[k]);
   for (const auto& body : m.bodies) {
     if (!(body.constants.shear_modulus > 0.0)) continue;
     const Vec<D> eps = in_situ_strain<D>(body.constants, s);

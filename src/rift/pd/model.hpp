@@ -75,6 +75,7 @@ struct Model {
   // [owned_begin, owned_end) and the ghosts around them, which `ghosts` refreshes from their owners.
   // One rank: every particle is owned, no ghosts.
   std::size_t owned_begin = 0, owned_end = static_cast<std::size_t>(-1);
+  std::size_t window_first = 0;  // the whole run's number of the window's particle 0
   const Ghosts* ghosts = nullptr;
 
   std::size_t size() const { return position.size(); }

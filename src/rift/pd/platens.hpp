@@ -14,17 +14,45 @@
 // (move_with_platens): the mass-weighted mean of their normal velocity and displacement, which is
 // the plate's update when they moved together before (the update is linear in the force).
 #pragma once
+#include <array>
 #include <cstdint>
 #include <vector>
 
 #include "rift/core/vec.hpp"
+#include "rift/parallel/communicator.hpp"
 
 namespace rift::pd {
 
 struct Platen {
   int axis = 0;                        // the face's normal
-  std::vector<std::size_t> particles;  // the face's outermost row
+  std::vector<std::size_t> particles;  // the face's outermost row, ascending (a window's: those in it)
 };
+
+/// Sums of K quantities over a platen's particles, values(i) particle i's, added in the list's
+/// order: one rank's bits on any number of ranks. The list ascends and a distributed run's ranks
+/// own consecutive ranges of the numbering (window.hpp), so every rank's owned values, gathered in
+/// rank order, come in the list's order.
+template <std::size_t K, class Model, class Values>
+std::array<double, K> platen_sums(const Model& m, const Platen& p, Values&& values) {
+  std::array<double, K> total{};
+  auto add = [&](const std::array<double, K>& v) {
+    for (std::size_t q = 0; q < K; ++q) total[q] += v[q];
+  };
+  if (m.ghosts == nullptr) {
+    for (const auto i : p.particles) add(values(i));
+    return total;
+  }
+  std::vector<double> owned;  // K values per owned particle
+  for (const auto i : p.particles)
+    if (i >= m.owned_begin && i < m.owned_last()) {
+      const std::array<double, K> v = values(i);
+      owned.insert(owned.end(), v.begin(), v.end());
+    }
+  const std::vector<double> all = parallel::Communicator::world().all_gather(owned);
+  for (std::size_t at = 0; at + K <= all.size(); at += K)
+    for (std::size_t q = 0; q < K; ++q) total[q] += all[at + q];
+  return total;
+}
 
 /// Moves each platen's particles together along its axis: their velocity and displacement
 /// component become the mean weighted by mass(i) (density times volume).
@@ -32,11 +60,10 @@ template <class Model, class Mass>
 void move_with_platens(Model& m, Mass mass) {
   for (const Platen& p : m.platens) {
     const int k = p.axis;
-    double total = 0.0, momentum = 0.0, displacement = 0.0;
-    for (const auto i : p.particles) {
+    const auto [total, momentum, displacement] = platen_sums<3>(m, p, [&](std::size_t i) {
       const double w = mass(i);
-      total += w, momentum += w * m.velocity[i][k], displacement += w * (m.position[i][k] - m.reference_position[i][k]);
-    }
+      return std::array<double, 3>{w, w * m.velocity[i][k], w * (m.position[i][k] - m.reference_position[i][k])};
+    });
     if (!(total > 0.0)) continue;
     for (const auto i : p.particles) {
       m.velocity[i][k] = momentum / total;

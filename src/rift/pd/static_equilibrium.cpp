@@ -28,17 +28,25 @@ RelaxationResult solve_static_equilibrium(Model<D>& m, const load::Boundaries<D>
   result.converged = false;
   double shortest = std::numeric_limits<double>::max();
   for (const auto& f : m.bonds.families) shortest = std::min(shortest, f.length);
-  if (n == 0 || !(shortest < std::numeric_limits<double>::max())) return result;
-
-  const bool free_body = std::none_of(m.constrained.begin(), m.constrained.end(), [](std::uint8_t c) { return c != 0; });
+  // Sums over the owned particles: a distributed run's (pd/window.hpp) add every rank's block sums
+  // in the one-rank order (parallel/ordered_sum.hpp), and its ghosts' iterates come from their
+  // owners, so its iterations are the one-rank run's bits (a rank that owns none goes along).
+  const auto& comm = m.ghosts ? parallel::Communicator::world() : parallel::Communicator::one();
+  const std::size_t owned_begin = m.owned_begin, owned = m.owned_last() - m.owned_begin;
+  const double particles = comm.sum(static_cast<double>(owned));  // the whole run's
+  if (particles == 0.0 || !(shortest < std::numeric_limits<double>::max())) return result;
+  auto sum_over = [&](auto&& f) { return parallel::ordered_sums<2>(comm, owned_begin, owned, f); };
+  const bool held_here = std::any_of(m.constrained.begin(), m.constrained.end(), [](std::uint8_t c) { return c != 0; });
+  const bool free_body = !comm.any(held_here);
   const std::vector<std::uint8_t> on_platen = platen_components(m);
   std::array<int, D> no_platen;
   no_platen.fill(-1);
   std::vector<std::array<int, D>> platen_of(m.platens.empty() ? 0 : n, no_platen);  // each component's plate (an edge's two)
   std::vector<double> platen_weight(m.platens.size(), 0.0);
-  for (std::size_t a = 0; a < m.platens.size(); ++a)
-    for (const auto i : m.platens[a].particles)
-      platen_of[i][m.platens[a].axis] = static_cast<int>(a), platen_weight[a] += diagonal[i] * m.volume[i];
+  for (std::size_t a = 0; a < m.platens.size(); ++a) {
+    for (const auto i : m.platens[a].particles) platen_of[i][m.platens[a].axis] = static_cast<int>(a);
+    platen_weight[a] = platen_sums<1>(m, m.platens[a], [&](std::size_t i) { return std::array<double, 1>{diagonal[i] * m.volume[i]}; })[0];
+  }
   auto weight = [&](std::size_t i) { return diagonal[i] * m.volume[i]; };
   auto held = [&](std::size_t i, int k) { return (m.constrained[i] >> k & 1) != 0; };
   auto moves_with_platen = [&](std::size_t i, int k) { return (on_platen[i] >> k & 1) != 0; };
@@ -50,7 +58,10 @@ RelaxationResult solve_static_equilibrium(Model<D>& m, const load::Boundaries<D>
     return f;
   };
   auto evaluate = [&](bool true_state) {
-    if (true_state) advance_stretch_limits<D>(m);
+    if (true_state) {
+      advance_stretch_limits<D>(m);
+      m.refresh_ghosts(m.stretch_limit);
+    }
     compute_forces<D>(m, contact);
     if (loads.state_dependent()) loads.apply_body_forces(m, t);  // an injected fluid's pressure follows the cavity
     ++result.iterations;
@@ -63,7 +74,7 @@ RelaxationResult solve_static_equilibrium(Model<D>& m, const load::Boundaries<D>
     m.position = x;
     evaluate(true);
     base = x;
-    auto sums = parallel::ordered_sums<2>(n, [&](std::size_t i, std::array<double, 2>& acc) {
+    auto sums = sum_over([&](std::size_t i, std::array<double, 2>& acc) {
       at_base[i] = force(i);
       r[i] = at_base[i];
       for (int k = 0; k < D; ++k) {
@@ -83,21 +94,21 @@ RelaxationResult solve_static_equilibrium(Model<D>& m, const load::Boundaries<D>
   std::vector<double> platen_force(m.platens.size());
   CoarseSpace<D> coarse;
   auto prepare = [&] {
-    if (free_body) rigid = rigid_acceleration<D>(base, weight, [&](std::size_t i) { return r[i]; });
+    if (free_body) rigid = rigid_acceleration<D>(base, weight, [&](std::size_t i) { return r[i]; }, &comm, owned_begin, owned);
     for (std::size_t a = 0; a < m.platens.size(); ++a) {
-      double net = 0.0;
-      for (const auto i : m.platens[a].particles) net += r[i][m.platens[a].axis];
-      platen_force[a] = net;
+      const int k = m.platens[a].axis;
+      platen_force[a] = platen_sums<1>(m, m.platens[a], [&](std::size_t i) { return std::array<double, 1>{r[i][k]}; })[0];
     }
     if (!coarse.ready()) return;
-    coarse.solve(n, [&](std::size_t i) {
+    coarse.solve([&](std::size_t i) {
       const Vec<D> rigid_i = free_body ? rigid.at(base[i]) : Vec<D>{};
       Vec<D> y{};
       for (int k = 0; k < D; ++k)
         if (!held(i, k)) y[k] = r[i][k] - weight(i) * rigid_i[k];
       return y;
     });
-    if (free_body) coarse_rigid = rigid_acceleration<D>(base, weight, [&](std::size_t i) { return weight(i) * coarse.at(i); });
+    if (free_body)
+      coarse_rigid = rigid_acceleration<D>(base, weight, [&](std::size_t i) { return weight(i) * coarse.at(i); }, &comm, owned_begin, owned);
   };
   auto preconditioned = [&](std::size_t i) {
     Vec<D> z{};
@@ -122,7 +133,7 @@ RelaxationResult solve_static_equilibrium(Model<D>& m, const load::Boundaries<D>
   // platen's net force)
   auto measure = [&](double& rz) {
     prepare();
-    auto sums = parallel::ordered_sums<2>(n, [&](std::size_t i, std::array<double, 2>& acc) {
+    auto sums = sum_over([&](std::size_t i, std::array<double, 2>& acc) {
       const Vec<D> z = preconditioned(i);
       const Vec<D> rigid_i = free_body ? rigid.at(base[i]) : Vec<D>{};
       for (int k = 0; k < D; ++k) {
@@ -143,9 +154,9 @@ RelaxationResult solve_static_equilibrium(Model<D>& m, const load::Boundaries<D>
   // forces' change as that colour's aggregates move along the axis by a millionth of the shortest bond
   double reach = 0.0, spacing = std::numeric_limits<double>::max();
   for (const auto& body : m.bodies) reach = std::max(reach, body.constants.horizon), spacing = std::min(spacing, body.constants.spacing);
-  if (m.platens.empty() && coarse.make_aggregates(m.reference_position, 2.0 * reach + spacing)) {
+  if (m.platens.empty() && coarse.make_aggregates(m.reference_position, 2.0 * reach + spacing, comm, owned_begin, owned)) {
     const double probe = 1e-6 * shortest;
-    coarse.assemble(n, held, [&](auto direction) {
+    coarse.assemble(held, [&](auto direction) {
 #pragma omp parallel for if(rift::parallel::worth_a_team(n)) schedule(static)
       for (std::size_t i = 0; i < n; ++i) m.position[i] = base[i] + probe * direction(i);
       evaluate(false);
@@ -163,7 +174,7 @@ RelaxationResult solve_static_equilibrium(Model<D>& m, const load::Boundaries<D>
   double newton_at = std::max(tolerance, forcing * result.residual), at_last_base = result.residual;
   // A linear solve takes of the order of the lattice's sites along the body (the square root of
   // K's condition number); many more, and something in the forces switches (a contact): stop.
-  const int stage_limit = 100 + static_cast<int>(20.0 * std::pow(static_cast<double>(n), 1.0 / D));
+  const int stage_limit = 100 + static_cast<int>(20.0 * std::pow(particles, 1.0 / D));
   int stage_start = result.iterations;
   bool restart = true;
   while (result.residual >= tolerance && result.iterations < max_iterations && result.iterations - stage_start < stage_limit) {
@@ -172,9 +183,11 @@ RelaxationResult solve_static_equilibrium(Model<D>& m, const load::Boundaries<D>
     restart = false;
 #pragma omp parallel for if(rift::parallel::worth_a_team(n)) schedule(static)
     for (std::size_t i = 0; i < n; ++i) p[i] = preconditioned(i) + beta * p[i];
+    m.refresh_ghosts(p);  // a ghost's preconditioned residual is its owner's to make
     double largest = 0.0;
-    for (const auto& pi : p)
-      for (int k = 0; k < D; ++k) largest = std::max(largest, std::abs(pi[k]));
+    for (std::size_t i = owned_begin; i < owned_begin + owned; ++i)
+      for (int k = 0; k < D; ++k) largest = std::max(largest, std::abs(p[i][k]));
+    largest = comm.max(largest);
     if (!(largest > 0.0) || !std::isfinite(largest)) break;
     // K p from a probe of a millionth of the shortest bond at the base
     const double probe = 1e-6 * shortest / largest;
@@ -182,7 +195,7 @@ RelaxationResult solve_static_equilibrium(Model<D>& m, const load::Boundaries<D>
     for (std::size_t i = 0; i < n; ++i) m.position[i] = base[i] + probe * p[i];
     evaluate(false);
     auto kp = [&](std::size_t i) { return (-1.0 / probe) * (force(i) - at_base[i]); };
-    const double pkp = parallel::ordered_sums<1>(n, [&](std::size_t i, std::array<double, 1>& acc) { acc[0] += dot<D>(p[i], kp(i)); })[0];
+    const double pkp = sum_over([&](std::size_t i, std::array<double, 2>& acc) { acc[0] += dot<D>(p[i], kp(i)); })[0];
     if (!(pkp > 0.0) || !std::isfinite(pkp)) break;  // not positive along p: no longer a held elastic body
     const double alpha = rz / pkp;
 #pragma omp parallel for if(rift::parallel::worth_a_team(n)) schedule(static)
@@ -203,6 +216,7 @@ RelaxationResult solve_static_equilibrium(Model<D>& m, const load::Boundaries<D>
   result.converged = result.residual < tolerance;
   m.position = result.converged ? x : base;  // where stopped short: the last evaluated iterate
   advance_stretch_limits<D>(m);
+  m.refresh_ghosts(m.stretch_limit);
   compute_forces<D>(m, contact);
   loads.apply_body_forces(m, t);
   for (auto& v : m.velocity) v = Vec<D>{};

@@ -43,7 +43,6 @@ template <int D>
 std::string not_distributable(const Model<D>& m) {
   if (!m.crack_bonds.neighbor.empty()) return "pressurized cracks and boreholes";
   if (!m.interface_bonds.empty()) return "interfaces (pre-existing fractures)";
-  if (!m.platens.empty()) return "platens";
   return {};
 }
 
@@ -135,6 +134,7 @@ Model<D> window_of(const Model<D>& m, const Partition& p, int rank) {
   w.time = m.time;
   w.owned_begin = p.owned[r] - w0;
   w.owned_end = p.owned[r + 1] - w0;
+  w.window_first = w0;
   w.crack_bonds.offset.assign(n + 1, 0);
 
   // rows of the window, each cut to the neighbours inside it (only ghosts' rows lose bonds); a
@@ -175,6 +175,14 @@ Model<D> window_of(const Model<D>& m, const Partition& p, int rank) {
     w.bodies.push_back(std::move(part));
   }
   if (!b.back_extension.empty()) window_viscous_history(b, m.bodies, w.bodies, w0, w1, c);
+  // every platen, on every rank (its sums gather all ranks' owned particles: platens.hpp), with the
+  // particles of its face that are in the window
+  for (const Platen& plate : m.platens) {
+    Platen part{plate.axis, {}};
+    for (const auto i : plate.particles)
+      if (i >= w0 && i < w1) part.particles.push_back(i - w0);
+    w.platens.push_back(std::move(part));
+  }
   return w;
 }
 

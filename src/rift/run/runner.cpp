@@ -362,13 +362,15 @@ Result run_dim(const scene::Scene& s, const Options& o) {
     pd::record_outcomes(outcomes, pd::classify_interfaces<D>(m));
     outcomes_at_breakthrough = outcomes;
   }
-  const std::size_t failed_before_start = s.in_situ.enabled && !restarted ? pd::failed_bonds<D>(m) : 0;
+  auto failed_bonds = [&] { return static_cast<std::size_t>(comm.sum(static_cast<double>(pd::failed_bonds<D>(m)))); };
+  const std::size_t failed_before_start = s.in_situ.enabled && !restarted ? failed_bonds() : 0;
   if (!restarted) p.start();  // a checkpoint holds the forces of its step
   if (s.in_situ.enabled && !restarted) {
     // the in-situ stage holds every bond; those its equilibrium strains past their limit break now
-    const auto broken = static_cast<std::int64_t>((pd::failed_bonds<D>(m) - failed_before_start) / 2);
+    const auto broken = static_cast<std::int64_t>((failed_bonds() - failed_before_start) / 2);
     if (broken > 0) {
-      const double percent = 100.0 * double(2 * broken) / double(std::max<std::int64_t>(1, m.bonds.size()));
+      const double all = comm.sum(double(m.bonds.offset[m.owned_last()] - m.bonds.offset[m.owned_begin]));  // the owned rows'
+      const double percent = 100.0 * double(2 * broken) / std::max(1.0, all);
       res.notes.push_back(fmt::format("in-situ stage: {} bonds ({:.3g}%) past their limit at its equilibrium broke at the start", broken, percent));
       if (!o.quiet)
         std::fprintf(stderr,
@@ -377,6 +379,9 @@ Result run_dim(const scene::Scene& s, const Options& o) {
                      static_cast<long long>(broken), percent, s.file.c_str());
     }
   }
+  // the whole run's directed bonds (a distributed run's ranks each count their owned rows): the
+  // bonds per second printed at the end
+  const double bonds = comm.sum(double(m.bonds.offset[m.owned_last()] - m.bonds.offset[m.owned_begin]));
   const auto loop_start = std::chrono::steady_clock::now();
   PhaseTimes::run().reset();
   Progress progress(p.steps, s.solver.end_time, o.quiet || !comm.root());
@@ -407,7 +412,7 @@ Result run_dim(const scene::Scene& s, const Options& o) {
     for (long step = res.first_step; step <= p.steps; ++step) {
       p.step();
       p.check_contact_reach(comm);
-      res.bond_updates += double(m.bonds.size());
+      res.bond_updates += bonds;
       const bool snap = step * s.output.count >= next_snapshot * p.steps;
       const bool hist = step * s.output.history_count >= next_history * p.steps;
       {
@@ -430,7 +435,7 @@ Result run_dim(const scene::Scene& s, const Options& o) {
     for (long step = res.first_step; step <= p.steps; ++step) {
       const double t = s.solver.end_time * double(step) / double(p.steps);
       auto r = p.relax(*dr, s.solver, t);
-      res.bond_updates += double(r.iterations) * double(m.bonds.size());
+      res.bond_updates += double(r.iterations) * bonds;
       std::vector<double> extra{double(r.iterations), r.residual};
       if (at_equilibrium) extra.push_back(double(r.breaking_passes));
       {

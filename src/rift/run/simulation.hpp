@@ -58,8 +58,9 @@ struct Simulation {
       throw SceneError({s.file, 0, 0}, "--cut-along", std::string("a peridynamic run is cut across its lattice's slowest axis, ") +
                                                           (D == 3 ? "z" : "y") + ", alone (its layers of particles are ranges of their numbering)");
     std::string missing = pd::not_distributable<D>(model);
-    const bool relaxation = s.solver.kind != scene::SolverKind::explicit_dynamics;
-    if (s.in_situ.enabled) missing = "[in_situ_stress]";
+    // dynamic relaxation and the in-situ stage sum over the owned particles in blocks
+    // (parallel/ordered_sum.hpp): the ranks' ranges start at whole blocks
+    const bool relaxation = s.solver.kind != scene::SolverKind::explicit_dynamics || s.in_situ.enabled;
     if (contact.enabled() && model.bodies.size() > 1) missing = "contact between bodies ([contact] enabled = false takes it off)";
     if (!missing.empty())
       throw SceneError({s.file, 0, 0}, "mpirun -np " + std::to_string(comm.size()),
