@@ -21,6 +21,11 @@ export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMPI_MCA_rmaps_
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
 fail() { echo "FAIL: $*"; exit 1; }
+# run_on_ranks SCENE NP: runs $tmp/SCENE.toml on NP ranks into $tmp/SCENE-npNP (its log beside it)
+run_on_ranks() {
+  local out="$tmp/$1-np$2"
+  "${mpirun[@]}" -np "$2" "$rift" run "$tmp/$1.toml" -o "$out" -q > "$out.log" 2>&1 || { cat "$out.log"; fail "$1: mpirun -np $2"; }
+}
 # same_outputs SERIAL OUT WHAT: every output of OUT is the bytes of the one-rank run's in SERIAL
 # (the plots aside: matplotlib's bytes, drawn from the same data)
 same_outputs() {
@@ -140,8 +145,8 @@ sed -e 's/model = "pmb"/model = "lps"/' -e 's/fracture_energy = 3.8/bond_failure
 for scene in plate bar ves_bar ns_plate; do
   "$rift" run "$tmp/$scene.toml" -o "$tmp/$scene-serial" -q > "$tmp/$scene-serial.log"
   for np in 1 2 3; do
+    run_on_ranks "$scene" "$np"
     out="$tmp/$scene-np$np"
-    "${mpirun[@]}" -np "$np" "$rift" run "$tmp/$scene.toml" -o "$out" -q > "$out.log" 2>&1 || { cat "$out.log"; fail "$scene: mpirun -np $np"; }
     same_outputs "$tmp/$scene-serial" "$out" "$scene on $np ranks"
     if [ "$np" -gt 1 ]; then
       grep -q "load balance over $np ranks" "$out.log" || fail "$scene: no load-balance report on $np ranks"
@@ -170,8 +175,8 @@ for case in "relax_plate 100" "free_plate 1000"; do
   read -r scene least <<< "$case"
   "$rift" run "$tmp/$scene.toml" -o "$tmp/$scene-serial" -q > /dev/null
   for np in 2 3; do
+    run_on_ranks "$scene" "$np"
     out="$tmp/$scene-np$np"
-    "${mpirun[@]}" -np "$np" "$rift" run "$tmp/$scene.toml" -o "$out" -q > "$out.log" 2>&1 || { cat "$out.log"; fail "$scene: mpirun -np $np"; }
     same_outputs "$tmp/$scene-serial" "$out" "$scene on $np ranks"
   done
   awk -F, -v least="$least" 'NR > 1 { b = $4 } END { exit !(b > least) }' "$tmp/$scene-serial/history.csv" || fail "$scene: fewer than $least bonds broke"
@@ -240,8 +245,8 @@ for case in "insitu_platens force evaluations of preconditioned conjugate gradie
   grep -q "in-situ stage: equilibrium in [0-9]* $how" "$tmp/$scene-serial.log" || fail "$scene: its in-situ stage did not reach equilibrium by $how"
   awk -F, 'NR > 1 { b = $4 } END { exit !(b > 1000) }' "$tmp/$scene-serial/history.csv" || fail "$scene: fewer than 1000 bonds broke"
   for np in 2 3; do
+    run_on_ranks "$scene" "$np"
     out="$tmp/$scene-np$np"
-    "${mpirun[@]}" -np "$np" "$rift" run "$tmp/$scene.toml" -o "$out" -q > "$out.log" 2>&1 || { cat "$out.log"; fail "$scene: mpirun -np $np"; }
     same_outputs "$tmp/$scene-serial" "$out" "$scene on $np ranks"
   done
 done
@@ -321,8 +326,8 @@ SCENE
 for scene in mpm_cantilever mpm_disks mpm_block; do
   "$rift" run "$tmp/$scene.toml" -o "$tmp/$scene-serial" -q > /dev/null
   for np in 1 2 3; do
+    run_on_ranks "$scene" "$np"
     out="$tmp/$scene-np$np"
-    "${mpirun[@]}" -np "$np" "$rift" run "$tmp/$scene.toml" -o "$out" -q > "$out.log" 2>&1 || { cat "$out.log"; fail "$scene: mpirun -np $np"; }
     "$compare_fields" "$tmp/$scene-serial" "$out" 1e-12 || fail "$scene on $np ranks differs from the one-rank run"
     [ "$np" -eq 1 ] || grep -q "load balance over $np ranks" "$out.log" || fail "$scene: no load-balance report on $np ranks"
   done

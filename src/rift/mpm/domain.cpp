@@ -79,6 +79,12 @@ void each_slot_in_layers(const Grid<D>& g, int axis, long lo, long hi, F f) {
       }
 }
 
+/// The layer of cells along `axis` that holds x, as the floor of its grid coordinate (not clamped).
+template <int D>
+double layer_of(const Grid<D>& g, int axis, const Vec<D>& x) {
+  return std::floor((x[axis] - g.origin[axis]) / g.cell_size);
+}
+
 /// The sums a scatter makes at grid slot n, one double at a time.
 template <int D, class F>
 void each_sum(Grid<D>& g, std::size_t n, bool force, bool contact, F f) {
@@ -128,7 +134,7 @@ Slabs cut_into_slabs(const Model<D>& whole, int ranks, const std::string& file, 
   // points per layer of cells, then cuts where the running count passes each rank's share
   std::vector<std::size_t> per_layer(static_cast<std::size_t>(cells), 0);
   for (const auto& x : whole.particles.position) {
-    const double u = std::floor((x[slabs.axis] - g.origin[slabs.axis]) / g.cell_size);
+    const double u = layer_of<D>(g, slabs.axis, x);
     ++per_layer[static_cast<std::size_t>(std::clamp(u, 0.0, double(cells - 1)))];
   }
   const std::size_t total = whole.particles.size();
@@ -155,7 +161,7 @@ Domain<D>::Domain(const parallel::Communicator& comm, Slabs slabs, const Model<D
 
 template <int D>
 long Domain<D>::cell_of(const Grid<D>& g, const Vec<D>& x) const {
-  const double u = std::floor((x[slabs_.axis] - g.origin[slabs_.axis]) / g.cell_size);
+  const double u = layer_of<D>(g, slabs_.axis, x);
   // a point off the grid stays with its rank, whose stencil then reports it (stencil.hpp)
   return std::isfinite(u) ? static_cast<long>(std::clamp(u, -1.0, double(whole_nodes_))) : -2;
 }
@@ -269,8 +275,13 @@ void Domain<D>::sum_shared_nodes(Grid<D>& g, bool force, bool contact) const {
     if (q < 0 || q >= comm_.size()) continue;
     const auto theirs = slabs_.node_layers(q, whole_nodes_);
     auto& k = parcels.emplace_back(Parcel{q, {}, {}});
-    each_slot_in_layers<D>(g, slabs_.axis, std::max(mine.first, theirs.first), std::min(mine.second, theirs.second),
-                           [&](std::size_t n) { each_sum<D>(g, n, force, contact, [&](double& v) { append(k.send, v); }); });
+    const long lo = std::max(mine.first, theirs.first), hi = std::min(mine.second, theirs.second);
+    // the shared layers' slots times the sums of each (each_sum), in one allocation
+    std::size_t slots = static_cast<std::size_t>(std::max(0L, hi - lo + 1)) * static_cast<std::size_t>(g.fields);
+    for (int a = 0; a < D; ++a)
+      if (a != slabs_.axis) slots *= static_cast<std::size_t>(g.nodes[a]);
+    k.send.reserve(slots * static_cast<std::size_t>(1 + D + (force ? D : 0) + (contact ? 2 * D + 1 : 0)) * sizeof(double));
+    each_slot_in_layers<D>(g, slabs_.axis, lo, hi, [&](std::size_t n) { each_sum<D>(g, n, force, contact, [&](double& v) { append(k.send, v); }); });
   }
   comm_.exchange(parcels);
   for (const auto& k : parcels) {
