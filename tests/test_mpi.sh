@@ -188,8 +188,8 @@ echo "ok: relax_plate (dynamic relaxation, breaking at equilibrium) and free_pla
 # between rigid platens (platens.hpp: each plate's sums gather every rank's face particles in the
 # face's order; conjugate gradients without the coarse space), the same block under tractions
 # alone (conjugate gradients with the coarse space, summed in fixed point, and the free body's
-# rigid motions projected out) and under tractions by dynamic relaxation from the uniform in-situ
-# strain (its measured fictitious density)
+# rigid motions projected out) and between platens by dynamic relaxation from the uniform in-situ
+# strain (its measured fictitious density; the plates move in its iterations)
 cat > "$tmp/insitu_platens.toml" <<'SCENE'
 [scene]
 name = "insitu_platens"
@@ -235,7 +235,7 @@ history_rows = 10
 SCENE
 sed -e 's/faces = "platens"/faces = "tractions"/' -e 's/name = "insitu_platens"/name = "insitu_coarse"/' \
   "$tmp/insitu_platens.toml" > "$tmp/insitu_coarse.toml"
-sed -e 's/faces = "platens"/faces = "tractions"\nsolver = "dynamic_relaxation"\nstart = "uniform_strain"/' -e 's/tolerance = 1e-8/tolerance = 1e-6/' \
+sed -e 's/faces = "platens"/faces = "platens"\nsolver = "dynamic_relaxation"\nstart = "uniform_strain"/' -e 's/tolerance = 1e-8/tolerance = 1e-6/' \
   -e 's/name = "insitu_platens"/name = "insitu_dr"/' "$tmp/insitu_platens.toml" > "$tmp/insitu_dr.toml"
 # scene, how its one-rank run's in-situ stage reached equilibrium
 for case in "insitu_platens force evaluations of preconditioned conjugate gradients" \
@@ -250,7 +250,7 @@ for case in "insitu_platens force evaluations of preconditioned conjugate gradie
     same_outputs "$tmp/$scene-serial" "$out" "$scene on $np ranks"
   done
 done
-echo "ok: the in-situ stage (platens, the coarse space, dynamic relaxation) and the explicit steps after it on 2 and 3 ranks: the same bytes as one rank"
+echo "ok: the in-situ stage (platens, the coarse space, dynamic relaxation between platens) and the explicit steps after it on 2 and 3 ranks: the same bytes as one rank"
 
 # checkpoints written by 2 ranks restart on 3 and on 1, and the continued runs write the bytes of
 # the uninterrupted one-rank run (rank 0 gathers the whole run's state: any number of ranks reads it)
