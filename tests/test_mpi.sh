@@ -253,8 +253,9 @@ done
 echo "ok: the in-situ stage (platens, the coarse space, dynamic relaxation between platens) and the explicit steps after it on 2 and 3 ranks: the same bytes as one rank"
 
 # checkpoints written by 2 ranks restart on 3 and on 1, and the continued runs write the bytes of
-# the uninterrupted one-rank run (rank 0 gathers the whole run's state: any number of ranks reads it)
-for scene in plate ves_bar; do
+# the uninterrupted one-rank run (rank 0 gathers the whole run's state: any number of ranks reads it;
+# insitu_platens: a checkpoint of the explicit steps after the in-situ stage, which a restart skips)
+for scene in plate ves_bar insitu_platens; do
   printf '[checkpoint]\nevery_steps = 20\nfile = "ckpt_*.rift"\n' | cat "$tmp/$scene.toml" - > "$tmp/$scene-ckpt.toml"
   "${mpirun[@]}" -np 2 "$rift" run "$tmp/$scene-ckpt.toml" -o "$tmp/$scene-ckpt" -q > /dev/null 2>&1 || fail "$scene: checkpointed run on 2 ranks"
   [ -s "$tmp/$scene-ckpt/ckpt_20.rift" ] || fail "$scene: no checkpoint after step 20 on 2 ranks"
