@@ -7,8 +7,10 @@
 // shared entries (the coarse space's, pd/coarse_space.hpp), where ordered_sum.hpp's fixed blocks
 // do not apply.
 #pragma once
+#include <algorithm>
 #include <cmath>
 #include <cstddef>
+#include <cstdint>
 #include <vector>
 
 #include "rift/parallel/communicator.hpp"
@@ -30,16 +32,23 @@ class FixedPointSums {
   void add(std::size_t k, double term) {
     if (std::isfinite(term)) sums_[k] += static_cast<Integer>(std::nearbyint(std::ldexp(term, scale_)));
     else finite_ = false;
+    first_ = std::min(first_, k), last_ = std::max(last_, k + 1);
   }
-  /// Adds every rank's sums into every rank's (exact: the same bits in any rank order).
+  /// Adds every rank's sums into every rank's (exact: the same bits in any rank order). A rank sends
+  /// the range of sums it added to, from the first to the last (the coarse space's aggregates are
+  /// numbered in grid order, so a slab of particles adds to a range of them).
   void add_over(const Communicator& comm) {
     if (!comm.distributed()) return;
     finite_ = !comm.any(!finite_);
-    const std::size_t count = sums_.size();
-    if (count == 0) return;
-    const std::vector<Integer> all = comm.all_gather(sums_);
-    for (std::size_t k = 0; k < count; ++k) sums_[k] = 0;
-    for (std::size_t q = 0; q < all.size(); ++q) sums_[q % count] += all[q];
+    if (first_ >= last_) first_ = last_ = 0;
+    const std::vector<std::uint64_t> ranges = comm.all_gather(std::vector<std::uint64_t>{first_, last_});
+    const std::vector<Integer> all = comm.all_gather(std::vector<Integer>(sums_.begin() + static_cast<std::ptrdiff_t>(first_),
+                                                                           sums_.begin() + static_cast<std::ptrdiff_t>(last_)));
+    std::fill(sums_.begin(), sums_.end(), Integer{0});
+    std::size_t at = 0;
+    for (std::size_t r = 0; r + 1 < ranges.size(); r += 2)
+      for (std::uint64_t k = ranges[r]; k < ranges[r + 1]; ++k) sums_[k] += all[at++];
+    first_ = 0, last_ = sums_.size();
   }
   double operator[](std::size_t k) const { return finite_ ? std::ldexp(static_cast<double>(sums_[k]), -scale_) : std::nan(""); }
   std::size_t size() const { return sums_.size(); }
@@ -48,6 +57,7 @@ class FixedPointSums {
   std::vector<Integer> sums_;
   int scale_ = 0;
   bool finite_ = true;
+  std::size_t first_ = static_cast<std::size_t>(-1), last_ = 0;  // the sums added to: [first_, last_)
 };
 
 }  // namespace rift::parallel
