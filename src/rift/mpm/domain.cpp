@@ -336,11 +336,12 @@ void Domain<D>::gather_grid(Grid<D>& part, Grid<D>* whole) const {
 }
 
 template <int D>
-std::string Domain<D>::load_balance(const Model<D>& part, double loop_seconds) const {
-  const auto all = comm_.gather(std::vector<double>{double(part.particles.size()), loop_seconds});
+std::string Domain<D>::load_balance(const Model<D>& part, double loop_seconds, double in_mpi) const {
+  const auto all = comm_.gather(std::vector<double>{double(part.particles.size()), loop_seconds, in_mpi});
   static const char* axis[3] = {"x", "y", "z"};
-  std::string out = fmt::format("load balance over {} ranks, slabs of cells along {} (material points, loop time):", comm_.size(), axis[slabs_.axis]);
-  for (std::size_t r = 0; 2 * r < all.size(); ++r) out += fmt::format(" rank {}: {:.0f}, {:.2f} s;", r, all[2 * r], all[2 * r + 1]);
+  std::string out = fmt::format("load balance over {} ranks, slabs of cells along {} (material points, loop time, of it in MPI calls):",
+                                comm_.size(), axis[slabs_.axis]);
+  for (std::size_t r = 0; 3 * r < all.size(); ++r) out += fmt::format(" rank {}: {:.0f}, {:.2f} s, {:.2f} s;", r, all[3 * r], all[3 * r + 1], all[3 * r + 2]);
   out.pop_back();
   return out;
 }

@@ -88,8 +88,8 @@ class Domain {
   /// Every rank's points into `whole` on rank 0 (null elsewhere), for a checkpoint that holds the
   /// whole run; the grid is not gathered, as each step takes it anew from the points.
   void gather_points(Model<D>& part, Model<D>* whole) const;
-  /// Points and step-loop time of every rank, on rank 0.
-  std::string load_balance(const Model<D>& part, double loop_seconds) const;
+  /// Points, step-loop time and the part of it in MPI calls (parallel::seconds_in_mpi) of every rank, on rank 0.
+  std::string load_balance(const Model<D>& part, double loop_seconds, double in_mpi) const;
 
  private:
   /// Cell of a point along the cut axis.

@@ -1,5 +1,7 @@
 #include "rift/parallel/communicator.hpp"
 
+#include <chrono>
+
 #include <mpi.h>
 
 #include <cstdlib>
@@ -47,6 +49,15 @@ Communicator& Communicator::mutable_world() {
   return w;
 }
 
+namespace {
+double mpi_seconds = 0.0;
+double now() { return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count(); }
+}  // namespace
+
+double seconds_in_mpi() { return mpi_seconds; }
+MpiClock::MpiClock() : start_(now()) {}
+MpiClock::~MpiClock() { mpi_seconds += now() - start_; }
+
 const Communicator& Communicator::world() { return mutable_world(); }
 
 const Communicator& Communicator::one() {
@@ -55,15 +66,20 @@ const Communicator& Communicator::one() {
 }
 
 void Communicator::sum(double* values, std::size_t count) const {
-  if (started && size_ > 1) MPI_Allreduce(MPI_IN_PLACE, values, static_cast<int>(count), MPI_DOUBLE, MPI_SUM, MPI_COMM_WORLD);
+  if (!started || size_ < 2) return;
+  MpiClock clock;
+  MPI_Allreduce(MPI_IN_PLACE, values, static_cast<int>(count), MPI_DOUBLE, MPI_SUM, MPI_COMM_WORLD);
 }
 
 void Communicator::max(double* values, std::size_t count) const {
-  if (started && size_ > 1) MPI_Allreduce(MPI_IN_PLACE, values, static_cast<int>(count), MPI_DOUBLE, MPI_MAX, MPI_COMM_WORLD);
+  if (!started || size_ < 2) return;
+  MpiClock clock;
+  MPI_Allreduce(MPI_IN_PLACE, values, static_cast<int>(count), MPI_DOUBLE, MPI_MAX, MPI_COMM_WORLD);
 }
 
 void Communicator::gather_bytes(const void* local, std::size_t bytes, bool everyone, void* (*place)(void*, std::size_t),
                                 void* context) const {
+  MpiClock clock;
   // MPI counts are int: up to 2 GiB per call
   const long long mine = static_cast<long long>(bytes);
   std::vector<long long> counts(everyone || root() ? static_cast<std::size_t>(size_) : 0);
@@ -88,6 +104,7 @@ void Communicator::gather_bytes(const void* local, std::size_t bytes, bool every
 
 void Communicator::exchange(std::vector<Parcel>& parcels) const {
   if (!started || size_ < 2) return;
+  MpiClock clock;
   std::vector<MPI_Request> requests;
   requests.reserve(2 * parcels.size());
   std::vector<long long> sizes(parcels.size()), theirs(parcels.size());
@@ -109,16 +126,22 @@ void Communicator::exchange(std::vector<Parcel>& parcels) const {
 }
 
 void Communicator::broadcast(double* values, std::size_t count) const {
-  if (started && size_ > 1) MPI_Bcast(values, static_cast<int>(count), MPI_DOUBLE, 0, MPI_COMM_WORLD);
+  if (!started || size_ < 2) return;
+  MpiClock clock;
+  MPI_Bcast(values, static_cast<int>(count), MPI_DOUBLE, 0, MPI_COMM_WORLD);
 }
 
 void Communicator::broadcast_bytes(void* bytes, std::size_t count) const {
   if (count > static_cast<std::size_t>(std::numeric_limits<int>::max())) throw std::runtime_error("a broadcast of more than 2 GiB");
-  if (started && size_ > 1) MPI_Bcast(bytes, static_cast<int>(count), MPI_BYTE, 0, MPI_COMM_WORLD);
+  if (!started || size_ < 2) return;
+  MpiClock clock;
+  MPI_Bcast(bytes, static_cast<int>(count), MPI_BYTE, 0, MPI_COMM_WORLD);
 }
 
 void Communicator::barrier() const {
-  if (started && size_ > 1) MPI_Barrier(MPI_COMM_WORLD);
+  if (!started || size_ < 2) return;
+  MpiClock clock;
+  MPI_Barrier(MPI_COMM_WORLD);
 }
 
 }  // namespace rift::parallel

@@ -22,6 +22,23 @@ class MpiSession {
   [[noreturn]] static void abort(int status);
 };
 
+/// Seconds this process has spent in MPI calls so far (the exchanges, reductions and gathers of
+/// Communicator and the halo's refreshes), waiting for the other ranks included: a rank's loop time
+/// less these is its own work, which the load-balance report sets beside it.
+double seconds_in_mpi();
+
+/// Adds the seconds of its life to seconds_in_mpi() (MPI calls come from the main thread alone).
+class MpiClock {
+ public:
+  MpiClock();
+  ~MpiClock();
+  MpiClock(const MpiClock&) = delete;
+  MpiClock& operator=(const MpiClock&) = delete;
+
+ private:
+  double start_;
+};
+
 /// MPI_COMM_WORLD, or a world of one rank when MPI was not started.
 class Communicator {
  public:

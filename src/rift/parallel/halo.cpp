@@ -22,6 +22,7 @@ Halo::Halo(int rank, const std::vector<std::size_t>& owned, const std::vector<st
 }
 
 void Halo::refresh(double* field, std::size_t width) const {
+  MpiClock clock;
   static thread_local std::vector<MPI_Request> requests;  // kept from call to call: no allocation per step
   requests.clear();
   // a message per neighbour and direction: the ranges are contiguous in both windows

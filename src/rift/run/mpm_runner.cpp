@@ -313,6 +313,7 @@ Result run_dim(const scene::Scene& s, const Options& o) {
   }
   Checkpointing checkpoints(s, o, res.output_dir);
   const auto start = std::chrono::steady_clock::now();
+  const double mpi_at_start = parallel::seconds_in_mpi();
   Progress progress(r.steps, s.solver.end_time, o.quiet || !comm.root());
   if (!restarted) write_snapshot<D>(fields, m, s, in);
   for (long step = res.first_step; step <= r.steps; ++step) {
@@ -352,6 +353,7 @@ Result run_dim(const scene::Scene& s, const Options& o) {
     if (stop) break;
   }
   res.loop_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  const double in_mpi = parallel::seconds_in_mpi() - mpi_at_start;
   if (res.stopped) {
     res.time = m.time;
     return res;  // the final state's reports belong to the run that ends
@@ -370,7 +372,7 @@ Result run_dim(const scene::Scene& s, const Options& o) {
   comm.sum(sums, 2);
   res.final_energy.kinetic = sums[0];
   res.final_energy.strain = sums[1];
-  if (domain) res.notes.push_back(domain->load_balance(m, res.loop_seconds));
+  if (domain) res.notes.push_back(domain->load_balance(m, res.loop_seconds, in_mpi));
   res.steps = r.steps;
   res.time = m.time;
   return res;

@@ -213,14 +213,18 @@ void check_finite(const pd::Model<D>& m, long step, const pd::EnergySummary& e, 
   throw PhysicsError("step " + std::to_string(step) + ": energy is not finite");
 }
 
-/// A distributed run's load balance: each rank's owned particles, ghosts and step-loop time.
+/// A distributed run's load balance: each rank's owned particles, ghosts, step-loop time and the
+/// part of it spent in MPI calls (waiting for the others included: the loop time less it is the
+/// rank's own work).
 template <int D>
-std::string load_balance(const parallel::Communicator& comm, const pd::Model<D>& m, double loop_seconds, std::size_t ghosts) {
+std::string load_balance(const parallel::Communicator& comm, const pd::Model<D>& m, double loop_seconds, double in_mpi, std::size_t ghosts) {
+  constexpr std::size_t k = 5;
   const auto all = comm.gather(std::vector<double>{double(m.owned_last() - m.owned_begin), double(ghosts),
-                                double(m.bonds.offset[m.owned_last()] - m.bonds.offset[m.owned_begin]), loop_seconds});
-  std::string out = fmt::format("load balance over {} ranks (owned particles, ghosts, directed bonds, loop time):", comm.size());
-  for (std::size_t r = 0; 4 * r < all.size(); ++r)
-    out += fmt::format("{} rank {}: {:.0f}, {:.0f}, {:.0f}, {:.3g} s", r ? ";" : "", r, all[4 * r], all[4 * r + 1], all[4 * r + 2], all[4 * r + 3]);
+                                double(m.bonds.offset[m.owned_last()] - m.bonds.offset[m.owned_begin]), loop_seconds, in_mpi});
+  std::string out = fmt::format("load balance over {} ranks (owned particles, ghosts, directed bonds, loop time, of it in MPI calls):", comm.size());
+  for (std::size_t r = 0; k * r < all.size(); ++r)
+    out += fmt::format("{} rank {}: {:.0f}, {:.0f}, {:.0f}, {:.3g} s, {:.3g} s", r ? ";" : "", r, all[k * r], all[k * r + 1], all[k * r + 2],
+                       all[k * r + 3], all[k * r + 4]);
   return out;
 }
 
@@ -383,6 +387,7 @@ Result run_dim(const scene::Scene& s, const Options& o) {
   // bonds per second printed at the end
   const double bonds = comm.sum(double(m.bonds.offset[m.owned_last()] - m.bonds.offset[m.owned_begin]));
   const auto loop_start = std::chrono::steady_clock::now();
+  const double mpi_at_start = parallel::seconds_in_mpi();
   PhaseTimes::run().reset();
   Progress progress(p.steps, s.solver.end_time, o.quiet || !comm.root());
   Checkpointing checkpoints(s, o, res.output_dir);
@@ -456,11 +461,12 @@ Result run_dim(const scene::Scene& s, const Options& o) {
     }
   }
   res.loop_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - loop_start).count();
+  const double in_mpi = parallel::seconds_in_mpi() - mpi_at_start;
   res.phases = phase_summary(PhaseTimes::run(), res.loop_seconds);
   res.final_energy = reduce(comm, pd::summarize<D>(m));
   pd::update_damage<D>(m);
   res.max_damage = max_damage<D>(comm, m);
-  if (comm.distributed()) res.notes.push_back(load_balance(comm, m, res.loop_seconds, p.halo->ghosts()));
+  if (comm.distributed()) res.notes.push_back(load_balance(comm, m, res.loop_seconds, in_mpi, p.halo->ghosts()));
   res.time = m.time;
   if (res.stopped) return res;  // the final state's reports belong to the run that ends
   res.steps = p.steps;
