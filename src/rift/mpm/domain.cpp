@@ -113,7 +113,7 @@ std::pair<long, long> Slabs::node_layers(int r, long nodes) const {
 }
 
 template <int D>
-Slabs cut_into_slabs(const Model<D>& whole, int ranks, const std::string& file, int axis) {
+Slabs cut_into_slabs(const Model<D>& whole, int ranks, const std::string& file, int axis, const std::vector<double>* weight) {
   const auto& g = whole.grid;
   const char* names = "xyz";
   if (axis >= D)
@@ -131,19 +131,21 @@ Slabs cut_into_slabs(const Model<D>& whole, int ranks, const std::string& file, 
                      fmt::format("the grid has {} cells along {} and a rank needs {} of them; run this scene on at most {} ranks{}", cells,
                                  names[slabs.axis], Slabs::min_cells, std::max(1L, cells / Slabs::min_cells),
                                  axis < 0 ? "" : " or cut it along another axis"));
-  // points per layer of cells, then cuts where the running count passes each rank's share
-  std::vector<std::size_t> per_layer(static_cast<std::size_t>(cells), 0);
-  for (const auto& x : whole.particles.position) {
-    const double u = layer_of<D>(g, slabs.axis, x);
-    ++per_layer[static_cast<std::size_t>(std::clamp(u, 0.0, double(cells - 1)))];
+  // the points' weight per layer of cells, then cuts where the running sum passes each rank's share
+  std::vector<double> per_layer(static_cast<std::size_t>(cells), 0.0);
+  const auto& position = whole.particles.position;
+  double total = 0.0;
+  for (std::size_t p = 0; p < position.size(); ++p) {
+    const double u = layer_of<D>(g, slabs.axis, position[p]), w = weight ? (*weight)[p] : 1.0;
+    per_layer[static_cast<std::size_t>(std::clamp(u, 0.0, double(cells - 1)))] += w;
+    total += w;
   }
-  const std::size_t total = whole.particles.size();
   slabs.first_cell.assign(static_cast<std::size_t>(ranks) + 1, cells);
   slabs.first_cell[0] = 0;
-  std::size_t below = 0;
+  double below = 0.0;
   long cell = 0;
   for (int r = 1; r < ranks; ++r) {
-    const std::size_t share = total * static_cast<std::size_t>(r) / static_cast<std::size_t>(ranks);
+    const double share = total * r / ranks;
     while (cell < cells && below + per_layer[static_cast<std::size_t>(cell)] <= share) below += per_layer[static_cast<std::size_t>(cell++)];
     // every slab min_cells thick at least, and room for the slabs above
     const long first = std::clamp(cell, slabs.first_cell[static_cast<std::size_t>(r - 1)] + Slabs::min_cells,
@@ -347,7 +349,7 @@ std::string Domain<D>::load_balance(const Model<D>& part, double loop_seconds, d
 }
 
 #define RIFT_INSTANTIATE(D)                                                            \
-  template Slabs cut_into_slabs<D>(const Model<D>&, int, const std::string&, int);     \
+  template Slabs cut_into_slabs<D>(const Model<D>&, int, const std::string&, int, const std::vector<double>*);     \
   template class Domain<D>;
 RIFT_INSTANTIATE(2)
 RIFT_INSTANTIATE(3)

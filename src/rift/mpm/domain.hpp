@@ -37,11 +37,12 @@ struct Slabs {
   std::pair<long, long> node_layers(int r, long nodes) const;
 };
 
-/// Slabs across `axis` (-1: the axis with the most cells), each holding about the same number of
-/// material points; a SceneError (for `file`) when the grid has fewer than Slabs::min_cells cells
-/// per rank along it.
+/// Slabs across `axis` (-1: the axis with the most cells), each holding about the same work: a
+/// material point weighs 1, or weight[p] where `weight` is given (a point near an explicit crack
+/// weighs more: crack_work_weights); a SceneError (for `file`) when the grid has fewer than
+/// Slabs::min_cells cells per rank along it.
 template <int D>
-Slabs cut_into_slabs(const Model<D>& whole, int ranks, const std::string& file, int axis = -1);
+Slabs cut_into_slabs(const Model<D>& whole, int ranks, const std::string& file, int axis = -1, const std::vector<double>* weight = nullptr);
 
 template <int D>
 class Domain {
