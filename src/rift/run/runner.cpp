@@ -366,6 +366,9 @@ Result run_dim(const scene::Scene& s, const Options& o) {
     pd::record_outcomes(outcomes, pd::classify_interfaces<D>(m));
     outcomes_at_breakthrough = outcomes;
   }
+  // the whole run's directed bonds (a distributed run's ranks each count their owned rows): the
+  // in-situ stage's share broken and the bonds per second printed at the end
+  const double bonds = comm.sum(double(m.bonds.offset[m.owned_last()] - m.bonds.offset[m.owned_begin]));
   auto failed_bonds = [&] { return static_cast<std::size_t>(comm.sum(static_cast<double>(pd::failed_bonds<D>(m)))); };
   const std::size_t failed_before_start = s.in_situ.enabled && !restarted ? failed_bonds() : 0;
   if (!restarted) p.start();  // a checkpoint holds the forces of its step
@@ -373,8 +376,7 @@ Result run_dim(const scene::Scene& s, const Options& o) {
     // the in-situ stage holds every bond; those its equilibrium strains past their limit break now
     const auto broken = static_cast<std::int64_t>((failed_bonds() - failed_before_start) / 2);
     if (broken > 0) {
-      const double all = comm.sum(double(m.bonds.offset[m.owned_last()] - m.bonds.offset[m.owned_begin]));  // the owned rows'
-      const double percent = 100.0 * double(2 * broken) / std::max(1.0, all);
+      const double percent = 100.0 * double(2 * broken) / std::max(1.0, bonds);
       res.notes.push_back(fmt::format("in-situ stage: {} bonds ({:.3g}%) past their limit at its equilibrium broke at the start", broken, percent));
       if (!o.quiet)
         std::fprintf(stderr,
@@ -383,9 +385,6 @@ Result run_dim(const scene::Scene& s, const Options& o) {
                      static_cast<long long>(broken), percent, s.file.c_str());
     }
   }
-  // the whole run's directed bonds (a distributed run's ranks each count their owned rows): the
-  // bonds per second printed at the end
-  const double bonds = comm.sum(double(m.bonds.offset[m.owned_last()] - m.bonds.offset[m.owned_begin]));
   const auto loop_start = std::chrono::steady_clock::now();
   const double mpi_at_start = parallel::seconds_in_mpi();
   PhaseTimes::run().reset();
