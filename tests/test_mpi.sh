@@ -8,7 +8,8 @@
 # exchanged), and a 3D LPS bar pulled apart (the dilatation's halo exchange), also as VES (the
 # bonds' viscous history on both sides of a cut), and a rock block's in-situ stage (between
 # platens, or under tractions by conjugate gradients or dynamic relaxation) followed by explicit
-# steps that break its bonds. The material point method (mpm/domain.hpp) adds
+# steps that break its bonds, and fluids in rock that cannot break (a borehole breaking down into a
+# dry pre-crack, a pressurized pre-crack). The material point method (mpm/domain.hpp) adds
 # the nodes' sums of neighbouring ranks in another order than one rank: its fields agree with the
 # one-rank run's to 1e-12 of their size (compare_fields, the second argument). What a distributed
 # run cannot take yet is refused with exit status 2 before anything is written.
@@ -254,19 +255,136 @@ for case in "insitu_platens force evaluations of preconditioned conjugate gradie
 done
 echo "ok: the in-situ stage (platens, the coarse space, dynamic relaxation between platens) and the explicit steps after it on 2 and 3 ranks: the same bytes as one rank"
 
+# fluid in rock that cannot break (fluid_network.hpp, window.hpp not_distributable): a borehole fed
+# by a lumped injection (its cavity volume summed over every rank's owned particles in the one-rank
+# order) whose wall breaks down at 4 MPa into a dry pre-crack across both cuts (the fluid's labels
+# spread across the ranks' cuts in rounds), after an in-situ stage between platens, by dynamic
+# relaxation; and, in explicit steps, a pre-crack with a pressure of its own across both cuts beside
+# a second, injected borehole on the cut of three ranks
+cat > "$tmp/borehole.toml" <<'SCENE'
+[scene]
+name = "borehole"
+dimension = 2
+plane = "strain"
+thickness = 0.001
+[materials.rock]
+model = "lps"
+density = 2500.0
+youngs_modulus = 10e9
+poisson_ratio = 0.25
+[regions.block]
+shape = "box"
+min = [-0.05, -0.05]
+max = [0.05, 0.05]
+[regions.borehole]
+shape = "cylinder"
+center = [0.0, 0.0]
+radius = 0.005
+[regions.rock]
+shape = "difference"
+of = ["block", "borehole"]
+[bodies.rock]
+material = "rock"
+region = "rock"
+spacing = 0.001
+horizon = 3.015
+[[cracks]]
+points = [[0.0, -0.03], [0.0, 0.03]]
+[[boreholes]]
+region = "borehole"
+injection_rate = 2e-9
+fluid_bulk_modulus = 2.2e9
+breakdown_pressure = 4e6
+[in_situ_stress]
+sigma_H = -6e6
+sigma_h = -3e6
+faces = "platens"
+tolerance = 1e-6
+[solver]
+type = "dynamic_relaxation"
+end_time = 1.0
+load_steps = 3
+max_iterations = 5000
+tolerance = 1e-5
+[output]
+fields = ["displacement", "stress", "fluid_pressure"]
+history = ["strain_energy"]
+damage_image = false
+damage_histogram = false
+SCENE
+cat > "$tmp/pressurized.toml" <<'SCENE'
+[scene]
+name = "pressurized"
+dimension = 2
+plane = "strain"
+thickness = 0.001
+[materials.rock]
+model = "lps"
+density = 2500.0
+youngs_modulus = 10e9
+poisson_ratio = 0.25
+[regions.block]
+shape = "box"
+min = [-0.05, -0.05]
+max = [0.05, 0.05]
+[regions.borehole]
+shape = "cylinder"
+center = [0.02, 0.032]
+radius = 0.004
+[regions.rock]
+shape = "difference"
+of = ["block", "borehole"]
+[bodies.rock]
+material = "rock"
+region = "rock"
+spacing = 0.001
+horizon = 3.015
+[[cracks]]
+points = [[0.0, -0.03], [0.0, 0.03]]
+pressure = 1e6
+time = { function = "ramp", start = 0.0, end = 2e-6 }
+[[boreholes]]
+region = "borehole"
+injection_rate = 1e-6
+fluid_bulk_modulus = 2.2e9
+[solver]
+end_time = 5e-5
+[output]
+snapshots = 2
+fields = ["displacement", "fluid_pressure"]
+history = ["kinetic_energy", "strain_energy"]
+history_rows = 10
+damage_image = false
+damage_histogram = false
+SCENE
+"$rift" run "$tmp/borehole.toml" -o "$tmp/borehole-serial" -q > /dev/null
+sed -e 's/breakdown_pressure = 4e6/breakdown_pressure = 100e6/' -e 's/name = "borehole"/name = "sealed"/' "$tmp/borehole.toml" > "$tmp/sealed.toml"
+"$rift" run "$tmp/sealed.toml" -o "$tmp/sealed-serial" -q > /dev/null
+# the fluid must have entered the pre-crack: the borehole's pressure at the end is under half the
+# sealed borehole's
+paste -d, "$tmp/borehole-serial/history.csv" "$tmp/sealed-serial/history.csv" | awk -F, 'NR > 1 { open = $4; shut = $12 } END { exit !(open < 0.5 * shut) }' ||
+  fail "borehole: the fluid did not enter the dry pre-crack after breakdown"
+"$rift" run "$tmp/pressurized.toml" -o "$tmp/pressurized-serial" -q > /dev/null
+for scene in borehole pressurized; do
+  same_on_ranks "$scene" 2 3
+done
+echo "ok: a borehole breaking down into a dry pre-crack (dynamic relaxation, in-situ stage) and a pressurized pre-crack beside an injected borehole (explicit) on 2 and 3 ranks: the same bytes as one rank"
+
 # checkpoints written by 2 ranks restart on 3 and on 1, and the continued runs write the bytes of
 # the uninterrupted one-rank run (rank 0 gathers the whole run's state: any number of ranks reads it;
 # insitu_platens: a checkpoint of the explicit steps after the in-situ stage, which a restart skips)
-for scene in plate ves_bar insitu_platens; do
-  printf '[checkpoint]\nevery_steps = 20\nfile = "ckpt_*.rift"\n' | cat "$tmp/$scene.toml" - > "$tmp/$scene-ckpt.toml"
+# borehole: a checkpoint of the first load step, the wall broken down and the pre-crack wet
+for case in "plate 20" "ves_bar 20" "insitu_platens 20" "borehole 1"; do
+  read -r scene step <<< "$case"
+  printf '[checkpoint]\nevery_steps = %s\nfile = "ckpt_*.rift"\n' "$step" | cat "$tmp/$scene.toml" - > "$tmp/$scene-ckpt.toml"
   "${mpirun[@]}" -np 2 "$rift" run "$tmp/$scene-ckpt.toml" -o "$tmp/$scene-ckpt" -q > /dev/null 2>&1 || fail "$scene: checkpointed run on 2 ranks"
-  [ -s "$tmp/$scene-ckpt/ckpt_20.rift" ] || fail "$scene: no checkpoint after step 20 on 2 ranks"
+  [ -s "$tmp/$scene-ckpt/ckpt_$step.rift" ] || fail "$scene: no checkpoint after step $step on 2 ranks"
   for np in 3 1; do
     out="$tmp/$scene-restart-np$np"
     cp -r "$tmp/$scene-ckpt" "$out"
-    "${mpirun[@]}" -np "$np" "$rift" run "$tmp/$scene-ckpt.toml" -o "$out" -q --restart "$out/ckpt_20.rift" > "$out.log" 2>&1 ||
+    "${mpirun[@]}" -np "$np" "$rift" run "$tmp/$scene-ckpt.toml" -o "$out" -q --restart "$out/ckpt_$step.rift" > "$out.log" 2>&1 ||
       { cat "$out.log"; fail "$scene: restart on $np ranks"; }
-    grep -q "continued from .*ckpt_20.rift at step 20" "$out.log" || fail "$scene: restart on $np ranks did not say where it continued"
+    grep -q "continued from .*ckpt_$step.rift at step $step" "$out.log" || fail "$scene: restart on $np ranks did not say where it continued"
     same_outputs "$tmp/$scene-serial" "$out" "$scene restarted on $np ranks from 2 ranks' checkpoint"
   done
   echo "ok: $scene: a checkpoint of 2 ranks continues on 3 and on 1 rank, the same bytes as the run never stopped"
@@ -383,7 +501,7 @@ printf '[checkpoint]\nevery_steps = 400\nfile = "ckpt_*.rift"\n' | cat "$tmp/mpm
 echo "ok: mpm_disks and mpm_dcb: a checkpoint of 2 ranks continues on 3, within 1e-12 of the one-rank run"
 
 # refused on more than one rank, exit status 2, nothing written: an MPM grid too thin for its
-# ranks, a cut along an axis a run cannot be cut along
+# ranks, a cut along an axis a run cannot be cut along, a fluid whose cracks can grow
 refused() {  # scene file, what the message says, ranks (2 unless given), more options of `rift run`
   local scene="$1" message="$2" np="${3:-2}" name status
   shift $(($# < 3 ? $# : 3))
@@ -403,6 +521,8 @@ refused "$tmp/coarse_disks.toml" "a rank needs 4 of them" 3
 # --cut-along: a peridynamic run is cut across its slowest axis alone; a 2D grid has no z
 refused "$tmp/bar.toml" "cut across its lattice's slowest axis" 2 --cut-along x
 refused "$tmp/mpm_disks.toml" "has no z axis" 2 --cut-along z
+# a fluid in rock whose bonds can break: its network of broken bonds is one rank's for now
+refused "$examples/hf_breakdown.toml" "rock whose bonds can break"
 echo "ok: what a distributed run cannot take is refused with exit status 2"
 
 # contact is found among a rank's ghosts: a plate squeezed until its layers of two ranks may touch

@@ -111,7 +111,7 @@ void Boundaries<D>::apply_body_forces(pd::Model<D>& m, double t) const {
         if (a.def.value[k]) m.body_force[i][k] += scale * *a.def.value[k];
     }
   }
-  if (m.crack_bonds.neighbor.empty()) return;
+  if (!m.fluid_network.pressure_bonds) return;  // on every rank alike (the fluid's sums are over every rank)
   // the fluid of each source also fills the cracks grown from it
   PhaseClock clock(Phase::fluid_pressure);
   {

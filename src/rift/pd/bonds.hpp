@@ -211,6 +211,7 @@ struct NetworkEnd {
 struct FluidNetwork {
   std::vector<int> source;                    // per particle: the source whose fluid reaches it, -1 none
   bool relabel = true;                        // the labels are to be made from scratch (the first time, a wall broke down)
+  bool pressure_bonds = false;                // the whole model has pressure bonds (crack_pressure.hpp; a rank's window may hold none)
   std::vector<std::uint64_t> bond_counts;     // per particle at the last update: its intact and broken bonds counted (fluid_network.hpp)
   std::vector<std::uint8_t> outer_surface;    // per particle: on the body's outer free surface (fluid_network.hpp)
   std::vector<std::uint8_t> in_crack;         // per particle: the fluid reaches it across a crack (a broken or cut bond), not only at a borehole's wall

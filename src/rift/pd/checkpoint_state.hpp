@@ -107,7 +107,7 @@ void visit(A& a, CrackSurface& c) {
 
 template <class A>
 void visit(A& a, FluidNetwork& f) {
-  a("fluid.source", f.source), a("fluid.relabel", f.relabel), a("fluid.bond_counts", f.bond_counts);
+  a("fluid.source", f.source), a("fluid.relabel", f.relabel), a("fluid.pressure_bonds", f.pressure_bonds), a("fluid.bond_counts", f.bond_counts);
   a("fluid.outer_surface", f.outer_surface), a("fluid.in_crack", f.in_crack), a("fluid.immersed", f.immersed);
   a("fluid.pore_stretch", f.pore_stretch), a("fluid.open_interface_bonds", f.open_interface_bonds);
   visit(a, f.crack_surface);

@@ -28,6 +28,7 @@ template <int D>
 void prepare_crack_pressure(Model<D>& m) {
   CrackBonds& w = m.crack_bonds;
   if (w.neighbor.empty()) return;
+  m.fluid_network.pressure_bonds = true;
   const std::vector<double> whole = whole_family_weighted_volumes<D>(m);
   m.fluid_network.outer_surface = outer_surface_particles<D>(m, whole);
   w.coefficient.assign(w.neighbor.size(), 0.0);

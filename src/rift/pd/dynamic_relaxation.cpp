@@ -10,6 +10,7 @@
 #include "rift/parallel/ordered_sum.hpp"
 #include "rift/pd/effective_stretch.hpp"
 #include "rift/pd/forces.hpp"
+#include "rift/pd/ghost_fields.hpp"
 #include "rift/pd/influence.hpp"
 #include "rift/pd/rigid_motion.hpp"
 #include "rift/parallel/team.hpp"
@@ -41,7 +42,7 @@ double DynamicRelaxation<D>::measure_fictitious_density(Model<D>& m, const load:
   const std::size_t n = m.size();
   // sums and maxima over the owned particles (a distributed run's: every rank's, in the one-rank
   // order, parallel/ordered_sum.hpp); the ghosts' probe from their owners
-  const auto& comm = m.ghosts ? parallel::Communicator::world() : parallel::Communicator::one();
+  const auto& comm = ranks_of<D>(m);
   const std::size_t owned_begin = m.owned_begin, owned = m.owned_last() - m.owned_begin;
   if (comm.sum(static_cast<double>(owned)) == 0.0) return row_sum_factor;
   // the row-sum bound of eq. 10, lambda_i / row_sum_factor
@@ -129,10 +130,10 @@ RelaxationResult DynamicRelaxation<D>::relax(Model<D>& m, const load::Boundaries
   RelaxationResult result;
   // sums over the owned particles; a distributed run's ranks add each other's block sums in the
   // one-rank order (ordered_sum.hpp), so the damping and the residual are its bits
-  const auto& comm = parallel::Communicator::world();
-  const bool distributed = m.ghosts != nullptr;
+  const auto& comm = ranks_of<D>(m);
+  const bool distributed = comm.distributed();
   const std::size_t owned = m.owned_last() - m.owned_begin;
-  auto sum_over = [&](auto&& f) { return distributed ? parallel::ordered_sums<4>(comm, m.owned_begin, owned, f) : parallel::ordered_sums<4>(n, f); };
+  auto sum_over = [&](auto&& f) { return parallel::ordered_sums<4>(comm, m.owned_begin, owned, f); };
   auto squared_load = [&] {  // ||external force||^2
     return sum_over([&](std::size_t i, std::array<double, 4>& acc) { acc[0] += dot<D>(m.body_force[i], m.body_force[i]) * m.volume[i] * m.volume[i]; })[0];
   };

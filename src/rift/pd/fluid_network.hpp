@@ -25,6 +25,7 @@
 #include "rift/core/phase_times.hpp"
 #include "rift/pd/crack_junction.hpp"
 #include "rift/pd/effective_stretch.hpp"
+#include "rift/pd/ghost_fields.hpp"
 #include "rift/pd/influence.hpp"
 #include "rift/pd/interface_law.hpp"
 #include "rift/parallel/ordered_sum.hpp"
@@ -256,6 +257,33 @@ void immerse_fragments(Model<D>& m, const std::vector<std::size_t>& starts, std:
   }
 }
 
+/// The labels of a distributed run (pd/window.hpp) spread across the cuts between the ranks, after
+/// each rank's search over its window (`queue`: the particles it labelled, in order; `spread(i)`
+/// goes on from i). Each round takes the ghosts' labels from their owners and goes on from those
+/// that came; the rounds end when no rank labelled anything new. A particle a chain of fluid-carrying
+/// bonds joins to a source is then labelled by its owner (the chain's particles are labelled in turn,
+/// each by its owner from the last one's label as a ghost: a bond's neighbour is in its particle's
+/// window), so every owned label is the one-rank run's and every ghost's is its owner's. One fluid
+/// spreads at most (window.hpp not_distributable): no two labels compete for a particle. A ghost
+/// this rank labelled before its owner keeps its label.
+template <int D, class Spread>
+void spread_over_ranks(Model<D>& m, std::vector<std::size_t>& queue, Spread&& spread) {
+  FluidNetwork& f = m.fluid_network;
+  const auto& ranks = ranks_of<D>(m);
+  for (;;) {
+    const std::vector<int> mine = f.source;
+    refresh_ghost_values<D>(m, f.source);
+    const std::size_t from = queue.size();
+    for (std::size_t i = 0; i < mine.size(); ++i) {
+      if (f.source[i] == mine[i]) continue;
+      if (f.source[i] < 0) f.source[i] = mine[i];
+      else if (mine[i] < 0) queue.push_back(i);
+    }
+    for (std::size_t q = from; q < queue.size(); ++q) spread(queue[q]);
+    if (!ranks.any(queue.size() > from)) return;
+  }
+}
+
 /// Adds particle i to the particles the network load must evaluate again.
 inline void mark_load_changed(FluidNetwork& f, std::size_t i) {
   if (f.load_changed_mark[i]) return;
@@ -295,8 +323,17 @@ void update_fluid_network(Model<D>& m) {
     for (std::size_t i = 0; i < n; ++i)
       if (counts[i] != f.bond_counts[i]) changed.push_back(i);
   std::swap(f.bond_counts, counts);
-  const bool grows = made && fluid_network_grows(f, interface_failed);
-  if (grows && changed.empty()) return;
+  bool grows = made && fluid_network_grows(f, interface_failed);
+  const auto& ranks = ranks_of<D>(m);
+  const bool distributed = ranks.distributed();
+  if (distributed) {
+    // growth from the changed particles alone searches one rank's particles: on N ranks the labels
+    // are made again once a bond changed state on any rank
+    if (grows && !ranks.any(!changed.empty())) return;
+    grows = false;
+  } else if (grows && changed.empty()) {
+    return;
+  }
   f.load_changed_mark.resize(n, 0);
   for (const std::size_t i : changed) detail::mark_load_changed(f, i);
   f.has_network.resize(f.dry.size(), 0);
@@ -383,6 +420,11 @@ void update_fluid_network(Model<D>& m) {
         if (!f.dry[w.source[static_cast<std::size_t>(k)]] && w.neighbor[k] >= 0) f.in_crack[i] = 1;
     const std::size_t next_to_source = queue.size();
     for (std::size_t q = 0; q < queue.size(); ++q) spread(queue[q]);
+    if (distributed) detail::spread_over_ranks<D>(m, queue, spread);
+    // on N ranks: what the owners found of their particles (a ghost's row lacks its bonds beyond
+    // the window)
+    const std::size_t owned_first = distributed ? m.owned_begin : 0, owned_last = distributed ? m.owned_last() : n;
+    refresh_ghost_values<D>(m, f.in_crack);
     // breakthrough: a particle on the outer surface that the fluid reached across broken bonds (not
     // the wall of a borehole that itself reaches the surface, whose casing keeps the fluid in). A
     // network can close again (the fluid at zero pressure, failed interface bonds on its path shut),
@@ -390,11 +432,13 @@ void update_fluid_network(Model<D>& m) {
     f.vented.assign(f.dry.size(), 0);
     if (f.outer_surface.size() == n)
       for (std::size_t q = next_to_source; q < queue.size(); ++q)
-        if (f.outer_surface[queue[q]]) f.vented[static_cast<std::size_t>(f.source[queue[q]])] = 1;
+        if (queue[q] >= owned_first && queue[q] < owned_last && f.outer_surface[queue[q]]) f.vented[static_cast<std::size_t>(f.source[queue[q]])] = 1;
+    set_on_any_rank(ranks, f.vented);
     for (std::size_t s = 0; s < f.vented.size(); ++s) f.broke_through[s] |= f.vented[s];
     {
       PhaseClock clock(Phase::fragments);
       mark_immersed_fragments<D>(m);
+      refresh_ghost_values<D>(m, f.immersed);
     }
     // what the network load must evaluate again: both ends of every bond that joined or left a
     // network (those of the particles whose fluid came, went or changed, and the failed interface
@@ -408,7 +452,7 @@ void update_fluid_network(Model<D>& m) {
       }
     std::fill(f.has_network.begin(), f.has_network.end(), 0);
     std::vector<std::vector<std::int64_t>> open(f.dry.size());
-    for (std::size_t i = 0; i < n; ++i) {
+    for (std::size_t i = owned_first; i < owned_last; ++i) {
       const int s = f.source[i];
       if (s < 0) continue;
       for (auto k = b.offset[i]; k < b.offset[i + 1]; ++k) {
@@ -420,6 +464,7 @@ void update_fluid_network(Model<D>& m) {
         if (state == bond_interface_failed) open[static_cast<std::size_t>(s)].push_back(k);
       }
     }
+    set_on_any_rank(ranks, f.has_network);
     for (std::size_t s = 0; s < open.size(); ++s) {
       std::vector<std::int64_t> opened_or_shut;
       std::set_symmetric_difference(open[s].begin(), open[s].end(), f.open_interface_bonds[s].begin(), f.open_interface_bonds[s].end(),
@@ -486,7 +531,8 @@ double cavity_volume_change(const Model<D>& m, int s, bool wall_only = false) {
   const auto& loads = m.fluid_network.network_load;
   const std::vector<double>* network = static_cast<std::size_t>(s) < loads.size() && !loads[static_cast<std::size_t>(s)].empty()
                                            ? &loads[static_cast<std::size_t>(s)] : nullptr;
-  const auto sums = parallel::ordered_sums<1>(m.size(), [&](std::size_t i, std::array<double, 1>& acc) {
+  // over the owned particles, in the one-rank run's order on any number of ranks (ordered_sum.hpp)
+  const auto sums = parallel::ordered_sums<1>(ranks_of<D>(m), m.owned_begin, m.owned_last() - m.owned_begin, [&](std::size_t i, std::array<double, 1>& acc) {
     for (auto k = w.offset[i]; k < w.offset[i + 1]; ++k) {
       if (pressure_bond_source<D>(m, k, i) != s || (wall_only && w.neighbor[k] >= 0)) continue;
       const auto& x = w.xi[k];

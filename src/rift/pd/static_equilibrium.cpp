@@ -11,6 +11,7 @@
 #include "rift/pd/coarse_space.hpp"
 #include "rift/pd/effective_stretch.hpp"
 #include "rift/pd/forces.hpp"
+#include "rift/pd/ghost_fields.hpp"
 #include "rift/pd/platens.hpp"
 #include "rift/pd/rigid_motion.hpp"
 
@@ -31,7 +32,7 @@ RelaxationResult solve_static_equilibrium(Model<D>& m, const load::Boundaries<D>
   // Sums over the owned particles: a distributed run's (pd/window.hpp) add every rank's block sums
   // in the one-rank order (parallel/ordered_sum.hpp), and its ghosts' iterates come from their
   // owners, so its iterations are the one-rank run's bits (a rank that owns none goes along).
-  const auto& comm = m.ghosts ? parallel::Communicator::world() : parallel::Communicator::one();
+  const auto& comm = ranks_of<D>(m);
   const std::size_t owned_begin = m.owned_begin, owned = m.owned_last() - m.owned_begin;
   const double particles = comm.sum(static_cast<double>(owned));  // the whole run's
   if (particles == 0.0 || !(shortest < std::numeric_limits<double>::max())) return result;

@@ -41,8 +41,20 @@ Partition partition_by_bonds(const Model<D>& m, int ranks, std::size_t granulari
 
 template <int D>
 std::string not_distributable(const Model<D>& m) {
-  if (!m.crack_bonds.neighbor.empty()) return "pressurized cracks and boreholes";
   if (!m.interface_bonds.empty()) return "interfaces (pre-existing fractures)";
+  if (m.crack_bonds.neighbor.empty()) return {};
+  // the fluid of pressurized cracks and boreholes (fluid_network.hpp) runs on N ranks while no
+  // crack it fills can grow: its labels, the cavity's volume and breakthrough are reduced over the
+  // ranks (fluid_network.hpp label_fluid_network), the network of broken bonds and its load not yet
+  for (const BodyInfo& body : m.bodies)
+    if (body.constants.critical_stretch > 0.0)
+      return "pressurized cracks and boreholes in rock whose bonds can break (the fluid's network of broken bonds)";
+  const FluidNetwork& f = m.fluid_network;
+  for (std::size_t s = 0; s < f.dry.size(); ++s)
+    if (f.flows(s)) return "a viscous fluid (fluid_viscosity)";
+  const auto dry = std::count(f.dry.begin(), f.dry.end(), std::uint8_t{1});
+  if (dry > 0 && f.dry.size() - static_cast<std::size_t>(dry) > 1)
+    return "two or more fluids with a dry pre-crack (which fluid fills it follows the one-rank search's order)";
   return {};
 }
 
@@ -107,6 +119,40 @@ void drop_runs_of_ghosts(BodyInfo& part, std::size_t owned_begin, std::size_t ow
   part.slab_runs = std::move(slab_runs);
 }
 
+/// The window's pressure bonds (crack_pressure.hpp), each row cut to the fluid sites and the
+/// neighbours inside the window (only ghosts' rows lose bonds), and its fluid: the sources' state as
+/// it is, the particles' labels left to be made again on this rank's particles (fluid_network.hpp:
+/// they follow from the bonds' states and the sources'), the outer surface cut to the window.
+template <int D>
+void window_pressure_bonds(const Model<D>& m, std::size_t w0, std::size_t w1, Model<D>& w) {
+  const CrackBonds& from = m.crack_bonds;
+  CrackBonds& to = w.crack_bonds;
+  const std::size_t n = w1 - w0;
+  to.offset.assign(n + 1, 0);
+  if (from.neighbor.empty()) return;
+  for (std::size_t a = 0; a < n; ++a) {
+    const std::size_t i = w0 + a;
+    for (auto k = static_cast<std::size_t>(from.offset[i]); k < static_cast<std::size_t>(from.offset[i + 1]); ++k) {
+      const std::int32_t j = from.neighbor[k];
+      if (j >= 0 && (static_cast<std::size_t>(j) < w0 || static_cast<std::size_t>(j) >= w1)) continue;
+      to.neighbor.push_back(j < 0 ? j : static_cast<std::int32_t>(static_cast<std::size_t>(j) - w0));
+      to.volume.push_back(from.volume[k]);
+      to.source.push_back(from.source[k]);
+      to.xi.push_back(from.xi[k]);
+      to.fluid_weighted_volume.push_back(from.fluid_weighted_volume[k]);
+      to.coefficient.push_back(from.coefficient[k]);
+    }
+    to.offset[a + 1] = static_cast<std::int64_t>(to.neighbor.size());
+  }
+  FluidNetwork& f = w.fluid_network;
+  const FluidNetwork& g = m.fluid_network;
+  f.pressure_bonds = g.pressure_bonds, f.dry = g.dry, f.sealed = g.sealed, f.has_network = g.has_network, f.reference_volume = g.reference_volume;
+  f.pressure = g.pressure, f.pore_pressure = g.pore_pressure, f.cavity_volume = g.cavity_volume, f.vented = g.vented;
+  f.broke_through = g.broke_through, f.escaped_volume = g.escaped_volume, f.viscous = g.viscous;
+  f.outer_surface = slice(g.outer_surface, w0, w1);
+  f.open_interface_bonds.assign(g.dry.size(), {});
+}
+
 }  // namespace
 
 template <int D>
@@ -135,7 +181,6 @@ Model<D> window_of(const Model<D>& m, const Partition& p, int rank) {
   w.owned_begin = p.owned[r] - w0;
   w.owned_end = p.owned[r + 1] - w0;
   w.window_first = w0;
-  w.crack_bonds.offset.assign(n + 1, 0);
 
   // rows of the window, each cut to the neighbours inside it (only ghosts' rows lose bonds); a
   // row of factors (bonds.hpp) comes along once however many particles share it
@@ -175,6 +220,7 @@ Model<D> window_of(const Model<D>& m, const Partition& p, int rank) {
     w.bodies.push_back(std::move(part));
   }
   if (!b.back_extension.empty()) window_viscous_history(b, m.bodies, w.bodies, w0, w1, c);
+  window_pressure_bonds(m, w0, w1, w);
   // every platen, on every rank (its sums gather all ranks' owned particles: platens.hpp), with the
   // particles of its face that are in the window
   for (const Platen& plate : m.platens) {

@@ -28,7 +28,7 @@ template <int D>
 Partition partition_by_bonds(const Model<D>& m, int ranks, std::size_t granularity = 1);
 
 /// What the distributed run cannot take yet, as a sentence; empty when the model can be
-/// distributed (pressurized cracks, boreholes and fluids, and interfaces run on one rank for now).
+/// distributed (interfaces, and fluids whose cracks can grow, run on one rank for now).
 template <int D>
 std::string not_distributable(const Model<D>& m);
 

@@ -58,14 +58,14 @@ struct Simulation {
       throw SceneError({s.file, 0, 0}, "--cut-along", std::string("a peridynamic run is cut across its lattice's slowest axis, ") +
                                                           (D == 3 ? "z" : "y") + ", alone (its layers of particles are ranges of their numbering)");
     std::string missing = pd::not_distributable<D>(model);
-    // dynamic relaxation and the in-situ stage sum over the owned particles in blocks
-    // (parallel/ordered_sum.hpp): the ranks' ranges start at whole blocks
-    const bool relaxation = s.solver.kind != scene::SolverKind::explicit_dynamics || s.in_situ.enabled;
+    // dynamic relaxation, the in-situ stage and a fluid's cavity volume sum over the owned
+    // particles in blocks (parallel/ordered_sum.hpp): the ranks' ranges start at whole blocks
+    const bool block_sums = s.solver.kind != scene::SolverKind::explicit_dynamics || s.in_situ.enabled || !model.crack_bonds.neighbor.empty();
     if (contact.enabled() && model.bodies.size() > 1) missing = "contact between bodies ([contact] enabled = false takes it off)";
     if (!missing.empty())
       throw SceneError({s.file, 0, 0}, "mpirun -np " + std::to_string(comm.size()),
                        "a run on more than one rank cannot take " + missing + " yet; run this scene on one rank");
-    partition = pd::partition_by_bonds<D>(model, comm.size(), relaxation ? parallel::ordered_sum_block : 1);
+    partition = pd::partition_by_bonds<D>(model, comm.size(), block_sums ? parallel::ordered_sum_block : 1);
     const auto r = static_cast<std::size_t>(comm.rank());
     const std::size_t w0 = partition.window_first[r], w1 = partition.window_last[r];
     // contact inside the body (one body: check_contact_reach): how far apart, along the layers'
