@@ -45,7 +45,7 @@ std::string not_distributable(const Model<D>& m) {
   if (m.crack_bonds.neighbor.empty()) return {};
   // the fluid of pressurized cracks and boreholes (fluid_network.hpp) runs on N ranks while no
   // crack it fills can grow: its labels, the cavity's volume and breakthrough are reduced over the
-  // ranks (fluid_network.hpp label_fluid_network), the network of broken bonds and its load not yet
+  // ranks (fluid_network.hpp spread_over_ranks), the network of broken bonds and its load not yet
   for (const BodyInfo& body : m.bodies)
     if (body.constants.critical_stretch > 0.0)
       return "pressurized cracks and boreholes in rock whose bonds can break (the fluid's network of broken bonds)";
