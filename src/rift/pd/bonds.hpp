@@ -244,6 +244,12 @@ struct FluidNetwork {
   std::vector<double> local_pressure;       // that fluid's pressure there, Pa
   std::vector<double> local_pore_pressure;  // local_pressure of the last equilibrium (effective_stretch.hpp), Pa
 
+  /// Takes the sources' state that changes during a run from `g` (a distributed run's window and the
+  /// whole model its checkpoint gathers: the same on every rank).
+  void take_sources_state(const FluidNetwork& g) {
+    sealed = g.sealed, has_network = g.has_network, pressure = g.pressure, pore_pressure = g.pore_pressure;
+    cavity_volume = g.cavity_volume, vented = g.vented, broke_through = g.broke_through, escaped_volume = g.escaped_volume;
+  }
   /// Whether source s's fluid flows along its cracks by the cubic law (viscous_fluid.hpp).
   bool flows(std::size_t s) const { return s < viscous.size() && viscous[s].viscosity > 0.0; }
   /// Whether source s's fluid enters the dry pre-cracks it meets (its wall broke down, or has no breakdown pressure).

@@ -423,7 +423,7 @@ void update_fluid_network(Model<D>& m) {
     if (distributed) detail::spread_over_ranks<D>(m, queue, spread);
     // on N ranks: what the owners found of their particles (a ghost's row lacks its bonds beyond
     // the window)
-    const std::size_t owned_first = distributed ? m.owned_begin : 0, owned_last = distributed ? m.owned_last() : n;
+    const std::size_t owned_first = m.owned_begin, owned_last = m.owned_last();
     refresh_ghost_values<D>(m, f.in_crack);
     // breakthrough: a particle on the outer surface that the fluid reached across broken bonds (not
     // the wall of a borehole that itself reaches the surface, whose casing keeps the fluid in). A

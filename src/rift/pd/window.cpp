@@ -146,9 +146,8 @@ void window_pressure_bonds(const Model<D>& m, std::size_t w0, std::size_t w1, Mo
   }
   FluidNetwork& f = w.fluid_network;
   const FluidNetwork& g = m.fluid_network;
-  f.pressure_bonds = g.pressure_bonds, f.dry = g.dry, f.sealed = g.sealed, f.has_network = g.has_network, f.reference_volume = g.reference_volume;
-  f.pressure = g.pressure, f.pore_pressure = g.pore_pressure, f.cavity_volume = g.cavity_volume, f.vented = g.vented;
-  f.broke_through = g.broke_through, f.escaped_volume = g.escaped_volume, f.viscous = g.viscous;
+  f.pressure_bonds = g.pressure_bonds, f.dry = g.dry, f.reference_volume = g.reference_volume, f.viscous = g.viscous;
+  f.take_sources_state(g);
   f.outer_surface = slice(g.outer_surface, w0, w1);
   f.open_interface_bonds.assign(g.dry.size(), {});
 }

@@ -101,10 +101,7 @@ void gather_model(const parallel::Communicator& comm, const pd::Model<D>& m, pd:
     whole->time = m.time;
     // the fluid's sources, the same on every rank; the particles' labels are made again from the
     // bonds' states where the run continues (window.hpp window_pressure_bonds)
-    pd::FluidNetwork& f = whole->fluid_network;
-    const pd::FluidNetwork& g = m.fluid_network;
-    f.sealed = g.sealed, f.has_network = g.has_network, f.pressure = g.pressure, f.pore_pressure = g.pore_pressure;
-    f.cavity_volume = g.cavity_volume, f.vented = g.vented, f.broke_through = g.broke_through, f.escaped_volume = g.escaped_volume;
+    whole->fluid_network.take_sources_state(m.fluid_network);
   }
 }
 
