@@ -8,8 +8,9 @@
 # exchanged), and a 3D LPS bar pulled apart (the dilatation's halo exchange), also as VES (the
 # bonds' viscous history on both sides of a cut), and a rock block's in-situ stage (between
 # platens, or under tractions by conjugate gradients or dynamic relaxation) followed by explicit
-# steps that break its bonds, and fluids in rock that cannot break (a borehole breaking down into a
-# dry pre-crack, a pressurized pre-crack). The material point method (mpm/domain.hpp) adds
+# steps that break its bonds, and fluids in rock (a borehole breaking down into a dry pre-crack, a
+# pressurized pre-crack, and the same pre-crack growing in rock whose bonds break). A run whose
+# contact could reach past a rank's ghosts stops with exit status 1. The material point method (mpm/domain.hpp) adds
 # the nodes' sums of neighbouring ranks in another order than one rank: its fields agree with the
 # one-rank run's to 1e-12 of their size (compare_fields, the second argument). What a distributed
 # run cannot take yet is refused with exit status 2 before anything is written.
@@ -255,7 +256,7 @@ for case in "insitu_platens force evaluations of preconditioned conjugate gradie
 done
 echo "ok: the in-situ stage (platens, the coarse space, dynamic relaxation between platens) and the explicit steps after it on 2 and 3 ranks: the same bytes as one rank"
 
-# fluid in rock that cannot break (fluid_network.hpp, window.hpp not_distributable): a borehole fed
+# fluid in rock (fluid_network.hpp, window.hpp not_distributable): a borehole fed
 # by a lumped injection (its cavity volume summed over every rank's owned particles in the one-rank
 # order) whose wall breaks down at 4 MPa into a dry pre-crack across both cuts (the fluid's labels
 # spread across the ranks' cuts in rounds), after an in-situ stage between platens, by dynamic
@@ -365,16 +366,27 @@ sed -e 's/breakdown_pressure = 4e6/breakdown_pressure = 100e6/' -e 's/name = "bo
 paste -d, "$tmp/borehole-serial/history.csv" "$tmp/sealed-serial/history.csv" | awk -F, 'NR > 1 { open = $4; shut = $12 } END { exit !(open < 0.5 * shut) }' ||
   fail "borehole: the fluid did not enter the dry pre-crack after breakdown"
 "$rift" run "$tmp/pressurized.toml" -o "$tmp/pressurized-serial" -q > /dev/null
-for scene in borehole pressurized; do
+# growing: the pressurized pre-crack in rock whose bonds break (fracture_energy), the fluid's cracks
+# growing across both cuts: the ghosts' bond states from their owners, the labels, fragments and
+# network load made over the ranks (fluid_network.hpp, network_load.hpp)
+sed -e 's/poisson_ratio = 0.25/poisson_ratio = 0.25\nfracture_energy = 0.5/' -e 's/name = "pressurized"/name = "growing"/' \
+  -e 's/history = \["kinetic_energy", "strain_energy"\]/history = ["kinetic_energy", "strain_energy", "broken_bonds"]/' \
+  "$tmp/pressurized.toml" > "$tmp/growing.toml"
+"$rift" run "$tmp/growing.toml" -o "$tmp/growing-serial" -q > /dev/null
+# the cracks grew: over a thousand bonds broken by the end
+awk -F, 'NR == 1 { for (c = 1; c <= NF; ++c) if ($c == "broken_bonds") column = c } NR > 1 { broken = $column } END { exit !(column && broken > 1000) }' \
+  "$tmp/growing-serial/history.csv" || fail "growing: the fluid's cracks did not grow"
+for scene in borehole pressurized growing; do
   same_on_ranks "$scene" 2 3
 done
-echo "ok: a borehole breaking down into a dry pre-crack (dynamic relaxation, in-situ stage) and a pressurized pre-crack beside an injected borehole (explicit) on 2 and 3 ranks: the same bytes as one rank"
+echo "ok: a borehole breaking down into a dry pre-crack (dynamic relaxation, in-situ stage), a pressurized pre-crack beside an injected borehole (explicit) and the same pre-crack growing in breakable rock on 2 and 3 ranks: the same bytes as one rank"
 
 # checkpoints written by 2 ranks restart on 3 and on 1, and the continued runs write the bytes of
 # the uninterrupted one-rank run (rank 0 gathers the whole run's state: any number of ranks reads it;
 # insitu_platens: a checkpoint of the explicit steps after the in-situ stage, which a restart skips)
-# borehole: a checkpoint of the first load step, the wall broken down and the pre-crack wet
-for case in "plate 20" "ves_bar 20" "insitu_platens 20" "borehole 1"; do
+# borehole: a checkpoint of the first load step, the wall broken down and the pre-crack wet;
+# growing: the fluid's network, its load and the crack surface in the middle of the growth
+for case in "plate 20" "ves_bar 20" "insitu_platens 20" "borehole 1" "growing 80"; do
   read -r scene step <<< "$case"
   printf '[checkpoint]\nevery_steps = %s\nfile = "ckpt_*.rift"\n' "$step" | cat "$tmp/$scene.toml" - > "$tmp/$scene-ckpt.toml"
   "${mpirun[@]}" -np 2 "$rift" run "$tmp/$scene-ckpt.toml" -o "$tmp/$scene-ckpt" -q > /dev/null 2>&1 || fail "$scene: checkpointed run on 2 ranks"
@@ -521,8 +533,8 @@ refused "$tmp/coarse_disks.toml" "a rank needs 4 of them" 3
 # --cut-along: a peridynamic run is cut across its slowest axis alone; a 2D grid has no z
 refused "$tmp/bar.toml" "cut across its lattice's slowest axis" 2 --cut-along x
 refused "$tmp/mpm_disks.toml" "has no z axis" 2 --cut-along z
-# a fluid in rock whose bonds can break: its network of broken bonds is one rank's for now
-refused "$examples/hf_breakdown.toml" "rock whose bonds can break"
+# a viscous fluid: its flow along the network is one rank's for now
+refused "$examples/hf_kgd_viscosity.toml" "a viscous fluid"
 echo "ok: what a distributed run cannot take is refused with exit status 2"
 
 # contact is found among a rank's ghosts: a plate squeezed until its layers of two ranks may touch

@@ -138,6 +138,7 @@ void Contact<D>::look_at_family_rows(const Model<D>& m) {
 template <int D>
 void Contact<D>::add_forces(Model<D>& m) {
   if (!enabled_) return;
+  if (before_forces) before_forces(m);
   double moved2 = 0.0, family_moved2 = 0.0;
   const std::size_t n = m.size();
   const bool family_rows = family_skin_ > 0.0 && family_near_.size() == n;

@@ -18,6 +18,7 @@
 #pragma once
 #include <array>
 #include <cstdint>
+#include <functional>
 #include <vector>
 
 #include "rift/pd/model.hpp"
@@ -34,6 +35,9 @@ class Contact {
   /// Add contact force densities to m.force.
   void add_forces(Model<D>& m);
   std::size_t candidate_pairs() const { return pairs_.size(); }
+  /// Called at the start of every add_forces where set: a distributed run's check that no particle
+  /// beyond its window may have come within reach (run/simulation.hpp check_contact_reach); not state.
+  std::function<void(const Model<D>&)> before_forces;
   /// Every member, for a checkpoint (pd/checkpoint_state.hpp): the Verlet lists and where they
   /// were built, so a restart looks again exactly when the run it continues would have.
   template <class A>

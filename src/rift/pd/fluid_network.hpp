@@ -118,10 +118,23 @@ inline std::int64_t count_bond_states(const Bonds& b, std::size_t n, std::vector
 
 namespace detail {
 
-/// Marks immersed the wet particles of the closed pieces found from `starts` (below), and peels
-/// off, from `candidates` on, the wet particles whose intact bonds do not span D dimensions.
+/// Marks immersed the wet particles of the closed pieces found from `starts` (below), and adds the
+/// neighbours of those it marked to `candidates`.
 template <int D>
-void immerse_fragments(Model<D>& m, const std::vector<std::size_t>& starts, std::vector<std::size_t> candidates);
+void close_pieces(Model<D>& m, const std::vector<std::size_t>& starts, std::vector<std::size_t>& candidates);
+
+/// Peels off, from `candidates` on, the wet particles whose intact bonds do not span D dimensions
+/// (below); over_ranks: a distributed run's, each rank deciding its owned particles.
+template <int D>
+void peel_fragments(Model<D>& m, std::vector<std::size_t> candidates, bool over_ranks);
+
+/// Marks immersed the wet particles of the closed pieces found from `starts`, and peels off, from
+/// `candidates` on, the wet particles whose intact bonds do not span D dimensions.
+template <int D>
+void immerse_fragments(Model<D>& m, const std::vector<std::size_t>& starts, std::vector<std::size_t> candidates) {
+  close_pieces<D>(m, starts, candidates);
+  peel_fragments<D>(m, std::move(candidates), false);
+}
 
 }  // namespace detail
 
@@ -153,8 +166,29 @@ void mark_immersed_fragments(Model<D>& m) {
 
 namespace detail {
 
+/// The fragments of a distributed run (mark_immersed_fragments): each rank searches for the closed
+/// pieces from its owned wet particles, over its window's whole rows (a piece that reaches a row cut
+/// to the window counts as joined to the body, as a piece of more than a family does: a piece that
+/// small stretched over a bond's reach across the layers, the window's margin, is taken as joined on
+/// N ranks where one rank would find it closed), then takes the ghosts' marks from their owners;
+/// the peeling goes round by round over every rank, each deciding its own particles from the last
+/// round's marks, so it peels what one rank does.
 template <int D>
-void immerse_fragments(Model<D>& m, const std::vector<std::size_t>& starts, std::vector<std::size_t> candidates) {
+void immerse_over_ranks(Model<D>& m) {
+  FluidNetwork& f = m.fluid_network;
+  f.immersed.assign(m.size(), 0);
+  std::vector<std::size_t> wet;
+  for (std::size_t i = m.owned_begin; i < m.owned_last(); ++i)
+    if (f.source[i] >= 0) wet.push_back(i);
+  std::vector<std::size_t> unused;
+  close_pieces<D>(m, wet, unused);
+  refresh_ghost_values<D>(m, f.immersed);
+  std::erase_if(wet, [&](std::size_t i) { return f.immersed[i] != 0; });
+  peel_fragments<D>(m, std::move(wet), true);
+}
+
+template <int D>
+void close_pieces(Model<D>& m, const std::vector<std::size_t>& starts, std::vector<std::size_t>& candidates) {
   FluidNetwork& f = m.fluid_network;
   const Bonds& b = m.bonds;
   const std::size_t n = m.size();
@@ -176,7 +210,7 @@ void immerse_fragments(Model<D>& m, const std::vector<std::size_t>& starts, std:
       for (auto k = b.offset[piece[q]]; k < b.offset[piece[q] + 1]; ++k) {
         const auto j = static_cast<std::size_t>(b.neighbor[k]);
         if (b.intact[k] != bond_intact || label[j] == search) continue;
-        if (label[j] == -1 || piece.size() >= family) {
+        if (label[j] == -1 || piece.size() >= family || j < m.uncut_rows_begin || j >= m.uncut_rows_end) {
           closed = false;
           break;
         }
@@ -194,6 +228,13 @@ void immerse_fragments(Model<D>& m, const std::vector<std::size_t>& starts, std:
     }
   }
   for (const std::size_t i : reached) label[i] = 0;
+}
+
+template <int D>
+void peel_fragments(Model<D>& m, std::vector<std::size_t> candidates, bool over_ranks) {
+  FluidNetwork& f = m.fluid_network;
+  const Bonds& b = m.bonds;
+  const std::size_t n = m.size();
   // a wet particle held by bonds that do not span D dimensions (one bond, or a row of them) turns
   // about them freely: the fluid swung such a particle 0.7 mm about its last bond in 2-7. Peeled
   // off, with the particles it alone held, until every particle left holds on in every direction.
@@ -235,23 +276,32 @@ void immerse_fragments(Model<D>& m, const std::vector<std::size_t>& starts, std:
     return false;
   });
   for (const std::size_t i : candidates) queued[i] = 0;
-  while (!candidates.empty()) {
+  // on N ranks every rank goes through every round (the ghosts' marks are exchanged in each), and
+  // takes as its next candidates its own particles alone
+  const auto& ranks = ranks_of<D>(m);
+  const std::size_t own_first = over_ranks ? m.owned_begin : 0, own_last = over_ranks ? m.owned_last() : n;
+  std::vector<std::size_t> peeled;
+  while (over_ranks ? ranks.any(!candidates.empty()) : !candidates.empty()) {
     peel.assign(candidates.size(), 0);
 #pragma omp parallel for if(rift::parallel::worth_a_team(candidates.size())) schedule(dynamic, 256)
     for (std::size_t q = 0; q < candidates.size(); ++q) peel[q] = spans(candidates[q]) ? 0 : 1;
-    std::vector<std::size_t> next;
+    peeled.clear();
     for (std::size_t q = 0; q < candidates.size(); ++q)
-      if (peel[q]) f.immersed[candidates[q]] = 1;
-    for (std::size_t q = 0; q < candidates.size(); ++q) {
-      if (!peel[q]) continue;
-      const std::size_t i = candidates[q];
+      if (peel[q]) f.immersed[candidates[q]] = 1, peeled.push_back(candidates[q]);
+    if (over_ranks) {  // and the ghosts their owners peeled in this round
+      const std::vector<std::uint8_t> was = f.immersed;
+      refresh_ghost_values<D>(m, f.immersed);
+      for (std::size_t i = 0; i < n; ++i)
+        if (f.immersed[i] && !was[i]) peeled.push_back(i);
+    }
+    std::vector<std::size_t> next;
+    for (const std::size_t i : peeled)
       for (auto k = b.offset[i]; k < b.offset[i + 1]; ++k) {
         const auto j = static_cast<std::size_t>(b.neighbor[k]);
-        if (b.intact[k] != bond_intact || f.immersed[j] || f.source[j] < 0 || queued[j]) continue;
+        if (b.intact[k] != bond_intact || f.immersed[j] || f.source[j] < 0 || queued[j] || j < own_first || j >= own_last) continue;
         queued[j] = 1;
         next.push_back(j);
       }
-    }
     for (const std::size_t j : next) queued[j] = 0;
     candidates = std::move(next);
   }
@@ -315,25 +365,34 @@ void update_fluid_network(Model<D>& m) {
   const CrackBonds& w = m.crack_bonds;
   const std::size_t n = m.size();
   static thread_local std::vector<std::uint64_t> counts;  // the calling thread's, kept between calls
-  const std::int64_t interface_failed = count_bond_states(b, n, counts);
+  std::int64_t interface_failed = count_bond_states(b, n, counts);
   const bool made = f.source.size() == n && f.bond_counts.size() == n;
+  const auto& ranks = ranks_of<D>(m);
+  const bool distributed = ranks.distributed();
+  // the rows this rank decides: on N ranks its owned particles' (the owners decide the ghosts')
+  const std::size_t owned_first = m.owned_begin, owned_last = m.owned_last();
+  const std::size_t rows_first = distributed ? owned_first : 0, rows_last = distributed ? owned_last : n;
   // the particles whose bonds changed state since the last update
   std::vector<std::size_t> changed;
   if (made)
-    for (std::size_t i = 0; i < n; ++i)
+    for (std::size_t i = rows_first; i < rows_last; ++i)
       if (counts[i] != f.bond_counts[i]) changed.push_back(i);
+  bool any_changed = !changed.empty();
+  if (distributed) {
+    // the ghosts' rows as their owners broke them, once a bond changed on any rank
+    any_changed = ranks.any(any_changed);
+    if (any_changed) {
+      refresh_ghost_bond_states<D>(m);
+      interface_failed = count_bond_states(b, n, counts);
+    }
+  }
   std::swap(f.bond_counts, counts);
   bool grows = made && fluid_network_grows(f, interface_failed);
-  const auto& ranks = ranks_of<D>(m);
-  const bool distributed = ranks.distributed();
-  if (distributed) {
-    // growth from the changed particles alone searches one rank's particles: on N ranks the labels
-    // are made again once a bond changed state on any rank
-    if (grows && !ranks.any(!changed.empty())) return;
-    grows = false;
-  } else if (grows && changed.empty()) {
-    return;
-  }
+  if (grows && !any_changed) return;
+  // growth from the changed particles alone searches one rank's particles: on N ranks the labels
+  // are made again, and the network load evaluated again where growth would (grown)
+  const bool grown = grows && distributed;
+  if (distributed) grows = false;
   f.load_changed_mark.resize(n, 0);
   for (const std::size_t i : changed) detail::mark_load_changed(f, i);
   f.has_network.resize(f.dry.size(), 0);
@@ -423,7 +482,6 @@ void update_fluid_network(Model<D>& m) {
     if (distributed) detail::spread_over_ranks<D>(m, queue, spread);
     // on N ranks: what the owners found of their particles (a ghost's row lacks its bonds beyond
     // the window)
-    const std::size_t owned_first = m.owned_begin, owned_last = m.owned_last();
     refresh_ghost_values<D>(m, f.in_crack);
     // breakthrough: a particle on the outer surface that the fluid reached across broken bonds (not
     // the wall of a borehole that itself reaches the surface, whose casing keeps the fluid in). A
@@ -437,16 +495,19 @@ void update_fluid_network(Model<D>& m) {
     for (std::size_t s = 0; s < f.vented.size(); ++s) f.broke_through[s] |= f.vented[s];
     {
       PhaseClock clock(Phase::fragments);
-      mark_immersed_fragments<D>(m);
-      refresh_ghost_values<D>(m, f.immersed);
+      if (distributed) detail::immerse_over_ranks<D>(m);
+      else mark_immersed_fragments<D>(m);
     }
     // what the network load must evaluate again: both ends of every bond that joined or left a
     // network (those of the particles whose fluid came, went or changed, and the failed interface
-    // bonds that opened or shut to a fluid)
+    // bonds that opened or shut to a fluid); where the networks grew (on N ranks), what growth
+    // marks: the particles whose bonds broke and those the fluid reached, whose evaluation then
+    // rounds as one rank's (network_load.hpp)
     if (!made) f.load_from_scratch = true;
     for (std::size_t i = 0; i < before.size(); ++i)
       if (before[i] != f.source[i]) {
         detail::mark_load_changed(f, i);
+        if (grown) continue;
         for (auto k = b.offset[i]; k < b.offset[i + 1]; ++k)
           if (b.intact[static_cast<std::size_t>(k)] != bond_intact) detail::mark_load_changed(f, static_cast<std::size_t>(b.neighbor[k]));
       }
@@ -472,6 +533,13 @@ void update_fluid_network(Model<D>& m) {
       for (const std::int64_t k : opened_or_shut)
         detail::mark_load_changed(f, b.row_of(k)), detail::mark_load_changed(f, static_cast<std::size_t>(b.neighbor[static_cast<std::size_t>(k)]));
       f.open_interface_bonds[s] = std::move(open[s]);
+    }
+    if (distributed) {
+      // the ghosts' marks are their owners' (whose rows are whole)
+      refresh_ghost_values<D>(m, f.load_changed_mark);
+      f.load_changed.clear();
+      for (std::size_t i = 0; i < n; ++i)
+        if (f.load_changed_mark[i]) f.load_changed.push_back(i);
     }
     PhaseClock clock(Phase::crack_surface);
     remake_crack_surface<D>(m);

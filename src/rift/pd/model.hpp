@@ -76,6 +76,9 @@ struct Model {
   // One rank: every particle is owned, no ghosts.
   std::size_t owned_begin = 0, owned_end = static_cast<std::size_t>(-1);
   std::size_t window_first = 0;  // the whole run's number of the window's particle 0
+  // the window's particles whose rows are whole (a ghost's row within the bonds' reach of the
+  // window's edge is cut to the window): [uncut_rows_begin, uncut_rows_end)
+  std::size_t uncut_rows_begin = 0, uncut_rows_end = static_cast<std::size_t>(-1);
   const Ghosts* ghosts = nullptr;
 
   std::size_t size() const { return position.size(); }

@@ -32,6 +32,7 @@
 #include <vector>
 
 #include "rift/pd/fluid_network.hpp"
+#include "rift/pd/ghost_fields.hpp"
 #include "rift/pd/influence.hpp"
 #include "rift/pd/lps.hpp"
 #include "rift/pd/pmb.hpp"
@@ -229,6 +230,26 @@ void changed_rows_pass(const Model<D>& m, const std::vector<std::size_t>& change
   }
 }
 
+/// The ghosts' is_end and NetworkEnd from their owners (nothing on one rank).
+template <int D>
+void refresh_ghost_ends(const Model<D>& m, std::vector<std::uint8_t>& is_end, std::vector<NetworkEnd>& ends) {
+  if (!m.ghosts) return;
+  static_assert(sizeof(NetworkEnd) == 5 * sizeof(double));
+  constexpr std::size_t width = 6;
+  std::vector<double> packed(is_end.size() * width);
+  for (std::size_t i = 0; i < is_end.size(); ++i) {
+    const NetworkEnd& z = ends[i];
+    const std::array<double, width> row{double(is_end[i]), z.theta, z.d_theta, z.a, z.held, z.change};
+    std::copy(row.begin(), row.end(), packed.begin() + static_cast<std::ptrdiff_t>(i * width));
+  }
+  m.ghosts->refresh(packed.data(), width);
+  for (std::size_t i = 0; i < is_end.size(); ++i) {
+    const double* row = &packed[i * width];
+    is_end[i] = row[0] != 0.0 ? 1 : 0;
+    ends[i] = NetworkEnd{row[1], row[2], row[3], row[4], row[5]};
+  }
+}
+
 }  // namespace detail
 
 /// Makes g_s for every source whose network changed since the last call (call after
@@ -244,7 +265,9 @@ template <int D>
 void update_network_load(Model<D>& m) {
   FluidNetwork& f = m.fluid_network;
   const bool scratch = f.load_from_scratch;
-  if (!scratch && f.load_changed.empty()) return;
+  // on N ranks every rank goes on where any has something to evaluate (the ends are exchanged)
+  const auto& ranks = ranks_of<D>(m);
+  if (ranks.distributed() ? !ranks.any(scratch || !f.load_changed.empty()) : !scratch && f.load_changed.empty()) return;
   const Bonds& b = m.bonds;
   const std::size_t n = m.size();
   const std::size_t sources = f.dry.size();
@@ -286,6 +309,8 @@ void update_network_load(Model<D>& m) {
       is_end[i] = end ? 1 : 0;
       ends[i] = end ? z : NetworkEnd{};
     }
+    // a ghost's row is cut to the window: its NetworkEnd is its owner's
+    detail::refresh_ghost_ends<D>(m, is_end, ends);
     // g of those made again; their neighbours' changed by the changes of their ends
     detail::changed_rows_pass<D>(m, changed, before, is_end, ends, terms, f.load_changed_mark, in_network, g);
   }

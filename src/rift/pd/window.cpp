@@ -7,12 +7,13 @@
 
 #include "rift/pd/bond_runs.hpp"
 #include "rift/pd/bond_slabs.hpp"
+#include "rift/pd/crack_crossing.hpp"
 #include "rift/pd/normal_stress_failure.hpp"
 
 namespace rift::pd {
 
 template <int D>
-Partition partition_by_bonds(const Model<D>& m, int ranks, std::size_t granularity) {
+Partition partition_by_bonds(const Model<D>& m, int ranks, std::size_t granularity, std::size_t reaches) {
   Partition p;
   const std::size_t n = m.size();
   const auto& offset = m.bonds.offset;
@@ -33,8 +34,9 @@ Partition partition_by_bonds(const Model<D>& m, int ranks, std::size_t granulari
     }
   for (int r = 0; r < ranks; ++r) {
     const auto first = p.owned[static_cast<std::size_t>(r)], last = p.owned[static_cast<std::size_t>(r) + 1];
-    p.window_first.push_back(first == last ? first : first - std::min(first, p.reach));
-    p.window_last.push_back(first == last ? last : std::min(n, last + p.reach));
+    const std::size_t around = reaches * p.reach;
+    p.window_first.push_back(first == last ? first : first - std::min(first, around));
+    p.window_last.push_back(first == last ? last : std::min(n, last + around));
   }
   return p;
 }
@@ -43,12 +45,9 @@ template <int D>
 std::string not_distributable(const Model<D>& m) {
   if (!m.interface_bonds.empty()) return "interfaces (pre-existing fractures)";
   if (m.crack_bonds.neighbor.empty()) return {};
-  // the fluid of pressurized cracks and boreholes (fluid_network.hpp) runs on N ranks while no
-  // crack it fills can grow: its labels, the cavity's volume and breakthrough are reduced over the
-  // ranks (fluid_network.hpp spread_over_ranks), the network of broken bonds and its load not yet
-  for (const BodyInfo& body : m.bodies)
-    if (body.constants.critical_stretch > 0.0)
-      return "pressurized cracks and boreholes in rock whose bonds can break (the fluid's network of broken bonds)";
+  // the fluid of pressurized cracks and boreholes (fluid_network.hpp) runs on N ranks: its labels,
+  // the cavity's volume, breakthrough, the fragments and the network load are made over the
+  // ranks, from the ghosts' bond states (ghost_fields.hpp refresh_ghost_bond_states)
   const FluidNetwork& f = m.fluid_network;
   for (std::size_t s = 0; s < f.dry.size(); ++s)
     if (f.flows(s)) return "a viscous fluid (fluid_viscosity)";
@@ -150,6 +149,30 @@ void window_pressure_bonds(const Model<D>& m, std::size_t w0, std::size_t w1, Mo
   f.take_sources_state(g);
   f.outer_surface = slice(g.outer_surface, w0, w1);
   f.open_interface_bonds.assign(g.dry.size(), {});
+  // a continued run's labels, marks and network load (run/distributed.hpp gather_fluid; a run that
+  // starts has none yet)
+  f.relabel = g.relabel, f.load_from_scratch = g.load_from_scratch;
+  f.source = slice(g.source, w0, w1), f.bond_counts = slice(g.bond_counts, w0, w1);
+  f.in_crack = slice(g.in_crack, w0, w1), f.immersed = slice(g.immersed, w0, w1);
+  f.pore_stretch = slice(g.pore_stretch, w0, w1), f.load_changed_mark = slice(g.load_changed_mark, w0, w1);
+  for (std::size_t a = 0; a < f.load_changed_mark.size(); ++a)
+    if (f.load_changed_mark[a]) f.load_changed.push_back(a);
+  f.network_load.resize(g.network_load.size()), f.is_end.resize(g.is_end.size()), f.network_ends.resize(g.network_ends.size());
+  for (std::size_t s = 0; s < g.network_load.size(); ++s) f.network_load[s] = slice(g.network_load[s], w0, w1, D);
+  for (std::size_t s = 0; s < g.is_end.size(); ++s) f.is_end[s] = slice(g.is_end[s], w0, w1);
+  for (std::size_t s = 0; s < g.network_ends.size(); ++s) f.network_ends[s] = slice(g.network_ends[s], w0, w1);
+  // the crossing marks of the window's rows, each found by its neighbour (a ghost's row is cut)
+  const Bonds& b = m.bonds;
+  const Bonds& c = w.bonds;
+  for (const std::int64_t k : g.crossing_broken) {
+    const std::size_t i = b.row_of(k), j = static_cast<std::size_t>(b.neighbor[static_cast<std::size_t>(k)]);
+    if (i < w0 || i >= w1 || j < w0 || j >= w1) continue;
+    const auto first = c.neighbor.begin() + c.offset[i - w0], last = c.neighbor.begin() + c.offset[i - w0 + 1];
+    f.crossing_broken.push_back(std::lower_bound(first, last, static_cast<std::int32_t>(j - w0)) - c.neighbor.begin());
+  }
+  std::sort(f.crossing_broken.begin(), f.crossing_broken.end());
+  f.crack_surface.made = g.crack_surface.made;
+  if (f.crack_surface.made) remake_crack_surface<D>(w);
 }
 
 }  // namespace
@@ -180,6 +203,8 @@ Model<D> window_of(const Model<D>& m, const Partition& p, int rank) {
   w.owned_begin = p.owned[r] - w0;
   w.owned_end = p.owned[r + 1] - w0;
   w.window_first = w0;
+  w.uncut_rows_begin = w0 == 0 ? 0 : std::min(n, p.reach);
+  w.uncut_rows_end = w1 == m.size() ? n : n - std::min(n, p.reach);
 
   // rows of the window, each cut to the neighbours inside it (only ghosts' rows lose bonds); a
   // row of factors (bonds.hpp) comes along once however many particles share it
@@ -232,7 +257,7 @@ Model<D> window_of(const Model<D>& m, const Partition& p, int rank) {
 }
 
 #define RIFT_INSTANTIATE(D)                                                      \
-  template Partition partition_by_bonds<D>(const Model<D>&, int, std::size_t);   \
+  template Partition partition_by_bonds<D>(const Model<D>&, int, std::size_t, std::size_t); \
   template std::string not_distributable<D>(const Model<D>&);                    \
   template Model<D> window_of<D>(const Model<D>&, const Partition&, int);
 RIFT_INSTANTIATE(2)

@@ -23,12 +23,30 @@ struct Partition {
 /// Cuts the model's particles into `ranks` consecutive ranges of about equal bond counts, at
 /// multiples of `granularity` (a rank may own none where there are more ranks than particles).
 /// Dynamic relaxation cuts at whole blocks of its sums (parallel::ordered_sum_block), whose damping
-/// and residual are then the one-rank run's bits.
+/// and residual are then the one-rank run's bits. Each window reaches `reaches` times the bonds'
+/// reach past its owned range: one for the bond passes; a fluid whose cracks grow reads further
+/// (fluid_ghost_reaches).
 template <int D>
-Partition partition_by_bonds(const Model<D>& m, int ranks, std::size_t granularity = 1);
+Partition partition_by_bonds(const Model<D>& m, int ranks, std::size_t granularity = 1, std::size_t reaches = 1);
+
+/// How many bonds' reaches a window holds past its owned range where a fluid fills cracks that
+/// grow (fluid_network.hpp): the network load of an owned particle reads the network ends among its
+/// neighbours, each end its whole row (two reaches of whole rows); the crack surface an owned bond
+/// may cross has its patches and their normals from the short bonds around the bond's ends, a
+/// spacing or two further.
+inline constexpr std::size_t fluid_ghost_reaches = 3;
+
+/// Whether the scene's fluid fills cracks that can grow: pressure bonds in rock whose bonds break.
+template <int D>
+bool fluid_cracks_grow(const Model<D>& m) {
+  if (m.crack_bonds.neighbor.empty()) return false;
+  for (const BodyInfo& body : m.bodies)
+    if (body.constants.critical_stretch > 0.0) return true;
+  return false;
+}
 
 /// What the distributed run cannot take yet, as a sentence; empty when the model can be
-/// distributed (interfaces, and fluids whose cracks can grow, run on one rank for now).
+/// distributed (interfaces and viscous fluids run on one rank for now).
 template <int D>
 std::string not_distributable(const Model<D>& m);
 

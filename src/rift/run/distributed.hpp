@@ -8,6 +8,7 @@
 
 #include "rift/parallel/communicator.hpp"
 #include "rift/pd/bond_slabs.hpp"
+#include "rift/pd/crack_crossing.hpp"
 #include "rift/pd/forces.hpp"
 #include "rift/pd/model.hpp"
 #include "rift/pd/normal_stress_failure.hpp"
@@ -43,6 +44,65 @@ void gather_into(const parallel::Communicator& comm, const pd::Model<D>& m, cons
   const auto first = static_cast<std::ptrdiff_t>(m.owned_begin * width), last = static_cast<std::ptrdiff_t>(m.owned_last() * width);
   auto all = comm.gather(std::vector<T>(local.begin() + first, local.begin() + last));
   if (whole) *whole = std::move(all);
+}
+
+/// The fluid's state (pd/fluid_network.hpp) gathered into the whole run's model on rank 0 (`whole`,
+/// null on the other ranks): the sources' state (the same on every rank), the particles' labels,
+/// marks and network load of the owned particles, and the crossing marks of their bonds (each owned
+/// row is whole); the crack surface is made again there from those (crack_crossing.hpp: the same
+/// patches and normals, whatever order they came in).
+template <int D>
+void gather_fluid(const parallel::Communicator& comm, const pd::Model<D>& m, pd::Model<D>* whole) {
+  const pd::FluidNetwork& f = m.fluid_network;
+  pd::FluidNetwork* g = whole ? &whole->fluid_network : nullptr;
+  if (g) g->take_sources_state(f), g->relabel = f.relabel, g->load_from_scratch = f.load_from_scratch;
+  gather_into<D>(comm, m, f.source, g ? &g->source : nullptr);
+  gather_into<D>(comm, m, f.bond_counts, g ? &g->bond_counts : nullptr);
+  gather_into<D>(comm, m, f.in_crack, g ? &g->in_crack : nullptr);
+  gather_into<D>(comm, m, f.immersed, g ? &g->immersed : nullptr);
+  gather_into<D>(comm, m, f.load_changed_mark, g ? &g->load_changed_mark : nullptr);
+  if (g) {
+    g->load_changed.clear();
+    for (std::size_t i = 0; i < g->load_changed_mark.size(); ++i)
+      if (g->load_changed_mark[i]) g->load_changed.push_back(i);
+  }
+  // a window without pressure in its wet rock keeps none (effective_stretch.hpp): zeros
+  if (comm.any(!f.pore_stretch.empty())) {
+    std::vector<double> pore = f.pore_stretch;
+    pore.resize(m.size(), 0.0);
+    gather_into<D>(comm, m, pore, g ? &g->pore_stretch : nullptr);
+  } else if (g) {
+    g->pore_stretch.clear();
+  }
+  // per source: the network load and its ends, where it has a network (the same on every rank)
+  const std::size_t sources = f.has_network.size();
+  if (g) g->network_load.assign(sources, {}), g->is_end.assign(sources, {}), g->network_ends.assign(sources, {});
+  for (std::size_t s = 0; s < sources; ++s) {
+    if (!f.has_network[s]) continue;
+    const auto empty_if_none = [&](const auto& v, std::size_t width) {
+      return v.size() == m.size() * width ? v : std::remove_cvref_t<decltype(v)>(m.size() * width);
+    };
+    gather_into<D>(comm, m, empty_if_none(f.network_load[s], D), g ? &g->network_load[s] : nullptr, D);
+    gather_into<D>(comm, m, empty_if_none(f.is_end[s], 1), g ? &g->is_end[s] : nullptr);
+    gather_into<D>(comm, m, empty_if_none(f.network_ends[s], 1), g ? &g->network_ends[s] : nullptr);
+  }
+  // the crossing marks of the owned rows, as (row, place in the row) in the whole run's numbering
+  std::vector<std::int64_t> marks;
+  const pd::Bonds& b = m.bonds;
+  for (const std::int64_t k : f.crossing_broken) {
+    const std::size_t i = b.row_of(k);
+    if (i < m.owned_begin || i >= m.owned_last()) continue;
+    marks.push_back(static_cast<std::int64_t>(m.window_first + i)), marks.push_back(k - b.offset[i]);
+  }
+  const auto all = comm.gather(marks);
+  if (!g) return;
+  g->crossing_broken.clear();
+  for (std::size_t q = 0; q + 1 < all.size(); q += 2) g->crossing_broken.push_back(whole->bonds.offset[static_cast<std::size_t>(all[q])] + all[q + 1]);
+  std::sort(g->crossing_broken.begin(), g->crossing_broken.end());
+  // made as the run makes it after its first time (crack_crossing.hpp makes_patch)
+  g->crack_surface = pd::CrackSurface{};
+  g->crack_surface.made = f.crack_surface.made;
+  if (g->crack_surface.made) pd::remake_crack_surface<D>(*whole);
 }
 
 /// A distributed run's state gathered into the whole run's model on rank 0 (`whole`, a model of the
@@ -97,12 +157,8 @@ void gather_model(const parallel::Communicator& comm, const pd::Model<D>& m, pd:
       });
     }
   }
-  if (whole) {
-    whole->time = m.time;
-    // the fluid's sources, the same on every rank; the particles' labels are made again from the
-    // bonds' states where the run continues (window.hpp window_pressure_bonds)
-    whole->fluid_network.take_sources_state(m.fluid_network);
-  }
+  if (whole) whole->time = m.time;
+  if (m.fluid_network.pressure_bonds) gather_fluid<D>(comm, m, whole);
 }
 
 /// The largest damage of the owned particles, over every rank.

@@ -415,7 +415,6 @@ Result run_dim(const scene::Scene& s, const Options& o) {
     }
     for (long step = res.first_step; step <= p.steps; ++step) {
       p.step();
-      p.check_contact_reach(comm);
       res.bond_updates += bonds;
       const bool snap = step * s.output.count >= next_snapshot * p.steps;
       const bool hist = step * s.output.history_count >= next_history * p.steps;

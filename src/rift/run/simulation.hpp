@@ -65,7 +65,8 @@ struct Simulation {
     if (!missing.empty())
       throw SceneError({s.file, 0, 0}, "mpirun -np " + std::to_string(comm.size()),
                        "a run on more than one rank cannot take " + missing + " yet; run this scene on one rank");
-    partition = pd::partition_by_bonds<D>(model, comm.size(), block_sums ? parallel::ordered_sum_block : 1);
+    partition = pd::partition_by_bonds<D>(model, comm.size(), block_sums ? parallel::ordered_sum_block : 1,
+                                          pd::fluid_cracks_grow<D>(model) ? pd::fluid_ghost_reaches : 1);
     const auto r = static_cast<std::size_t>(comm.rank());
     const std::size_t w0 = partition.window_first[r], w1 = partition.window_last[r];
     // contact inside the body (one body: check_contact_reach): how far apart, along the layers'
@@ -85,6 +86,10 @@ struct Simulation {
     halo = std::make_unique<parallel::Halo>(comm.rank(), partition.owned, partition.window_first, partition.window_last);
     model.ghosts = halo.get();
     contact = pd::Contact<D>(s.contact, model);  // its pairs among the window's particles
+    if (contact.enabled())
+      contact.before_forces = [partition = partition, above = closing_above, below = closing_below](const pd::Model<D>& m) {
+        check_contact_reach(m, partition, above, below, parallel::Communicator::world());
+      };
   }
   /// A distributed run's contact finds an owned particle's pairs among the window's particles: it
   /// raises a PhysicsError (on every rank) once a particle beyond a rank's window may have come
@@ -92,8 +97,12 @@ struct Simulation {
   /// normal of the owned particles and of another rank's beyond the window have closed the gap
   /// between them (distribute: closing_above, closing_below). Sufficient: contact needs the
   /// distance along that axis below the contact distance too.
-  void check_contact_reach(const parallel::Communicator& comm) const {
-    if (!contact.enabled() || !comm.distributed()) return;
+  /// Checked before every evaluation of the contact forces (pd::Contact::before_forces): each
+  /// explicit step and each iteration of dynamic relaxation, whose fictitious motion can fling a
+  /// shattered block's fragments across it.
+  static void check_contact_reach(const pd::Model<D>& model, const pd::Partition& partition, double closing_above, double closing_below,
+                                  const parallel::Communicator& comm) {
+    if (!comm.distributed()) return;
     constexpr int axis = D - 1;
     double low = std::numeric_limits<double>::max(), high = -low;
     for (std::size_t i = model.owned_begin; i < model.owned_last(); ++i) {
