@@ -148,12 +148,11 @@ TEST(ViscousFluid, BreakdownPressureKeepsThePreCrackDryUntilReached) {
 // A node whose bonds have all shut (no volume) gives what it held to its open neighbour of largest
 // volume, or to the borehole's node (0) where none is open; the fluid held in all is unchanged.
 TEST(ViscousFluid, AShutNodeSqueezesItsFluidIntoItsOpenNeighbour) {
-  // particles 0..4 are nodes 0..4; bonds 1-2, 1-3 (3 the larger), 4-1 (both shut: 4 has no open neighbour)
+  // nodes 0..4; bonds 1-2, 1-3 (3 the larger), 4-1 (both shut: 4 has no open neighbour)
   const std::vector<rift::pd::FlowBond> bonds{{1, 2, 0.0, 0.0, 0.0}, {1, 3, 0.0, 0.0, 0.0}, {4, 1, 0.0, 0.0, 0.0}};
-  const std::vector<std::int64_t> node{0, 1, 2, 3, 4};
   const std::vector<double> volume{5.0, 0.0, 1.0, 2.0, 0.0};
   std::vector<double> held{4.0, 3.0, 1.0, 2.0, 0.5};
-  rift::pd::squeeze_out_closed_nodes(bonds, node, volume, held);
+  rift::pd::squeeze_out_closed_nodes(bonds, volume, held);
   EXPECT_DOUBLE_EQ(held[0], 4.5);  // node 4's, through no open neighbour
   EXPECT_DOUBLE_EQ(held[1], 0.0);
   EXPECT_DOUBLE_EQ(held[2], 1.0);

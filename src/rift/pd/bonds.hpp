@@ -224,6 +224,12 @@ struct FluidNetwork {
   // network load was last made (network_load.hpp); all of them while load_from_scratch
   std::vector<std::size_t> load_changed;
   std::vector<std::uint8_t> load_changed_mark;  // per particle: in load_changed
+  /// load_changed made again from load_changed_mark, ascending (after the marks were copied)
+  void list_load_changed_from_marks() {
+    load_changed.clear();
+    for (std::size_t i = 0; i < load_changed_mark.size(); ++i)
+      if (load_changed_mark[i]) load_changed.push_back(i);
+  }
   bool load_from_scratch = true;
   std::vector<std::vector<double>> network_load;         // per source: the force density on each particle per unit pressure (n x d, 1/m); empty: none (network_load.hpp)
   std::vector<std::vector<std::uint8_t>> is_end;         // per source, per particle: it has a bond in the network

@@ -98,13 +98,13 @@ bool carries_fluid(const Model<D>& m, std::int64_t k, std::size_t i, std::size_t
   return law && interface_faces_apart<D>(m, k, i, j, *law);
 }
 
-/// Per particle: its intact and its broken bonds counted (bond states never heal, so any change of
-/// state among its bonds changes these). Returns the failed interface bonds of the whole model.
-inline std::int64_t count_bond_states(const Bonds& b, std::size_t n, std::vector<std::uint64_t>& counts) {
-  counts.resize(n);
+/// Per particle of rows [first, last): its intact and its broken bonds counted (bond states never
+/// heal, so any change of state among its bonds changes these). Returns the failed interface bonds
+/// of those rows.
+inline std::int64_t count_bond_states(const Bonds& b, std::size_t first, std::size_t last, std::vector<std::uint64_t>& counts) {
   std::int64_t interface_failed = 0;
-#pragma omp parallel for if(rift::parallel::worth_a_team(n)) schedule(static) reduction(+ : interface_failed)
-  for (std::size_t i = 0; i < n; ++i) {
+#pragma omp parallel for if(rift::parallel::worth_a_team(last - first)) schedule(static) reduction(+ : interface_failed)
+  for (std::size_t i = first; i < last; ++i) {
     std::uint64_t intact = 0, broken = 0;
     for (auto k = b.offset[i]; k < b.offset[i + 1]; ++k) {
       const auto state = b.intact[static_cast<std::size_t>(k)];
@@ -364,13 +364,16 @@ void update_fluid_network(Model<D>& m) {
   const Bonds& b = m.bonds;
   const CrackBonds& w = m.crack_bonds;
   const std::size_t n = m.size();
-  static thread_local std::vector<std::uint64_t> counts;  // the calling thread's, kept between calls
-  std::int64_t interface_failed = count_bond_states(b, n, counts);
   const bool made = f.source.size() == n && f.bond_counts.size() == n;
   const auto& ranks = ranks_of<D>(m);
   const bool distributed = ranks.distributed();
   // the rows this rank decides: on N ranks its owned particles' (the owners decide the ghosts')
   const std::size_t owned_first = m.owned_begin, owned_last = m.owned_last();
+  static thread_local std::vector<std::uint64_t> counts;  // the calling thread's, kept between calls
+  counts.resize(n);
+  const std::int64_t owned_failed = count_bond_states(b, owned_first, owned_last, counts);
+  const auto count_ghost_rows = [&] { return count_bond_states(b, 0, owned_first, counts) + count_bond_states(b, owned_last, n, counts); };
+  std::int64_t interface_failed = owned_failed + count_ghost_rows();
   const std::size_t rows_first = distributed ? owned_first : 0, rows_last = distributed ? owned_last : n;
   // the particles whose bonds changed state since the last update
   std::vector<std::size_t> changed;
@@ -383,7 +386,7 @@ void update_fluid_network(Model<D>& m) {
     any_changed = ranks.any(any_changed);
     if (any_changed) {
       refresh_ghost_bond_states<D>(m);
-      interface_failed = count_bond_states(b, n, counts);
+      interface_failed = owned_failed + count_ghost_rows();  // only the ghost rows changed
     }
   }
   std::swap(f.bond_counts, counts);
@@ -537,9 +540,7 @@ void update_fluid_network(Model<D>& m) {
     if (distributed) {
       // the ghosts' marks are their owners' (whose rows are whole)
       refresh_ghost_values<D>(m, f.load_changed_mark);
-      f.load_changed.clear();
-      for (std::size_t i = 0; i < n; ++i)
-        if (f.load_changed_mark[i]) f.load_changed.push_back(i);
+      f.list_load_changed_from_marks();
     }
     PhaseClock clock(Phase::crack_surface);
     remake_crack_surface<D>(m);

@@ -31,12 +31,16 @@
 // The rock is loaded by p_i g_s,i (network_load.hpp), p_i the pressure at particle i; a particle the
 // network's load reaches but the fluid does not (LPS coupling) takes the mean of the wet particles
 // of its family.
+// On N ranks (window.hpp) every rank solves the whole network: the flow bonds of its owned rows
+// and its owned nodes, gathered in the one-rank order, give every rank the one-rank system and its
+// bits; each keeps its owned particles' pressures and the ghosts take their owners'.
 #pragma once
 #include <algorithm>
 #include <cstdint>
 #include <vector>
 
 #include "rift/pd/fluid_network.hpp"
+#include "rift/pd/ghost_fields.hpp"
 #include "rift/pd/network_flow.hpp"
 
 namespace rift::pd {
@@ -44,11 +48,11 @@ namespace rift::pd {
 /// A node with no room left (every bond of it shut, or the network's whole volume gone) cannot keep
 /// the fluid it held: the faces squeeze it out into the open neighbour of largest volume, or
 /// into the borehole's node where no neighbour is open. What every node holds is conserved.
-inline void squeeze_out_closed_nodes(const std::vector<FlowBond>& bonds, const std::vector<std::int64_t>& node, const std::vector<double>& volume,
-                                     std::vector<double>& held) {
+/// `bonds` join nodes (FlowBond::i, j are node numbers).
+inline void squeeze_out_closed_nodes(const std::vector<FlowBond>& bonds, const std::vector<double>& volume, std::vector<double>& held) {
   std::vector<std::int64_t> outlet(volume.size(), -1);
   for (const auto& b : bonds) {
-    const auto a = static_cast<std::size_t>(node[b.i]), c = static_cast<std::size_t>(node[b.j]);
+    const std::size_t a = b.i, c = b.j;
     if (volume[c] > 0.0 && (outlet[a] < 0 || volume[c] > volume[static_cast<std::size_t>(outlet[a])])) outlet[a] = static_cast<std::int64_t>(c);
     if (volume[a] > 0.0 && (outlet[c] < 0 || volume[a] > volume[static_cast<std::size_t>(outlet[c])])) outlet[c] = static_cast<std::int64_t>(a);
   }
@@ -57,6 +61,13 @@ inline void squeeze_out_closed_nodes(const std::vector<FlowBond>& bonds, const s
     held[outlet[a] >= 0 ? static_cast<std::size_t>(outlet[a]) : 0] += held[a];
     held[a] = 0.0;
   }
+}
+
+/// The flow bonds between particles as bonds between their nodes (node: per particle, its node's
+/// number).
+inline std::vector<FlowBond> nodes_joined(const std::vector<std::int64_t>& node, std::vector<FlowBond> bonds) {
+  for (auto& b : bonds) b.i = static_cast<std::size_t>(node[b.i]), b.j = static_cast<std::size_t>(node[b.j]);
+  return bonds;
 }
 
 /// Source s's viscous fluid at time t (call after update_fluid_network and update_network_load):
@@ -84,11 +95,15 @@ double viscous_fluid_pressure(Model<D>& m, std::size_t s, double t, double injec
   const double dt = std::max(t - v.stored_time, 1e-12);
   if (f.local_pressure.size() != n) f.local_pressure.assign(n, 0.0);
 
-  // the nodes: 0 the borehole with its wall and its notches, then every other particle the fluid reaches
+  // the nodes: 0 the borehole with its wall and its notches, then every other particle the fluid
+  // reaches, ascending. On N ranks each rank numbers its owned particles' nodes after the lower
+  // ranks' (the one-rank numbering), and the ghosts take their owners' numbers.
+  const auto& ranks = ranks_of<D>(m);
+  const std::size_t owned_first = m.owned_begin, owned_last = m.owned_last();  // one rank: every particle
   const CrackBonds& w = m.crack_bonds;
   std::vector<std::size_t> wet;
   std::vector<std::uint8_t> wall(n, 0), notch(f.dry.size(), 0);
-  for (std::size_t i = 0; i < n; ++i) {
+  for (std::size_t i = owned_first; i < owned_last; ++i) {
     if (f.source[i] != static_cast<int>(s) || (!f.immersed.empty() && f.immersed[i])) continue;
     wet.push_back(i);
     for (auto k = w.offset[i]; k < w.offset[i + 1] && !wall[i]; ++k)
@@ -100,25 +115,32 @@ double viscous_fluid_pressure(Model<D>& m, std::size_t s, double t, double injec
     if (wall[i] && f.enters_dry_cracks(static_cast<int>(s)))
       for (auto k = w.offset[i]; k < w.offset[i + 1]; ++k)
         if (w.neighbor[static_cast<std::size_t>(k)] >= 0 && f.dry[w.source[static_cast<std::size_t>(k)]]) notch[w.source[static_cast<std::size_t>(k)]] = 1;
+  set_on_any_rank(ranks, notch);
   std::vector<std::int64_t> node(n, -1);
-  std::vector<std::size_t> particle_of_node(1, 0);
+  std::vector<std::size_t> owned_nodes;  // the particles of this rank's nodes other than the borehole's
   for (const std::size_t i : wet) {
     bool in_borehole = wall[i];
     for (auto k = w.offset[i]; k < w.offset[i + 1] && !in_borehole; ++k)
       in_borehole = w.neighbor[static_cast<std::size_t>(k)] >= 0 && notch[w.source[static_cast<std::size_t>(k)]];
-    if (in_borehole) {
-      node[i] = 0;
-    } else {
-      node[i] = static_cast<std::int64_t>(particle_of_node.size());
-      particle_of_node.push_back(i);
-    }
+    if (in_borehole) node[i] = 0;
+    else owned_nodes.push_back(i);
   }
-  const std::size_t nodes = particle_of_node.size();
-  const auto bonds = flow_bonds<D>(
-      m, v.viscosity, wet, [&](std::size_t i, std::int64_t k, std::size_t j) { return node[j] >= 0 && carries_fluid<D>(m, k, i, j); },
-      [&](std::size_t, std::int64_t k, std::size_t j) {
-        return node[j] >= 0 && f.dry[w.source[static_cast<std::size_t>(k)]] && f.enters_dry_cracks(static_cast<int>(s));
-      });
+  const auto node_counts = ranks.all_gather(std::vector<std::uint64_t>{owned_nodes.size()});
+  std::size_t nodes = 1, first_node = 1;
+  for (std::size_t q = 0; q < node_counts.size(); ++q) {
+    if (q == static_cast<std::size_t>(ranks.rank())) first_node = nodes;
+    nodes += node_counts[q];
+  }
+  for (std::size_t a = 0; a < owned_nodes.size(); ++a) node[owned_nodes[a]] = static_cast<std::int64_t>(first_node + a);
+  refresh_ghost_values<D>(m, node);
+  // the flow bonds, each at its lower end's row (an owned row), between nodes: the whole network's
+  // on every rank, in the one-rank order
+  const auto bonds = ranks.all_gather(nodes_joined(
+      node, flow_bonds<D>(
+                m, v.viscosity, wet, [&](std::size_t i, std::int64_t k, std::size_t j) { return node[j] >= 0 && carries_fluid<D>(m, k, i, j); },
+                [&](std::size_t, std::int64_t k, std::size_t j) {
+                  return node[j] >= 0 && f.dry[w.source[static_cast<std::size_t>(k)]] && f.enters_dry_cracks(static_cast<int>(s));
+                })));
   std::vector<double> volume(nodes, 0.0);
   const double borehole_change = cavity_volume_change<D>(m, static_cast<int>(s), true);
   volume[0] = f.reference_volume[s] + system_volume + borehole_change;
@@ -129,18 +151,30 @@ double viscous_fluid_pressure(Model<D>& m, std::size_t s, double t, double injec
   const double scale = opened > 0.0 ? std::max(0.0, network_volume / opened) : 0.0;
   std::vector<FlowBond> links;
   for (const auto& b : bonds) {
-    const auto a = static_cast<std::size_t>(node[b.i]), c = static_cast<std::size_t>(node[b.j]);
-    volume[a] += 0.5 * scale * b.volume;
-    volume[c] += 0.5 * scale * b.volume;
-    if (a != c && b.conductance > 0.0) links.push_back({a, c, b.opening, b.conductance, 0.0});
+    volume[b.i] += 0.5 * scale * b.volume;
+    volume[b.j] += 0.5 * scale * b.volume;
+    if (b.i != b.j && b.conductance > 0.0) links.push_back({b.i, b.j, b.opening, b.conductance, 0.0});
+  }
+  // what each node held at the last load step's end, and whether it is on the outer surface
+  std::vector<double> held(1, v.stored_inlet);
+  std::vector<std::uint8_t> outer(1, 0);
+  {
+    std::vector<double> owned_held;
+    std::vector<std::uint8_t> owned_outer;
+    for (const std::size_t i : owned_nodes) {
+      owned_held.push_back(v.stored[i]);
+      owned_outer.push_back(f.outer_surface.size() == n && f.outer_surface[i]);
+    }
+    const auto all_held = ranks.all_gather(owned_held);
+    const auto all_outer = ranks.all_gather(owned_outer);
+    held.insert(held.end(), all_held.begin(), all_held.end());
+    outer.insert(outer.end(), all_outer.begin(), all_outer.end());
   }
   // held at zero pressure: the nodes on the outer surface once the fluid breaks through
   std::vector<std::uint8_t> fixed(nodes, 0);
-  if (s < f.vented.size() && f.vented[s] && f.outer_surface.size() == n)
-    for (std::size_t a = 1; a < nodes; ++a) fixed[a] = f.outer_surface[particle_of_node[a]];
-  std::vector<double> storage(nodes), source(nodes), zero(nodes, 0.0), held(nodes);
-  for (std::size_t a = 0; a < nodes; ++a) held[a] = a == 0 ? v.stored_inlet : v.stored[particle_of_node[a]];
-  squeeze_out_closed_nodes(bonds, node, volume, held);
+  if (s < f.vented.size() && f.vented[s]) fixed = outer;
+  std::vector<double> storage(nodes), source(nodes), zero(nodes, 0.0);
+  squeeze_out_closed_nodes(bonds, volume, held);
   for (std::size_t a = 0; a < nodes; ++a) {
     storage[a] = volume[a] / (bulk_modulus * dt);
     source[a] = (held[a] - volume[a]) / dt + (a == 0 ? injection_rate : 0.0);
@@ -169,16 +203,17 @@ double viscous_fluid_pressure(Model<D>& m, std::size_t s, double t, double injec
     if (!cavitated[a]) return volume[a] * (1.0 + p[a] / bulk_modulus);
     return std::clamp(held[a] + dt * inflow[a], 0.0, volume[a]);
   };
-  // the fluid each node holds now, and the pressure at each particle
+  // the fluid each node holds now, and the pressure at each particle (the owned ones; the ghosts
+  // take their owners')
   v.trial_inlet = holds(0);
   std::fill(v.trial.begin(), v.trial.end(), 0.0);
-  for (std::size_t a = 1; a < nodes; ++a) v.trial[particle_of_node[a]] = holds(a);
+  for (std::size_t a = 0; a < owned_nodes.size(); ++a) v.trial[owned_nodes[a]] = holds(first_node + a);
   for (const std::size_t i : wet) f.local_pressure[i] = p[static_cast<std::size_t>(node[i])];
   // a particle the network loads that the fluid does not reach: the mean of its family's wet particles
   if (s < f.network_load.size() && !f.network_load[s].empty()) {
     const auto& g = f.network_load[s];
     const Bonds& b = m.bonds;
-    for (std::size_t i = 0; i < n; ++i) {
+    for (std::size_t i = owned_first; i < owned_last; ++i) {
       if (node[i] >= 0) continue;
       bool loaded = false;
       for (int q = 0; q < D; ++q) loaded = loaded || g[i * D + static_cast<std::size_t>(q)] != 0.0;
@@ -192,6 +227,7 @@ double viscous_fluid_pressure(Model<D>& m, std::size_t s, double t, double injec
       f.local_pressure[i] = count > 0 ? sum / count : p[0];
     }
   }
+  m.refresh_ghosts(f.local_pressure);
   if (s < f.cavity_volume.size()) {
     double total = 0.0;
     for (double x : volume) total += x;

@@ -47,10 +47,9 @@ std::string not_distributable(const Model<D>& m) {
   if (m.crack_bonds.neighbor.empty()) return {};
   // the fluid of pressurized cracks and boreholes (fluid_network.hpp) runs on N ranks: its labels,
   // the cavity's volume, breakthrough, the fragments and the network load are made over the
-  // ranks, from the ghosts' bond states (ghost_fields.hpp refresh_ghost_bond_states)
+  // ranks, from the ghosts' bond states (ghost_fields.hpp refresh_ghost_bond_states); a viscous
+  // fluid's pressures are solved over the whole network on every rank (viscous_fluid.hpp)
   const FluidNetwork& f = m.fluid_network;
-  for (std::size_t s = 0; s < f.dry.size(); ++s)
-    if (f.flows(s)) return "a viscous fluid (fluid_viscosity)";
   const auto dry = std::count(f.dry.begin(), f.dry.end(), std::uint8_t{1});
   if (dry > 0 && f.dry.size() - static_cast<std::size_t>(dry) > 1)
     return "two or more fluids with a dry pre-crack (which fluid fills it follows the one-rank search's order)";
@@ -145,8 +144,12 @@ void window_pressure_bonds(const Model<D>& m, std::size_t w0, std::size_t w1, Mo
   }
   FluidNetwork& f = w.fluid_network;
   const FluidNetwork& g = m.fluid_network;
-  f.pressure_bonds = g.pressure_bonds, f.dry = g.dry, f.reference_volume = g.reference_volume, f.viscous = g.viscous;
+  f.pressure_bonds = g.pressure_bonds, f.dry = g.dry, f.reference_volume = g.reference_volume;
   f.take_sources_state(g);
+  // a viscous fluid's: the fluid in the window's nodes and the pressure at its particles
+  f.viscous = g.viscous;
+  for (ViscousFluid& v : f.viscous) v.stored = slice(v.stored, w0, w1), v.trial = slice(v.trial, w0, w1);
+  f.local_pressure = slice(g.local_pressure, w0, w1), f.local_pore_pressure = slice(g.local_pore_pressure, w0, w1);
   f.outer_surface = slice(g.outer_surface, w0, w1);
   f.open_interface_bonds.assign(g.dry.size(), {});
   // a continued run's labels, marks and network load (run/distributed.hpp gather_fluid; a run that
@@ -155,8 +158,7 @@ void window_pressure_bonds(const Model<D>& m, std::size_t w0, std::size_t w1, Mo
   f.source = slice(g.source, w0, w1), f.bond_counts = slice(g.bond_counts, w0, w1);
   f.in_crack = slice(g.in_crack, w0, w1), f.immersed = slice(g.immersed, w0, w1);
   f.pore_stretch = slice(g.pore_stretch, w0, w1), f.load_changed_mark = slice(g.load_changed_mark, w0, w1);
-  for (std::size_t a = 0; a < f.load_changed_mark.size(); ++a)
-    if (f.load_changed_mark[a]) f.load_changed.push_back(a);
+  f.list_load_changed_from_marks();
   f.network_load.resize(g.network_load.size()), f.is_end.resize(g.is_end.size()), f.network_ends.resize(g.network_ends.size());
   for (std::size_t s = 0; s < g.network_load.size(); ++s) f.network_load[s] = slice(g.network_load[s], w0, w1, D);
   for (std::size_t s = 0; s < g.is_end.size(); ++s) f.is_end[s] = slice(g.is_end[s], w0, w1);

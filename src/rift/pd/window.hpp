@@ -30,23 +30,27 @@ template <int D>
 Partition partition_by_bonds(const Model<D>& m, int ranks, std::size_t granularity = 1, std::size_t reaches = 1);
 
 /// How many bonds' reaches a window holds past its owned range where a fluid fills cracks that
-/// grow (fluid_network.hpp): the network load of an owned particle reads the network ends among its
+/// grow (fluid_network.hpp) or flows (fluid_reads_far): the network load of an owned particle reads the network ends among its
 /// neighbours, each end its whole row (two reaches of whole rows); the crack surface an owned bond
 /// may cross has its patches and their normals from the short bonds around the bond's ends, a
 /// spacing or two further.
 inline constexpr std::size_t fluid_ghost_reaches = 3;
 
-/// Whether the scene's fluid fills cracks that can grow: pressure bonds in rock whose bonds break.
+/// Whether the scene's fluid fills cracks that can grow (pressure bonds in rock whose bonds break),
+/// or flows along them (viscous_fluid.hpp: a flow bond's conductance reads the bulk strain and the
+/// family moments of its ends, an owned particle's neighbour among them, each over its whole row).
 template <int D>
-bool fluid_cracks_grow(const Model<D>& m) {
+bool fluid_reads_far(const Model<D>& m) {
   if (m.crack_bonds.neighbor.empty()) return false;
+  for (std::size_t s = 0; s < m.fluid_network.dry.size(); ++s)
+    if (m.fluid_network.flows(s)) return true;
   for (const BodyInfo& body : m.bodies)
     if (body.constants.critical_stretch > 0.0) return true;
   return false;
 }
 
 /// What the distributed run cannot take yet, as a sentence; empty when the model can be
-/// distributed (interfaces and viscous fluids run on one rank for now).
+/// distributed (interfaces run on one rank for now).
 template <int D>
 std::string not_distributable(const Model<D>& m);
 

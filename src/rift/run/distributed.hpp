@@ -61,11 +61,7 @@ void gather_fluid(const parallel::Communicator& comm, const pd::Model<D>& m, pd:
   gather_into<D>(comm, m, f.in_crack, g ? &g->in_crack : nullptr);
   gather_into<D>(comm, m, f.immersed, g ? &g->immersed : nullptr);
   gather_into<D>(comm, m, f.load_changed_mark, g ? &g->load_changed_mark : nullptr);
-  if (g) {
-    g->load_changed.clear();
-    for (std::size_t i = 0; i < g->load_changed_mark.size(); ++i)
-      if (g->load_changed_mark[i]) g->load_changed.push_back(i);
-  }
+  if (g) g->list_load_changed_from_marks();
   // a window without pressure in its wet rock keeps none (effective_stretch.hpp): zeros
   if (comm.any(!f.pore_stretch.empty())) {
     std::vector<double> pore = f.pore_stretch;
@@ -74,17 +70,26 @@ void gather_fluid(const parallel::Communicator& comm, const pd::Model<D>& m, pd:
   } else if (g) {
     g->pore_stretch.clear();
   }
+  // a viscous fluid's (pd/viscous_fluid.hpp): its scalars the same on every rank, the fluid each
+  // node holds and the pressure at each particle
+  if (g) g->viscous = f.viscous;
+  for (std::size_t s = 0; s < f.viscous.size(); ++s) {
+    gather_into<D>(comm, m, f.viscous[s].stored, g ? &g->viscous[s].stored : nullptr);
+    gather_into<D>(comm, m, f.viscous[s].trial, g ? &g->viscous[s].trial : nullptr);
+  }
+  gather_into<D>(comm, m, f.local_pressure, g ? &g->local_pressure : nullptr);
+  gather_into<D>(comm, m, f.local_pore_pressure, g ? &g->local_pore_pressure : nullptr);
   // per source: the network load and its ends, where it has a network (the same on every rank)
   const std::size_t sources = f.has_network.size();
   if (g) g->network_load.assign(sources, {}), g->is_end.assign(sources, {}), g->network_ends.assign(sources, {});
   for (std::size_t s = 0; s < sources; ++s) {
     if (!f.has_network[s]) continue;
-    const auto empty_if_none = [&](const auto& v, std::size_t width) {
+    const auto zeros_where_unsized = [&](const auto& v, std::size_t width) {
       return v.size() == m.size() * width ? v : std::remove_cvref_t<decltype(v)>(m.size() * width);
     };
-    gather_into<D>(comm, m, empty_if_none(f.network_load[s], D), g ? &g->network_load[s] : nullptr, D);
-    gather_into<D>(comm, m, empty_if_none(f.is_end[s], 1), g ? &g->is_end[s] : nullptr);
-    gather_into<D>(comm, m, empty_if_none(f.network_ends[s], 1), g ? &g->network_ends[s] : nullptr);
+    gather_into<D>(comm, m, zeros_where_unsized(f.network_load[s], D), g ? &g->network_load[s] : nullptr, D);
+    gather_into<D>(comm, m, zeros_where_unsized(f.is_end[s], 1), g ? &g->is_end[s] : nullptr);
+    gather_into<D>(comm, m, zeros_where_unsized(f.network_ends[s], 1), g ? &g->network_ends[s] : nullptr);
   }
   // the crossing marks of the owned rows, as (row, place in the row) in the whole run's numbering
   std::vector<std::int64_t> marks;

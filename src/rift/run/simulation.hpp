@@ -66,12 +66,13 @@ struct Simulation {
       throw SceneError({s.file, 0, 0}, "mpirun -np " + std::to_string(comm.size()),
                        "a run on more than one rank cannot take " + missing + " yet; run this scene on one rank");
     partition = pd::partition_by_bonds<D>(model, comm.size(), block_sums ? parallel::ordered_sum_block : 1,
-                                          pd::fluid_cracks_grow<D>(model) ? pd::fluid_ghost_reaches : 1);
+                                          pd::fluid_reads_far<D>(model) ? pd::fluid_ghost_reaches : 1);
     const auto r = static_cast<std::size_t>(comm.rank());
     const std::size_t w0 = partition.window_first[r], w1 = partition.window_last[r];
     // contact inside the body (one body: check_contact_reach): how far apart, along the layers'
     // normal (the lattice's slowest axis, along which the numbering climbs), the owned particles
     // are from the first particles beyond the window on either side, less the contact distance
+    double closing_above = std::numeric_limits<double>::max(), closing_below = std::numeric_limits<double>::max();
     if (contact.enabled() && partition.owned[r] < partition.owned[r + 1]) {
       constexpr int axis = D - 1;
       const auto& x = model.reference_position;
@@ -125,9 +126,6 @@ struct Simulation {
                                      "more than one rank finds contact among its ghosts only: run this scene on one rank",
                                      model.time, closed));
   }
-  // a distributed run's (check_contact_reach): how far the owned particles and those beyond the
-  // window above (below) may close on each other along the layers' normal before they may touch
-  double closing_above = std::numeric_limits<double>::max(), closing_below = std::numeric_limits<double>::max();
   pd::Partition partition;  // a distributed run's (empty on one rank)
   std::unique_ptr<parallel::Halo> halo;
   /// The in-situ stage ([in_situ_stress]): static equilibrium under the far-field stresses and
