@@ -9,8 +9,9 @@
 # bonds' viscous history on both sides of a cut), and a rock block's in-situ stage (between
 # platens, or under tractions by conjugate gradients or dynamic relaxation) followed by explicit
 # steps that break its bonds, and fluids in rock (a borehole breaking down into a dry pre-crack, a
-# pressurized pre-crack, the same pre-crack growing in rock whose bonds break, and a viscous fluid
-# flowing along the cracks it grows across a cut). A run whose
+# pressurized pre-crack, the same pre-crack growing in rock whose bonds break, a viscous fluid
+# flowing along the cracks it grows across a cut, and a pre-existing fracture that it crosses and
+# dilates). A run whose
 # contact could reach past a rank's ghosts stops with exit status 1. The material point method (mpm/domain.hpp) adds
 # the nodes' sums of neighbouring ranks in another order than one rank: its fields agree with the
 # one-rank run's to 1e-12 of their size (compare_fields, the second argument). What a distributed
@@ -387,7 +388,15 @@ sed -e 's/fluid_bulk_modulus = 2.2e9/fluid_bulk_modulus = 2.2e9\nfluid_viscosity
 # of growing (no viscosity) had cavitated to zero
 awk -F, 'NR == 1 { for (c = 1; c <= NF; ++c) if ($c == "pressure_borehole_0") column = c } NR > 1 { p = $column } END { exit !(column && p > 1e5) }' \
   "$tmp/flowing-serial/history.csv" || fail "flowing: the viscous fluid's pressure at the end is not above 0.1 MPa"
-for scene in borehole pressurized growing flowing; do
+# interface: the growing scene with a pre-existing fracture parallel to the pressurized crack, 10 mm
+# from it, across every cut (interface_law.hpp): the law of a bond with an owned end reads its
+# ghost end's strain and fluid from their owners; the outcome is reduced over the ranks
+awk '/^\[solver\]/ { print "[[interfaces]]\npoints = [[0.01, -0.045], [0.01, 0.045]]\ntensile_strength = 0.2e6\nfriction_coefficient = 0.6" } { print }' \
+  "$tmp/growing.toml" | sed -e 's/name = "growing"/name = "interface"/' > "$tmp/interface.toml"
+"$rift" run "$tmp/interface.toml" -o "$tmp/interface-serial" > "$tmp/interface-serial.log" 2>&1
+# its fracture crossed the interface and the fluid opened it: crossed+dilated (one rank's reading)
+grep -q "interface 0: crossed+dilated" "$tmp/interface-serial.log" || { cat "$tmp/interface-serial.log"; fail "interface: not crossed+dilated on one rank"; }
+for scene in borehole pressurized growing flowing interface; do
   same_on_ranks "$scene" 2 3
 done
 # kgd_viscous: the first 0.15 s of examples/hf_kgd_viscosity.toml (dynamic relaxation after an
@@ -398,15 +407,16 @@ sed -e 's/end_time = 1.0/end_time = 0.15/' -e 's/load_steps = 20/load_steps = 3/
 "$rift" run "$tmp/kgd_viscous.toml" -o "$tmp/kgd_viscous-serial" -q > /dev/null
 awk -F, 'NR > 1 { b = $3 } END { exit !(b > 100) }' "$tmp/kgd_viscous-serial/history.csv" || fail "kgd_viscous: its crack did not grow"
 same_on_ranks kgd_viscous 2
-echo "ok: a borehole breaking down into a dry pre-crack (dynamic relaxation, in-situ stage), a pressurized pre-crack beside an injected borehole (explicit), the same pre-crack growing in breakable rock, and a viscous fluid flowing along the cracks it grows across a cut on 2 and 3 ranks (and a viscous KGD fracture by dynamic relaxation on 2): the same bytes as one rank"
+echo "ok: a borehole breaking down into a dry pre-crack (dynamic relaxation, in-situ stage), a pressurized pre-crack beside an injected borehole (explicit), the same pre-crack growing in breakable rock, a viscous fluid flowing along the cracks it grows across a cut, and a pre-existing fracture across every cut that the fluid's crack crosses and dilates on 2 and 3 ranks (and a viscous KGD fracture by dynamic relaxation on 2): the same bytes as one rank"
 
 # checkpoints written by 2 ranks restart on 3 and on 1, and the continued runs write the bytes of
 # the uninterrupted one-rank run (rank 0 gathers the whole run's state: any number of ranks reads it;
 # insitu_platens: a checkpoint of the explicit steps after the in-situ stage, which a restart skips)
 # borehole: a checkpoint of the first load step, the wall broken down and the pre-crack wet;
 # growing: the fluid's network, its load and the crack surface in the middle of the growth;
-# flowing: the viscous fluid each node holds and its pressures too
-for case in "plate 20" "ves_bar 20" "insitu_platens 20" "borehole 1" "growing 80" "flowing 80"; do
+# flowing: the viscous fluid each node holds and its pressures too; interface: the interface
+# bonds' slip, marks and strains
+for case in "plate 20" "ves_bar 20" "insitu_platens 20" "borehole 1" "growing 80" "flowing 80" "interface 80"; do
   read -r scene step <<< "$case"
   printf '[checkpoint]\nevery_steps = %s\nfile = "ckpt_*.rift"\n' "$step" | cat "$tmp/$scene.toml" - > "$tmp/$scene-ckpt.toml"
   "${mpirun[@]}" -np 2 "$rift" run "$tmp/$scene-ckpt.toml" -o "$tmp/$scene-ckpt" -q > /dev/null 2>&1 || fail "$scene: checkpointed run on 2 ranks"
@@ -533,7 +543,7 @@ printf '[checkpoint]\nevery_steps = 400\nfile = "ckpt_*.rift"\n' | cat "$tmp/mpm
 echo "ok: mpm_disks and mpm_dcb: a checkpoint of 2 ranks continues on 3, within 1e-12 of the one-rank run"
 
 # refused on more than one rank, exit status 2, nothing written: an MPM grid too thin for its
-# ranks, a cut along an axis a run cannot be cut along, a fluid whose cracks can grow
+# ranks, a cut along an axis a run cannot be cut along, contact between bodies
 refused() {  # scene file, what the message says, ranks (2 unless given), more options of `rift run`
   local scene="$1" message="$2" np="${3:-2}" name status
   shift $(($# < 3 ? $# : 3))
@@ -553,8 +563,40 @@ refused "$tmp/coarse_disks.toml" "a rank needs 4 of them" 3
 # --cut-along: a peridynamic run is cut across its slowest axis alone; a 2D grid has no z
 refused "$tmp/bar.toml" "cut across its lattice's slowest axis" 2 --cut-along x
 refused "$tmp/mpm_disks.toml" "has no z axis" 2 --cut-along z
-# interfaces (pre-existing fractures): their laws and outcome are one rank's for now
-refused "$examples/hf_interface.toml" "interfaces (pre-existing fractures)"
+# contact between two bodies: one rank's for now
+cat > "$tmp/two_bodies.toml" <<'SCENE'
+[scene]
+name = "two_bodies"
+dimension = 2
+plane = "stress"
+thickness = 0.001
+[materials.glass]
+model = "pmb"
+density = 2440.0
+youngs_modulus = 72e9
+poisson_ratio = 0.3333333333
+[regions.lower]
+shape = "box"
+min = [0.0, 0.0]
+max = [0.01, 0.01]
+[regions.upper]
+shape = "box"
+min = [0.0, 0.0115]
+max = [0.01, 0.02]
+[bodies.lower]
+material = "glass"
+region = "lower"
+spacing = 0.0005
+horizon = 3.015
+[bodies.upper]
+material = "glass"
+region = "upper"
+spacing = 0.0005
+horizon = 3.015
+[solver]
+end_time = 1e-7
+SCENE
+refused "$tmp/two_bodies.toml" "contact between bodies"
 echo "ok: what a distributed run cannot take is refused with exit status 2"
 
 # contact is found among a rank's ghosts: a plate squeezed until its layers of two ranks may touch

@@ -372,8 +372,11 @@ void update_fluid_network(Model<D>& m) {
   static thread_local std::vector<std::uint64_t> counts;  // the calling thread's, kept between calls
   counts.resize(n);
   const std::int64_t owned_failed = count_bond_states(b, owned_first, owned_last, counts);
-  const auto count_ghost_rows = [&] { return count_bond_states(b, 0, owned_first, counts) + count_bond_states(b, owned_last, n, counts); };
-  std::int64_t interface_failed = owned_failed + count_ghost_rows();
+  const auto count_ghost_rows = [&] {
+    count_bond_states(b, 0, owned_first, counts);
+    count_bond_states(b, owned_last, n, counts);
+  };
+  count_ghost_rows();
   const std::size_t rows_first = distributed ? owned_first : 0, rows_last = distributed ? owned_last : n;
   // the particles whose bonds changed state since the last update
   std::vector<std::size_t> changed;
@@ -386,10 +389,13 @@ void update_fluid_network(Model<D>& m) {
     any_changed = ranks.any(any_changed);
     if (any_changed) {
       refresh_ghost_bond_states<D>(m);
-      interface_failed = owned_failed + count_ghost_rows();  // only the ghost rows changed
+      count_ghost_rows();  // only the ghost rows changed
     }
   }
   std::swap(f.bond_counts, counts);
+  // the failed interface bonds of the whole model (each counted at both ends, as one rank counts them)
+  const std::int64_t interface_failed =
+      distributed && !m.interface_bonds.laws.empty() ? static_cast<std::int64_t>(ranks.sum(static_cast<double>(owned_failed))) : owned_failed;
   bool grows = made && fluid_network_grows(f, interface_failed);
   if (grows && !any_changed) return;
   // growth from the changed particles alone searches one rank's particles: on N ranks the labels
@@ -515,8 +521,11 @@ void update_fluid_network(Model<D>& m) {
           if (b.intact[static_cast<std::size_t>(k)] != bond_intact) detail::mark_load_changed(f, static_cast<std::size_t>(b.neighbor[k]));
       }
     std::fill(f.has_network.begin(), f.has_network.end(), 0);
+    // over every row of the window: a ghost row's bonds lie in the window, their states, labels and
+    // (interface_law.hpp) ends' strains its owner's, and its failed interface bonds that the fluid
+    // fills belong in open_interface_bonds (the crack surface and the network load read them)
     std::vector<std::vector<std::int64_t>> open(f.dry.size());
-    for (std::size_t i = owned_first; i < owned_last; ++i) {
+    for (std::size_t i = 0; i < n; ++i) {
       const int s = f.source[i];
       if (s < 0) continue;
       for (auto k = b.offset[i]; k < b.offset[i + 1]; ++k) {

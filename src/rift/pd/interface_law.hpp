@@ -23,6 +23,7 @@
 
 #include "rift/geometry/precrack.hpp"
 #include "rift/pd/bulk_strain.hpp"
+#include "rift/pd/ghost_fields.hpp"
 #include "rift/pd/interface_contact.hpp"
 #include "rift/pd/model.hpp"
 #include "rift/parallel/team.hpp"
@@ -153,22 +154,56 @@ std::array<double, 9> rock_stress(const MaterialConstants& c, const std::array<d
   return sigma;
 }
 
-/// Fails the intact bonds across interfaces whose law is exceeded (see the top of this file).
+/// The strain of the interface particles' rock (InterfaceBonds::strain): each owned particle's from
+/// its bonds; on N ranks the ghosts' from their owners (a ghost's row is cut to the window), D x D
+/// values a particle.
 template <int D>
-void apply_interface_law(Model<D>& m) {
+void update_interface_strain(Model<D>& m) {
   InterfaceBonds& ib = m.interface_bonds;
-  if (ib.empty()) return;
-  Bonds& b = m.bonds;
   const auto& rows = ib.particles;
-  std::vector<std::array<double, 9>> stress(rows.size());
-  std::vector<double> pressure(rows.size());
+  const std::size_t owned_first = m.owned_begin, owned_last = m.owned_last();
   ib.strain.resize(rows.size());
 #pragma omp parallel for if(rift::parallel::worth_a_team(rows.size())) schedule(static)
   for (std::size_t r = 0; r < rows.size(); ++r) {
     const auto i = static_cast<std::size_t>(rows[r]);
-    ib.strain[r] = bulk_strain<D>(m, i);
-    stress[r] = rock_stress<D>(m.constants_of(i), ib.strain[r]);
+    if (i >= owned_first && i < owned_last) ib.strain[r] = bulk_strain<D>(m, i);
   }
+  if (!m.ghosts) return;
+  constexpr std::size_t width = D * D;
+  std::vector<double> field(m.size() * width, 0.0);
+  for (std::size_t r = 0; r < rows.size(); ++r) {
+    const auto i = static_cast<std::size_t>(rows[r]);
+    if (i < owned_first || i >= owned_last) continue;
+    for (int p = 0; p < D; ++p)
+      for (int q = 0; q < D; ++q) field[i * width + static_cast<std::size_t>(D * p + q)] = ib.strain[r][static_cast<std::size_t>(3 * p + q)];
+  }
+  m.refresh_ghosts(field, width);
+  for (std::size_t r = 0; r < rows.size(); ++r) {
+    const auto i = static_cast<std::size_t>(rows[r]);
+    if (i >= owned_first && i < owned_last) continue;
+    ib.strain[r] = {};
+    for (int p = 0; p < D; ++p)
+      for (int q = 0; q < D; ++q) ib.strain[r][static_cast<std::size_t>(3 * p + q)] = field[i * width + static_cast<std::size_t>(D * p + q)];
+  }
+}
+
+/// Fails the intact bonds across interfaces whose law is exceeded (see the top of this file). On N
+/// ranks (window.hpp) a rank decides the bonds with an owned end, from the ghosts' bond states and
+/// strains as their owners have them; the bonds between two ghosts are their owners'.
+template <int D>
+void apply_interface_law(Model<D>& m) {
+  InterfaceBonds& ib = m.interface_bonds;
+  if (m.ghosts ? ib.laws.empty() : ib.empty()) return;  // on N ranks every rank takes part in the exchanges
+  refresh_ghost_bond_states<D>(m);
+  update_interface_strain<D>(m);
+  Bonds& b = m.bonds;
+  const auto& rows = ib.particles;
+  const std::size_t owned_first = m.owned_begin, owned_last = m.owned_last();
+  auto owned = [&](std::size_t i) { return i >= owned_first && i < owned_last; };
+  std::vector<std::array<double, 9>> stress(rows.size());
+  std::vector<double> pressure(rows.size());
+#pragma omp parallel for if(rift::parallel::worth_a_team(rows.size())) schedule(static)
+  for (std::size_t r = 0; r < rows.size(); ++r) stress[r] = rock_stress<D>(m.constants_of(static_cast<std::size_t>(rows[r])), ib.strain[r]);
 #pragma omp parallel for if(rift::parallel::worth_a_team(rows.size())) schedule(static)
   for (std::size_t r = 0; r < rows.size(); ++r) pressure[r] = pressure_in_interface<D>(m, static_cast<std::size_t>(rows[r]));  // reads both ends' strains
 #pragma omp parallel for if(rift::parallel::worth_a_team(rows.size())) schedule(static)
@@ -179,6 +214,7 @@ void apply_interface_law(Model<D>& m) {
       const auto k = static_cast<std::size_t>(ib.slot[static_cast<std::size_t>(q)]);
       if (b.intact[k] != bond_intact) continue;
       const auto j = static_cast<std::size_t>(b.neighbor[k]);
+      if (!owned(i) && !owned(j)) continue;  // between two ghosts: their owners decide it
       const InterfaceLaw& law = ib.laws[ib.interface[static_cast<std::size_t>(q)]];
       // the mirror bond j-i crosses the same interface, so j is in the list
       const auto rj = static_cast<std::size_t>(std::lower_bound(rows.begin(), rows.end(), static_cast<std::int32_t>(j)) - rows.begin());

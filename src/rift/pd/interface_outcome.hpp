@@ -28,6 +28,7 @@
 #include <vector>
 
 #include "rift/geometry/precrack.hpp"
+#include "rift/pd/ghost_fields.hpp"
 #include "rift/pd/interface_law.hpp"
 #include "rift/pd/model.hpp"
 
@@ -77,8 +78,11 @@ std::vector<InterfaceOutcome> classify_interfaces(const Model<D>& m) {
       return planes[f].cuts(x, through);
     }
   };
+  // over the owned rows (on N ranks each rank's, then reduced: a rank's window holds its owned
+  // particles' whole rows)
+  const std::size_t owned_first = m.owned_begin, owned_last = m.owned_last();
   // crossed, and reached by rock broken near the plane
-  for (std::size_t i = 0; i < m.size(); ++i)
+  for (std::size_t i = owned_first; i < owned_last; ++i)
     for (auto k = b.offset[i]; k < b.offset[i + 1]; ++k) {
       const auto j = static_cast<std::size_t>(b.neighbor[k]);
       if (j < i || b.intact[k] != bond_broken) continue;
@@ -96,7 +100,7 @@ std::vector<InterfaceOutcome> classify_interfaces(const Model<D>& m) {
   // dilated: span of the open, wet failed interface bonds
   std::vector<double> lo(out.size(), std::numeric_limits<double>::max()), hi(out.size(), -std::numeric_limits<double>::max());
   std::vector<double> lo2 = lo, hi2 = hi;
-  for (std::size_t i = 0; i + 1 < ib.offset.size(); ++i)
+  for (std::size_t i = owned_first; i + 1 < ib.offset.size() && i < owned_last; ++i)
     for (auto q = ib.offset[i]; q < ib.offset[i + 1]; ++q) {
       const auto k = static_cast<std::size_t>(ib.slot[static_cast<std::size_t>(q)]);
       if (b.intact[k] == bond_intact) continue;
@@ -113,6 +117,20 @@ std::vector<InterfaceOutcome> classify_interfaces(const Model<D>& m) {
       lo[f] = std::min(lo[f], t), hi[f] = std::max(hi[f], t);
       lo2[f] = std::min(lo2[f], t2), hi2[f] = std::max(hi2[f], t2);
     }
+  const auto& ranks = ranks_of<D>(m);
+  if (ranks.distributed()) {
+    // the largest of each over the ranks: reached, the crossing distance, and the open span's ends
+    // (a least value as the largest of its negative)
+    std::vector<double> largest;
+    for (std::size_t f = 0; f < out.size(); ++f)
+      largest.insert(largest.end(), {out[f].reached ? 1.0 : 0.0, out[f].crossing_distance, -lo[f], hi[f], -lo2[f], hi2[f]});
+    ranks.max(largest.data(), largest.size());
+    for (std::size_t f = 0; f < out.size(); ++f) {
+      const double* x = &largest[6 * f];
+      out[f].reached = x[0] > 0.0, out[f].crossing_distance = x[1];
+      lo[f] = -x[2], hi[f] = x[3], lo2[f] = -x[4], hi2[f] = x[5];
+    }
+  }
   for (std::size_t f = 0; f < out.size(); ++f) {
     if (hi[f] >= lo[f]) out[f].opened_length = std::max(hi[f] - lo[f], D == 3 ? hi2[f] - lo2[f] : 0.0);
     out[f].dilated = out[f].opened_length >= dilation_span * horizon;

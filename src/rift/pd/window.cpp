@@ -43,7 +43,6 @@ Partition partition_by_bonds(const Model<D>& m, int ranks, std::size_t granulari
 
 template <int D>
 std::string not_distributable(const Model<D>& m) {
-  if (!m.interface_bonds.empty()) return "interfaces (pre-existing fractures)";
   if (m.crack_bonds.neighbor.empty()) return {};
   // the fluid of pressurized cracks and boreholes (fluid_network.hpp) runs on N ranks: its labels,
   // the cavity's volume, breakthrough, the fragments and the network load are made over the
@@ -151,7 +150,6 @@ void window_pressure_bonds(const Model<D>& m, std::size_t w0, std::size_t w1, Mo
   for (ViscousFluid& v : f.viscous) v.stored = slice(v.stored, w0, w1), v.trial = slice(v.trial, w0, w1);
   f.local_pressure = slice(g.local_pressure, w0, w1), f.local_pore_pressure = slice(g.local_pore_pressure, w0, w1);
   f.outer_surface = slice(g.outer_surface, w0, w1);
-  f.open_interface_bonds.assign(g.dry.size(), {});
   // a continued run's labels, marks and network load (run/distributed.hpp gather_fluid; a run that
   // starts has none yet)
   f.relabel = g.relabel, f.load_from_scratch = g.load_from_scratch;
@@ -163,18 +161,61 @@ void window_pressure_bonds(const Model<D>& m, std::size_t w0, std::size_t w1, Mo
   for (std::size_t s = 0; s < g.network_load.size(); ++s) f.network_load[s] = slice(g.network_load[s], w0, w1, D);
   for (std::size_t s = 0; s < g.is_end.size(); ++s) f.is_end[s] = slice(g.is_end[s], w0, w1);
   for (std::size_t s = 0; s < g.network_ends.size(); ++s) f.network_ends[s] = slice(g.network_ends[s], w0, w1);
-  // the crossing marks of the window's rows, each found by its neighbour (a ghost's row is cut)
+  // the crossing marks and the open interface bonds of the window's rows, each bond found by its
+  // neighbour (a ghost's row is cut)
   const Bonds& b = m.bonds;
   const Bonds& c = w.bonds;
-  for (const std::int64_t k : g.crossing_broken) {
-    const std::size_t i = b.row_of(k), j = static_cast<std::size_t>(b.neighbor[static_cast<std::size_t>(k)]);
-    if (i < w0 || i >= w1 || j < w0 || j >= w1) continue;
-    const auto first = c.neighbor.begin() + c.offset[i - w0], last = c.neighbor.begin() + c.offset[i - w0 + 1];
-    f.crossing_broken.push_back(std::lower_bound(first, last, static_cast<std::int32_t>(j - w0)) - c.neighbor.begin());
-  }
-  std::sort(f.crossing_broken.begin(), f.crossing_broken.end());
+  auto window_bonds = [&](const std::vector<std::int64_t>& list) {
+    std::vector<std::int64_t> out;
+    for (const std::int64_t k : list) {
+      const std::size_t i = b.row_of(k), j = static_cast<std::size_t>(b.neighbor[static_cast<std::size_t>(k)]);
+      if (i < w0 || i >= w1 || j < w0 || j >= w1) continue;
+      const auto first = c.neighbor.begin() + c.offset[i - w0], last = c.neighbor.begin() + c.offset[i - w0 + 1];
+      out.push_back(std::lower_bound(first, last, static_cast<std::int32_t>(j - w0)) - c.neighbor.begin());
+    }
+    return out;  // ascending: rows and their neighbours keep their order in the window
+  };
+  f.crossing_broken = window_bonds(g.crossing_broken);
+  f.open_interface_bonds.assign(g.dry.size(), {});
+  for (std::size_t s = 0; s < g.open_interface_bonds.size() && s < g.dry.size(); ++s) f.open_interface_bonds[s] = window_bonds(g.open_interface_bonds[s]);
   f.crack_surface.made = g.crack_surface.made;
   if (f.crack_surface.made) remake_crack_surface<D>(w);
+}
+
+/// The window's bonds across pre-existing fractures (interface_law.hpp): each row's entries whose
+/// bond is in the window (only ghosts' rows lose entries), at their bonds' places in the window's
+/// rows, with each entry's slip and mark and each particle's strain as the whole model has them.
+template <int D>
+void window_interface_bonds(const Model<D>& m, std::size_t w0, std::size_t w1, Model<D>& w) {
+  const InterfaceBonds& from = m.interface_bonds;
+  InterfaceBonds& to = w.interface_bonds;
+  to.laws = from.laws;
+  if (from.offset.empty()) return;
+  const Bonds& b = m.bonds;
+  const Bonds& c = w.bonds;
+  const std::size_t n = w1 - w0;
+  const bool slips = from.slip.size() == from.slot.size(), marks = from.across_crack.size() == from.slot.size();
+  const bool strains = !from.strain.empty() && from.strain.size() == from.particles.size();
+  to.offset.assign(n + 1, 0);
+  for (std::size_t a = 0; a < n; ++a) {
+    const std::size_t i = w0 + a;
+    for (auto q = static_cast<std::size_t>(from.offset[i]); q < static_cast<std::size_t>(from.offset[i + 1]); ++q) {
+      const auto j = static_cast<std::size_t>(b.neighbor[static_cast<std::size_t>(from.slot[q])]);
+      if (j < w0 || j >= w1) continue;
+      const auto first = c.neighbor.begin() + c.offset[a], last = c.neighbor.begin() + c.offset[a + 1];
+      to.slot.push_back(std::lower_bound(first, last, static_cast<std::int32_t>(j - w0)) - c.neighbor.begin());
+      to.interface.push_back(from.interface[q]);
+      if (slips) to.slip.push_back(from.slip[q]);
+      if (marks) to.across_crack.push_back(from.across_crack[q]);
+    }
+    to.offset[a + 1] = static_cast<std::int64_t>(to.slot.size());
+    if (to.offset[a + 1] == to.offset[a]) continue;
+    to.particles.push_back(static_cast<std::int32_t>(a));
+    if (strains) {
+      const auto row = std::lower_bound(from.particles.begin(), from.particles.end(), static_cast<std::int32_t>(i)) - from.particles.begin();
+      to.strain.push_back(from.strain[static_cast<std::size_t>(row)]);
+    }
+  }
 }
 
 }  // namespace
@@ -247,6 +288,7 @@ Model<D> window_of(const Model<D>& m, const Partition& p, int rank) {
   }
   if (!b.back_extension.empty()) window_viscous_history(b, m.bodies, w.bodies, w0, w1, c);
   window_pressure_bonds(m, w0, w1, w);
+  window_interface_bonds(m, w0, w1, w);
   // every platen, on every rank (its sums gather all ranks' owned particles: platens.hpp), with the
   // particles of its face that are in the window
   for (const Platen& plate : m.platens) {

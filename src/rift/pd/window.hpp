@@ -38,9 +38,12 @@ inline constexpr std::size_t fluid_ghost_reaches = 3;
 
 /// Whether the scene's fluid fills cracks that can grow (pressure bonds in rock whose bonds break),
 /// or flows along them (viscous_fluid.hpp: a flow bond's conductance reads the bulk strain and the
-/// family moments of its ends, an owned particle's neighbour among them, each over its whole row).
+/// family moments of its ends, an owned particle's neighbour among them, each over its whole row),
+/// or the scene has interfaces (interface_law.hpp: the law of a bond with an owned end reads the
+/// fluid in the interface at its other end, over that end's whole row).
 template <int D>
 bool fluid_reads_far(const Model<D>& m) {
+  if (!m.interface_bonds.laws.empty()) return true;
   if (m.crack_bonds.neighbor.empty()) return false;
   for (std::size_t s = 0; s < m.fluid_network.dry.size(); ++s)
     if (m.fluid_network.flows(s)) return true;
@@ -50,7 +53,7 @@ bool fluid_reads_far(const Model<D>& m) {
 }
 
 /// What the distributed run cannot take yet, as a sentence; empty when the model can be
-/// distributed (interfaces run on one rank for now).
+/// distributed.
 template <int D>
 std::string not_distributable(const Model<D>& m);
 

@@ -3,7 +3,9 @@
 // ranks own consecutive ranges of it, in rank order), which writes them as one rank would.
 #pragma once
 #include <algorithm>
+#include <array>
 #include <cstdint>
+#include <type_traits>
 #include <vector>
 
 #include "rift/parallel/communicator.hpp"
@@ -91,23 +93,57 @@ void gather_fluid(const parallel::Communicator& comm, const pd::Model<D>& m, pd:
     gather_into<D>(comm, m, zeros_where_unsized(f.is_end[s], 1), g ? &g->is_end[s] : nullptr);
     gather_into<D>(comm, m, zeros_where_unsized(f.network_ends[s], 1), g ? &g->network_ends[s] : nullptr);
   }
-  // the crossing marks of the owned rows, as (row, place in the row) in the whole run's numbering
-  std::vector<std::int64_t> marks;
+  // lists of bonds (ascending) at the owned rows, sent as (row, place in the row) in the whole run's
+  // numbering: the crossing marks, and the failed interface bonds each fluid fills
   const pd::Bonds& b = m.bonds;
-  for (const std::int64_t k : f.crossing_broken) {
-    const std::size_t i = b.row_of(k);
-    if (i < m.owned_begin || i >= m.owned_last()) continue;
-    marks.push_back(static_cast<std::int64_t>(m.window_first + i)), marks.push_back(k - b.offset[i]);
-  }
-  const auto all = comm.gather(marks);
+  auto gather_bonds = [&](const std::vector<std::int64_t>& list, std::vector<std::int64_t>* into) {
+    std::vector<std::int64_t> rows_and_places;
+    for (const std::int64_t k : list) {
+      const std::size_t i = b.row_of(k);
+      if (i < m.owned_begin || i >= m.owned_last()) continue;
+      rows_and_places.push_back(static_cast<std::int64_t>(m.window_first + i)), rows_and_places.push_back(k - b.offset[i]);
+    }
+    const auto all = comm.gather(rows_and_places);
+    if (!into) return;
+    into->clear();
+    for (std::size_t q = 0; q + 1 < all.size(); q += 2) into->push_back(whole->bonds.offset[static_cast<std::size_t>(all[q])] + all[q + 1]);
+    std::sort(into->begin(), into->end());
+  };
+  gather_bonds(f.crossing_broken, g ? &g->crossing_broken : nullptr);
+  if (g) g->open_interface_bonds.assign(f.open_interface_bonds.size(), {});
+  for (std::size_t s = 0; s < f.open_interface_bonds.size(); ++s) gather_bonds(f.open_interface_bonds[s], g ? &g->open_interface_bonds[s] : nullptr);
   if (!g) return;
-  g->crossing_broken.clear();
-  for (std::size_t q = 0; q + 1 < all.size(); q += 2) g->crossing_broken.push_back(whole->bonds.offset[static_cast<std::size_t>(all[q])] + all[q + 1]);
-  std::sort(g->crossing_broken.begin(), g->crossing_broken.end());
   // made as the run makes it after its first time (crack_crossing.hpp makes_patch)
   g->crack_surface = pd::CrackSurface{};
   g->crack_surface.made = f.crack_surface.made;
   if (g->crack_surface.made) pd::remake_crack_surface<D>(*whole);
+}
+
+/// The state of the bonds across interfaces (pd/interface_law.hpp) gathered into the whole run's
+/// model on rank 0: each owned row's entries' slip and marks, and each owned interface particle's
+/// strain (the owned rows, in order, are the whole run's rows one after the other).
+template <int D>
+void gather_interfaces(const parallel::Communicator& comm, const pd::Model<D>& m, pd::Model<D>* whole) {
+  const pd::InterfaceBonds& ib = m.interface_bonds;
+  pd::InterfaceBonds* g = whole ? &whole->interface_bonds : nullptr;
+  if (ib.offset.empty()) return;
+  const auto first = static_cast<std::ptrdiff_t>(ib.offset[m.owned_begin]), last = static_cast<std::ptrdiff_t>(ib.offset[m.owned_last()]);
+  auto entries = [&](const auto& v, auto* into) {
+    auto all = comm.gather(std::remove_cvref_t<decltype(v)>(v.begin() + first, v.begin() + last));
+    if (into) *into = std::move(all);
+  };
+  entries(ib.slip, g ? &g->slip : nullptr);
+  entries(ib.across_crack, g ? &g->across_crack : nullptr);
+  // strain: per interface particle, where the law has run (on every rank alike)
+  const auto& rows = ib.particles;
+  const auto first_row_at = [&](std::size_t i) {
+    return std::lower_bound(rows.begin(), rows.end(), static_cast<std::int32_t>(i)) - rows.begin();
+  };
+  if (comm.any(ib.strain.size() == rows.size() && !rows.empty())) {
+    std::vector<std::array<double, 9>> strain(ib.strain.begin() + first_row_at(m.owned_begin), ib.strain.begin() + first_row_at(m.owned_last()));
+    auto all = comm.gather(strain);
+    if (g) g->strain = std::move(all);
+  }
 }
 
 /// A distributed run's state gathered into the whole run's model on rank 0 (`whole`, a model of the
@@ -164,6 +200,7 @@ void gather_model(const parallel::Communicator& comm, const pd::Model<D>& m, pd:
   }
   if (whole) whole->time = m.time;
   if (m.fluid_network.pressure_bonds) gather_fluid<D>(comm, m, whole);
+  if (!m.interface_bonds.laws.empty()) gather_interfaces<D>(comm, m, whole);
 }
 
 /// The largest damage of the owned particles, over every rank.
