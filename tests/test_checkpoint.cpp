@@ -9,6 +9,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
 #include <csignal>
 #include <cstdio>
@@ -19,6 +20,7 @@
 #include <sstream>
 #include <string>
 #include <thread>
+#include <utility>
 #include <vector>
 
 #include "rift/core/error.hpp"
@@ -404,7 +406,9 @@ TEST(Checkpoint, AnotherScenesCheckpointIsRefusedAndNothingChanges) {
 // kill -9 at any moment (issue 6): the newest checkpoint on the disk is whole (its checksum holds)
 // and continues the run to the end an uninterrupted run reaches, and every snapshot the fields'
 // index lists opens with all its particles. The run writes a snapshot every step, so that most
-// kills land in the middle of writing one; it is killed at several moments.
+// kills land in the middle of writing one; it is killed at three moments, each after a given
+// checkpoint is on the disk (a kill timed by the clock fell before the first checkpoint or after
+// the end when the machine's load changed during the test).
 TEST(Checkpoint, KillNineLeavesWholeFilesAndARunThatContinues) {
   std::string scene_text = cracked_plate("lps");
   const auto replace = [&](const std::string& from, const std::string& to) {
@@ -421,25 +425,39 @@ TEST(Checkpoint, KillNineLeavesWholeFilesAndARunThatContinues) {
   const std::string scene_file = (dir / "plate.toml").string();
   std::ofstream(scene_file) << scene_text;
   const auto scene = rift::scene::parse_file(scene_file);
-  const auto started = std::chrono::steady_clock::now();
   const auto whole = rift::run::run(scene, quiet_in(dir / "whole"));
-  // the kills at fractions of how long the same build takes for the whole run
-  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+  // the newest checkpoint in a run's directory (-1: none yet)
+  const auto newest_checkpoint = [](const fs::path& out) {
+    long newest = -1;
+    std::error_code error;
+    for (const auto& e : fs::directory_iterator(out, error)) {
+      const std::string name = e.path().filename().string();
+      if (name.rfind("ck_", 0) == 0 && e.path().extension() == ".rift") newest = std::max(newest, std::stol(name.substr(3)));
+    }
+    return newest;
+  };
 
+  // the kills: once the run has written the checkpoint of step 20, 200 or 400 (watched every
+  // millisecond), and a few milliseconds later, so that each lands somewhere in the steps and
+  // snapshots after it, whatever the machine's speed and load
   int continued_runs = 0;
-  for (double fraction : {0.3, 0.55, 0.8}) {
-    const int kill_after_ms = static_cast<int>(1000.0 * fraction * seconds);
-    const fs::path out = dir / ("killed_" + std::to_string(kill_after_ms));
+  for (const auto& [after_step, delay_ms] : {std::pair{20L, 0}, std::pair{200L, 3}, std::pair{400L, 7}}) {
+    const fs::path out = dir / ("killed_after_" + std::to_string(after_step));
     const pid_t child = fork();
     ASSERT_GE(child, 0);
     if (child == 0) {
       execl(RIFT_EXE, RIFT_EXE, "run", scene_file.c_str(), "-o", out.c_str(), "--threads", "1", "-q", static_cast<char*>(nullptr));
       _exit(127);
     }
-    std::this_thread::sleep_for(std::chrono::milliseconds(kill_after_ms));
-    kill(child, SIGKILL);
     int status = 0;
-    waitpid(child, &status, 0);
+    bool finished = false;
+    while (!(finished = waitpid(child, &status, WNOHANG) == child) && newest_checkpoint(out) < after_step)
+      std::this_thread::sleep_for(std::chrono::milliseconds(1));
+    if (!finished) {
+      std::this_thread::sleep_for(std::chrono::milliseconds(delay_ms));
+      kill(child, SIGKILL);
+      waitpid(child, &status, 0);
+    }
     if (!WIFSIGNALED(status)) continue;  // it had finished: nothing to see at this moment
 
     // every snapshot the index lists is whole
@@ -462,14 +480,10 @@ TEST(Checkpoint, KillNineLeavesWholeFilesAndARunThatContinues) {
       ++listed;
     }
     // the newest checkpoint is whole and continues the run
-    long newest = -1;
-    for (const auto& e : fs::directory_iterator(out)) {
-      const std::string name = e.path().filename().string();
-      if (name.rfind("ck_", 0) == 0 && e.path().extension() == ".rift") newest = std::max(newest, std::stol(name.substr(3)));
-    }
+    const long newest = newest_checkpoint(out);
     if (newest < 0) continue;  // killed before the first checkpoint
-    SCOPED_TRACE("killed after " + std::to_string(kill_after_ms) + " ms, " + std::to_string(listed) + " snapshots listed, checkpoint " +
-                 std::to_string(newest));
+    SCOPED_TRACE("killed after the checkpoint of step " + std::to_string(after_step) + ", " + std::to_string(listed) +
+                 " snapshots listed, checkpoint " + std::to_string(newest));
     auto again = quiet_in(out);
     again.restart = (out / ("ck_" + std::to_string(newest) + ".rift")).string();
     const auto continued = rift::run::run(scene, again);
@@ -478,5 +492,5 @@ TEST(Checkpoint, KillNineLeavesWholeFilesAndARunThatContinues) {
     EXPECT_EQ(continued.final_energy.broken_bonds, whole.final_energy.broken_bonds);
     expect_same_outputs(dir / "whole", out);
   }
-  EXPECT_GE(continued_runs, 2) << "the kills came before the first checkpoint or after the end: the run is too short for this machine";
+  EXPECT_EQ(continued_runs, 3) << "a run ended before its kill";
 }
