@@ -10,6 +10,7 @@
 #include <omp.h>
 
 #include "rift/parallel/team.hpp"
+#include "rift/pd/ghost_fields.hpp"
 
 namespace rift::pd {
 
@@ -55,24 +56,31 @@ void Contact<D>::rebuild(const Model<D>& m) {
   const std::size_t n = m.size();
   built_at_ = m.position;
   const double cell = max_distance_ + skin_;
+  // a distributed run's particles beyond the window within reach of the owned ones
+  // (contact_beyond_window.hpp): numbered n, n + 1, ... after the window's here
+  const auto& comm = ranks_of(m);
+  if (comm.distributed()) beyond_.gather(m, cell, comm);
+  const std::size_t all = n + beyond_.size();
+  auto position = [&](std::size_t i) -> const Vec<D>& { return i < n ? m.position[i] : beyond_.position[i - n]; };
+  auto body = [&](std::size_t i) { return i < n ? m.body[i] : beyond_.body[i - n]; };
   // the particles sorted by cell (x fastest) on a grid over their bounding box
   std::array<long, 3> low{0, 0, 0}, extent{1, 1, 1};
-  std::vector<std::array<long, 3>> at(n);
-  if (n > 0) {
+  std::vector<std::array<long, 3>> at(all);
+  if (all > 0) {
     std::array<long, 3> high{};
     for (int k = 0; k < D; ++k) low[k] = std::numeric_limits<long>::max(), high[k] = std::numeric_limits<long>::min();
-    for (std::size_t i = 0; i < n; ++i)
+    for (std::size_t i = 0; i < all; ++i)
       for (int k = 0; k < D; ++k) {
-        at[i][k] = static_cast<long>(std::floor(m.position[i][k] / cell));
+        at[i][k] = static_cast<long>(std::floor(position(i)[k] / cell));
         low[k] = std::min(low[k], at[i][k]), high[k] = std::max(high[k], at[i][k]);
       }
     for (int k = 0; k < D; ++k) extent[k] = high[k] - low[k] + 1;
   }
   auto key = [&](const std::array<long, 3>& c) { return (c[2] - low[2]) * extent[1] * extent[0] + (c[1] - low[1]) * extent[0] + (c[0] - low[0]); };
-  std::vector<std::pair<long, std::int32_t>> sorted(n);
-  for (std::size_t i = 0; i < n; ++i) sorted[i] = {key(at[i]), static_cast<std::int32_t>(i)};
+  std::vector<std::pair<long, std::int32_t>> sorted(all);
+  for (std::size_t i = 0; i < all; ++i) sorted[i] = {key(at[i]), static_cast<std::int32_t>(i)};
   std::sort(sorted.begin(), sorted.end());
-  // per thread: the pairs within d + skin that no family holds (i < j), then in rows
+  // per thread: the pairs within d + skin that no family holds (i < j, i of the window), then in rows
   std::vector<std::vector<std::pair<std::int32_t, std::int32_t>>> found(static_cast<std::size_t>(omp_get_max_threads()));
   const Bonds& b = m.bonds;
 #pragma omp parallel if(rift::parallel::worth_a_team(n))
@@ -89,25 +97,42 @@ void Contact<D>::rebuild(const Model<D>& m) {
           const long first = key(c), last = first + std::min(at[i][0] + 1, low[0] + extent[0] - 1) - c[0];
           for (auto it = std::lower_bound(sorted.begin(), sorted.end(), std::pair<long, std::int32_t>{first, 0});
                it != sorted.end() && it->first <= last; ++it) {
-            const auto j = it->second;
-            if (static_cast<std::size_t>(j) <= i) continue;
-            const double d = 0.5 * (distance_[m.body[i]] + distance_[m.body[static_cast<std::size_t>(j)]]) + skin_;
-            const Vec<D> eta = m.position[static_cast<std::size_t>(j)] - m.position[i];
-            if (dot<D>(eta, eta) < d * d && (m.body[i] != m.body[static_cast<std::size_t>(j)] || !in_family(b, i, j)))
-              mine.emplace_back(static_cast<std::int32_t>(i), j);
+            const auto j = static_cast<std::size_t>(it->second);
+            if (j <= i) continue;
+            const double d = 0.5 * (distance_[m.body[i]] + distance_[body(j)]) + skin_;
+            const Vec<D> eta = position(j) - m.position[i];
+            // a particle beyond the window is in no family of the window's owned particles (their
+            // bonds lie in the window)
+            if (dot<D>(eta, eta) < d * d && (j >= n || m.body[i] != m.body[j] || !in_family(b, i, static_cast<std::int32_t>(j))))
+              mine.emplace_back(static_cast<std::int32_t>(i), static_cast<std::int32_t>(j));
           }
         }
     }
   }
-  std::vector<std::pair<std::int32_t, std::int32_t>> pairs;
+  // rows in the order of the whole run's numbers (one rank's: the window's own numbers)
+  auto number = [&](std::int32_t j) {
+    return j < static_cast<std::int32_t>(n) ? static_cast<std::int64_t>(m.window_first) + j : beyond_.number[static_cast<std::size_t>(j) - n];
+  };
+  std::vector<std::pair<std::int32_t, std::int64_t>> pairs;  // (row, the neighbour's whole-run number)
   for (const auto& mine : found)
-    for (const auto& [i, j] : mine) pairs.emplace_back(i, j), pairs.emplace_back(j, i);
+    for (const auto& [i, j] : mine) {
+      pairs.emplace_back(i, number(j));
+      if (static_cast<std::size_t>(j) < n) pairs.emplace_back(j, number(i));
+    }
   std::sort(pairs.begin(), pairs.end());
   offset_.assign(n + 1, 0);
   for (const auto& [i, j] : pairs) ++offset_[static_cast<std::size_t>(i) + 1];
   for (std::size_t i = 0; i < n; ++i) offset_[i + 1] += offset_[i];
   pairs_.resize(pairs.size());
-  for (std::size_t p = 0; p < pairs.size(); ++p) pairs_[p] = pairs[p].second;
+  const auto w0 = static_cast<std::int64_t>(m.window_first), w1 = w0 + static_cast<std::int64_t>(n);
+  std::vector<std::pair<std::int64_t, std::int32_t>> beyond_by_number;
+  for (std::size_t k = 0; k < beyond_.size(); ++k) beyond_by_number.emplace_back(beyond_.number[k], static_cast<std::int32_t>(n + k));
+  std::sort(beyond_by_number.begin(), beyond_by_number.end());
+  for (std::size_t p = 0; p < pairs.size(); ++p) {
+    const std::int64_t j = pairs[p].second;
+    pairs_[p] = j >= w0 && j < w1 ? static_cast<std::int32_t>(j - w0)
+                                  : std::lower_bound(beyond_by_number.begin(), beyond_by_number.end(), std::pair<std::int64_t, std::int32_t>{j, 0})->second;
+  }
 }
 
 template <int D>
@@ -138,7 +163,6 @@ void Contact<D>::look_at_family_rows(const Model<D>& m) {
 template <int D>
 void Contact<D>::add_forces(Model<D>& m) {
   if (!enabled_) return;
-  if (before_forces) before_forces(m);
   double moved2 = 0.0, family_moved2 = 0.0;
   const std::size_t n = m.size();
   const bool family_rows = family_skin_ > 0.0 && family_near_.size() == n;
@@ -153,36 +177,47 @@ void Contact<D>::add_forces(Model<D>& m) {
       family_moved2 = std::max(family_moved2, e2);
     }
   }
+  // a distributed run: every rank rebuilds when any particle has moved half the skin (the one
+  // rank's test over the whole run), else refreshes the particles beyond its window
+  const auto& comm = ranks_of(m);
+  if (comm.distributed()) moved2 = comm.max(moved2);
   if (4.0 * moved2 > skin_ * skin_) rebuild(m);
+  else if (comm.distributed()) beyond_.refresh(m, comm);
   // looked at again before a particle has moved s_f / 2: 0.45 leaves room for the float
   // displacements' rounding (a relative 6e-8 of displacements far below a spacing)
   if (family_skin_ > 0.0 && (!family_rows || !(family_moved2 <= 0.45 * 0.45 * family_skin_ * family_skin_))) look_at_family_rows(m);
   const NearBonds* const near = family_skin_ > 0.0 ? family_near_.data() : nullptr;
+  const auto window_first = static_cast<std::int64_t>(m.window_first);
   const Bonds& b = m.bonds;
 #pragma omp parallel for if(rift::parallel::worth_a_team(n)) schedule(static)
   for (std::size_t i = 0; i < n; ++i) {
     Vec<D> f{};
     bool any = false;
     auto pair = [&](std::size_t j) {
-      const double d = 0.5 * (distance_[m.body[i]] + distance_[m.body[j]]);
-      const Vec<D> eta = m.position[j] - m.position[i];
+      const bool here = j < n;  // else beyond the window (contact_beyond_window.hpp)
+      const auto body_j = here ? m.body[j] : beyond_.body[j - n];
+      const double d = 0.5 * (distance_[m.body[i]] + distance_[body_j]);
+      const Vec<D> eta = (here ? m.position[j] : beyond_.position[j - n]) - m.position[i];
       const double r2 = dot<D>(eta, eta);
       if (r2 >= d * d || r2 == 0.0) return;
       const double r = std::sqrt(r2);
-      const double k = 0.5 * (stiffness_[m.body[i]] + stiffness_[m.body[j]]);
-      const double scalar = -k * m.volume[j] * (d - r) / r;
+      const double k = 0.5 * (stiffness_[m.body[i]] + stiffness_[body_j]);
+      const double scalar = -k * (here ? m.volume[j] : beyond_.volume[j - n]) * (d - r) / r;
       for (int q = 0; q < D; ++q) f[q] += scalar * eta[q];
       any = true;
     };
     // the broken bonds of i's family that may touch and the listed pairs, merged in the order of j
-    // (rows of both are sorted by neighbour); a failed interface bond has its own contact
-    // (interface_contact.hpp)
+    // (rows of both are sorted by neighbour, the listed ones by the whole run's numbers); a failed
+    // interface bond has its own contact (interface_contact.hpp)
     auto p = offset_[i];
     const auto listed_end = offset_[i + 1];
+    auto listed_before = [&](std::int32_t q, std::int32_t j) {
+      return q < static_cast<std::int32_t>(n) ? q < j : beyond_.number[static_cast<std::size_t>(q) - n] < window_first + j;
+    };
     auto family_pair = [&](std::int64_t k) {
       if (b.intact[static_cast<std::size_t>(k)] != bond_broken) return;
       const auto j = b.neighbor[static_cast<std::size_t>(k)];
-      for (; p < listed_end && pairs_[static_cast<std::size_t>(p)] < j; ++p) pair(static_cast<std::size_t>(pairs_[static_cast<std::size_t>(p)]));
+      for (; p < listed_end && listed_before(pairs_[static_cast<std::size_t>(p)], j); ++p) pair(static_cast<std::size_t>(pairs_[static_cast<std::size_t>(p)]));
       pair(static_cast<std::size_t>(j));
     };
     if (near && near[i].count != NearBonds::whole_row) {

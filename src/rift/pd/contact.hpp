@@ -15,12 +15,14 @@
 // 5.3). A broken bond is stretched, so around a crack hardly a row is read: reading every broken
 // bond was a tenth of a step at a third broken, and reading every broken bond of a row with one
 // near was a tenth of a step once the thesis example's block had shattered.
+// A distributed run's list reaches the particles of other ranks beyond the window (another body's,
+// or fragments'): contact_beyond_window.hpp.
 #pragma once
 #include <array>
 #include <cstdint>
-#include <functional>
 #include <vector>
 
+#include "rift/pd/contact_beyond_window.hpp"
 #include "rift/pd/model.hpp"
 #include "rift/scene/scene.hpp"
 
@@ -35,9 +37,6 @@ class Contact {
   /// Add contact force densities to m.force.
   void add_forces(Model<D>& m);
   std::size_t candidate_pairs() const { return pairs_.size(); }
-  /// Called at the start of every add_forces where set: a distributed run's check that no particle
-  /// beyond its window may have come within reach (run/simulation.hpp check_contact_reach); not state.
-  std::function<void(const Model<D>&)> before_forces;
   /// Every member, for a checkpoint (pd/checkpoint_state.hpp): the Verlet lists and where they
   /// were built, so a restart looks again exactly when the run it continues would have.
   template <class A>
@@ -57,7 +56,9 @@ class Contact {
   std::vector<double> stiffness_; // k / delta per body
   std::vector<Vec<D>> built_at_;
   std::vector<std::int64_t> offset_;
-  std::vector<std::int32_t> pairs_;  // per particle, ascending: the pairs within reach that no family holds
+  // per particle, ascending in the whole run's numbers: the pairs within reach that no family holds
+  // (a distributed run's particle n + k: beyond_'s k-th)
+  std::vector<std::int32_t> pairs_;
   double family_skin_ = 0.0;  // s_f; 0: every row's broken bonds are read
   std::vector<std::array<float, D>> family_looked_at_;  // the displacements when the rows were looked at
   // per particle, the bonds shorter than d + s_f then: `count` of them at `place` in the row, or
@@ -68,6 +69,7 @@ class Contact {
     std::array<std::uint8_t, 7> place{};
   };
   std::vector<NearBonds> family_near_;
+  BeyondWindow<D> beyond_;  // a distributed run's particles beyond the window within reach; not state
 };
 
 }  // namespace rift::pd

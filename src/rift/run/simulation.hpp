@@ -61,7 +61,6 @@ struct Simulation {
     // dynamic relaxation, the in-situ stage and a fluid's cavity volume sum over the owned
     // particles in blocks (parallel/ordered_sum.hpp): the ranks' ranges start at whole blocks
     const bool block_sums = s.solver.kind != scene::SolverKind::explicit_dynamics || s.in_situ.enabled || !model.crack_bonds.neighbor.empty();
-    if (contact.enabled() && model.bodies.size() > 1) missing = "contact between bodies ([contact] enabled = false takes it off)";
     if (!missing.empty())
       throw SceneError({s.file, 0, 0}, "mpirun -np " + std::to_string(comm.size()),
                        "a run on more than one rank cannot take " + missing + " yet; run this scene on one rank");
@@ -69,62 +68,11 @@ struct Simulation {
                                           pd::fluid_reads_far<D>(model) ? pd::fluid_ghost_reaches : 1);
     const auto r = static_cast<std::size_t>(comm.rank());
     const std::size_t w0 = partition.window_first[r], w1 = partition.window_last[r];
-    // contact inside the body (one body: check_contact_reach): how far apart, along the layers'
-    // normal (the lattice's slowest axis, along which the numbering climbs), the owned particles
-    // are from the first particles beyond the window on either side, less the contact distance
-    double closing_above = std::numeric_limits<double>::max(), closing_below = std::numeric_limits<double>::max();
-    if (contact.enabled() && partition.owned[r] < partition.owned[r + 1]) {
-      constexpr int axis = D - 1;
-      const auto& x = model.reference_position;
-      double low = std::numeric_limits<double>::max(), high = -low, distance = 0.0;
-      for (std::size_t i = partition.owned[r]; i < partition.owned[r + 1]; ++i) low = std::min(low, x[i][axis]), high = std::max(high, x[i][axis]);
-      for (const auto& b : model.bodies) distance = std::max(distance, s.contact.distance * b.constants.spacing);
-      closing_above = w1 < model.size() ? x[w1][axis] - high - distance : std::numeric_limits<double>::max();
-      closing_below = w0 > 0 ? low - x[w0 - 1][axis] - distance : std::numeric_limits<double>::max();
-    }
     loads.restrict_to(w0, w1, partition.owned[r], partition.owned[r + 1]);
     model = pd::window_of<D>(model, partition, comm.rank());
     halo = std::make_unique<parallel::Halo>(comm.rank(), partition.owned, partition.window_first, partition.window_last);
     model.ghosts = halo.get();
-    contact = pd::Contact<D>(s.contact, model);  // its pairs among the window's particles
-    if (contact.enabled())
-      contact.before_forces = [partition = partition, above = closing_above, below = closing_below](const pd::Model<D>& m) {
-        check_contact_reach(m, partition, above, below, parallel::Communicator::world());
-      };
-  }
-  /// A distributed run's contact finds an owned particle's pairs among the window's particles: it
-  /// raises a PhysicsError (on every rank) once a particle beyond a rank's window may have come
-  /// within the contact distance of one it owns, that is once the displacements along the layers'
-  /// normal of the owned particles and of another rank's beyond the window have closed the gap
-  /// between them (distribute: closing_above, closing_below). Sufficient: contact needs the
-  /// distance along that axis below the contact distance too.
-  /// Checked before every evaluation of the contact forces (pd::Contact::before_forces): each
-  /// explicit step and each iteration of dynamic relaxation, whose fictitious motion can fling a
-  /// shattered block's fragments across it.
-  static void check_contact_reach(const pd::Model<D>& model, const pd::Partition& partition, double closing_above, double closing_below,
-                                  const parallel::Communicator& comm) {
-    if (!comm.distributed()) return;
-    constexpr int axis = D - 1;
-    double low = std::numeric_limits<double>::max(), high = -low;
-    for (std::size_t i = model.owned_begin; i < model.owned_last(); ++i) {
-      const double u = model.position[i][axis] - model.reference_position[i][axis];
-      low = std::min(low, u), high = std::max(high, u);
-    }
-    const auto extremes = comm.all_gather(std::vector<double>{low, high});
-    const auto r = static_cast<std::size_t>(comm.rank());
-    double closed = -1.0;  // how far two ranks' particles have closed past their gap's allowance; -1: nowhere
-    for (std::size_t q = 0; q + 1 < partition.owned.size(); ++q) {
-      if (partition.owned[q] == partition.owned[q + 1] || q == r) continue;
-      const double q_low = extremes[2 * q], q_high = extremes[2 * q + 1];
-      if (partition.owned[q + 1] > partition.window_last[r] && high - q_low >= closing_above) closed = std::max(closed, high - q_low);
-      if (partition.owned[q] < partition.window_first[r] && q_high - low >= closing_below) closed = std::max(closed, q_high - low);
-    }
-    closed = comm.max(closed);
-    if (closed >= 0.0)
-      throw PhysicsError(fmt::format("t = {:g} s: particles of two ranks have moved {:.3g} m toward each other along the layers' normal, "
-                                     "which may bring one within the contact distance of a particle beyond the other's ghosts; a run on "
-                                     "more than one rank finds contact among its ghosts only: run this scene on one rank",
-                                     model.time, closed));
+    contact = pd::Contact<D>(s.contact, model);  // its pairs among the window's particles and those beyond it within reach
   }
   pd::Partition partition;  // a distributed run's (empty on one rank)
   std::unique_ptr<parallel::Halo> halo;
