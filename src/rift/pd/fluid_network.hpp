@@ -20,6 +20,7 @@
 #include <cmath>
 #include <cstdint>
 #include <iterator>
+#include <unordered_map>
 #include <vector>
 
 #include "rift/core/phase_times.hpp"
@@ -314,7 +315,7 @@ void peel_fragments(Model<D>& m, std::vector<std::size_t> candidates, bool over_
 /// bonds joins to a source is then labelled by its owner (the chain's particles are labelled in turn,
 /// each by its owner from the last one's label as a ghost: a bond's neighbour is in its particle's
 /// window), so every owned label is the one-rank run's and every ghost's is its owner's. One fluid
-/// spreads at most (window.hpp not_distributable): no two labels compete for a particle. A ghost
+/// spreads at most (two or more: label_as_one_rank): no two labels compete for a particle. A ghost
 /// this rank labelled before its owner keeps its label.
 template <int D, class Spread>
 void spread_over_ranks(Model<D>& m, std::vector<std::size_t>& queue, Spread&& spread) {
@@ -332,6 +333,75 @@ void spread_over_ranks(Model<D>& m, std::vector<std::size_t>& queue, Spread&& sp
     for (std::size_t q = from; q < queue.size(); ++q) spread(queue[q]);
     if (!ranks.any(queue.size() > from)) return;
   }
+}
+
+/// The labels of a distributed run where two or more fluids start from their sources: which fluid a
+/// particle takes (one a dry pre-crack that both reach, say) follows the order of one rank's search,
+/// first reached first served. Every rank gathers the whole run's rows of bonds that carry fluid or
+/// cross a dry pre-crack (each rank its owned rows, in the rows' order: the order in which one
+/// rank's search goes on from a particle) and the particles next to a source, searches them as one
+/// rank does, and keeps its window's labels. `queue` gets the window's particles the fluid reached
+/// that are not next to a source; in_crack is marked at both ends of each bond the search crossed.
+/// The gathered rows are the networks' (a particle with a bond broken or failed, or on a dry
+/// pre-crack's face), not the whole model.
+template <int D>
+void label_as_one_rank(Model<D>& m, std::vector<std::size_t>& queue) {
+  FluidNetwork& f = m.fluid_network;
+  const Bonds& b = m.bonds;
+  const CrackBonds& w = m.crack_bonds;
+  const auto first = static_cast<std::int64_t>(m.window_first);
+  // each owned row with any: its number, how many, then each bond's other end j as 2 j, or 2 j + 1
+  // across a dry pre-crack (which only a fluid that enters dry cracks crosses)
+  std::vector<std::int64_t> rows, seeds;  // seeds: (number, source) of the particles next to a source
+  for (std::size_t i = m.owned_begin; i < m.owned_last(); ++i) {
+    const std::size_t at = rows.size();
+    rows.push_back(first + static_cast<std::int64_t>(i)), rows.push_back(0);
+    for (auto k = b.offset[i]; k < b.offset[i + 1]; ++k)
+      if (carries_fluid<D>(m, k, i, static_cast<std::size_t>(b.neighbor[k]))) rows.push_back(2 * (first + b.neighbor[k]));
+    for (auto k = w.offset[i]; k < w.offset[i + 1]; ++k)
+      if (f.dry[w.source[static_cast<std::size_t>(k)]] && w.neighbor[k] >= 0) rows.push_back(2 * (first + w.neighbor[k]) + 1);
+    rows[at + 1] = static_cast<std::int64_t>(rows.size() - at - 2);
+    if (rows[at + 1] == 0) rows.resize(at);
+    for (auto k = w.offset[i]; k < w.offset[i + 1]; ++k)
+      if (!f.dry[w.source[static_cast<std::size_t>(k)]]) {
+        seeds.push_back(first + static_cast<std::int64_t>(i)), seeds.push_back(w.source[static_cast<std::size_t>(k)]);
+        break;
+      }
+  }
+  const auto& ranks = ranks_of<D>(m);
+  const std::vector<std::int64_t> all_rows = ranks.all_gather(rows), all_seeds = ranks.all_gather(seeds);
+  std::unordered_map<std::int64_t, std::size_t> row_at;  // a particle's number: where its row starts
+  for (std::size_t p = 0; p < all_rows.size(); p += 2 + static_cast<std::size_t>(all_rows[p + 1])) row_at.emplace(all_rows[p], p);
+  std::unordered_map<std::int64_t, int> label;
+  std::vector<std::int64_t> reached;  // one rank's queue
+  for (std::size_t p = 0; p < all_seeds.size(); p += 2) {
+    label.emplace(all_seeds[p], static_cast<int>(all_seeds[p + 1]));
+    reached.push_back(all_seeds[p]);
+  }
+  const std::size_t next_to_source = reached.size();
+  const auto n = static_cast<std::int64_t>(m.size());
+  auto mark_in_crack = [&](std::int64_t g) {
+    if (g >= first && g < first + n) f.in_crack[static_cast<std::size_t>(g - first)] = 1;
+  };
+  for (std::size_t q = 0; q < reached.size(); ++q) {
+    const std::int64_t g = reached[q];
+    const int s = label.at(g);
+    const auto row = row_at.find(g);
+    if (row == row_at.end()) continue;
+    const std::size_t p = row->second;
+    for (std::size_t e = p + 2; e < p + 2 + static_cast<std::size_t>(all_rows[p + 1]); ++e) {
+      const std::int64_t j = all_rows[e] / 2;
+      if (all_rows[e] % 2 == 1 && !f.enters_dry_cracks(s)) continue;
+      mark_in_crack(g), mark_in_crack(j);
+      if (label.emplace(j, s).second) reached.push_back(j);
+    }
+  }
+  for (std::size_t i = 0; i < m.size(); ++i) {
+    const auto found = label.find(first + static_cast<std::int64_t>(i));
+    f.source[i] = found == label.end() ? -1 : found->second;
+  }
+  for (std::size_t q = next_to_source; q < reached.size(); ++q)
+    if (reached[q] >= first && reached[q] < first + n) queue.push_back(static_cast<std::size_t>(reached[q] - first));
 }
 
 /// Adds particle i to the particles the network load must evaluate again.
@@ -487,8 +557,12 @@ void update_fluid_network(Model<D>& m) {
       for (auto k = w.offset[i]; k < w.offset[i + 1]; ++k)
         if (!f.dry[w.source[static_cast<std::size_t>(k)]] && w.neighbor[k] >= 0) f.in_crack[i] = 1;
     const std::size_t next_to_source = queue.size();
-    for (std::size_t q = 0; q < queue.size(); ++q) spread(queue[q]);
-    if (distributed) detail::spread_over_ranks<D>(m, queue, spread);
+    if (distributed && std::count(f.dry.begin(), f.dry.end(), std::uint8_t{0}) > 1) {
+      detail::label_as_one_rank<D>(m, queue);
+    } else {
+      for (std::size_t q = 0; q < queue.size(); ++q) spread(queue[q]);
+      if (distributed) detail::spread_over_ranks<D>(m, queue, spread);
+    }
     // on N ranks: what the owners found of their particles (a ghost's row lacks its bonds beyond
     // the window)
     refresh_ghost_values<D>(m, f.in_crack);

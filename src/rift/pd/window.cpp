@@ -41,20 +41,6 @@ Partition partition_by_bonds(const Model<D>& m, int ranks, std::size_t granulari
   return p;
 }
 
-template <int D>
-std::string not_distributable(const Model<D>& m) {
-  if (m.crack_bonds.neighbor.empty()) return {};
-  // the fluid of pressurized cracks and boreholes (fluid_network.hpp) runs on N ranks: its labels,
-  // the cavity's volume, breakthrough, the fragments and the network load are made over the
-  // ranks, from the ghosts' bond states (ghost_fields.hpp refresh_ghost_bond_states); a viscous
-  // fluid's pressures are solved over the whole network on every rank (viscous_fluid.hpp)
-  const FluidNetwork& f = m.fluid_network;
-  const auto dry = std::count(f.dry.begin(), f.dry.end(), std::uint8_t{1});
-  if (dry > 0 && f.dry.size() - static_cast<std::size_t>(dry) > 1)
-    return "two or more fluids with a dry pre-crack (which fluid fills it follows the one-rank search's order)";
-  return {};
-}
-
 namespace {
 
 template <class T>
@@ -302,7 +288,6 @@ Model<D> window_of(const Model<D>& m, const Partition& p, int rank) {
 
 #define RIFT_INSTANTIATE(D)                                                      \
   template Partition partition_by_bonds<D>(const Model<D>&, int, std::size_t, std::size_t); \
-  template std::string not_distributable<D>(const Model<D>&);                    \
   template Model<D> window_of<D>(const Model<D>&, const Partition&, int);
 RIFT_INSTANTIATE(2)
 RIFT_INSTANTIATE(3)

@@ -7,7 +7,6 @@
 // rank, and the run is bitwise the same on any number of ranks.
 #pragma once
 #include <cstddef>
-#include <string>
 #include <vector>
 
 #include "rift/pd/model.hpp"
@@ -51,11 +50,6 @@ bool fluid_reads_far(const Model<D>& m) {
     if (body.constants.critical_stretch > 0.0) return true;
   return false;
 }
-
-/// What the distributed run cannot take yet, as a sentence; empty when the model can be
-/// distributed.
-template <int D>
-std::string not_distributable(const Model<D>& m);
 
 /// Rank r's window of the whole model: its fields, the rows of its particles (ghosts' rows cut to
 /// the window), its bodies' runs made again over the window with the whole bodies' slabs.

@@ -49,21 +49,17 @@ struct Simulation {
   }
   pd::Contact<D>* contact_ptr() { return contact.enabled() ? &contact : nullptr; }
   /// `mpirun -np N`: keeps this rank's window of the model (pd/window.hpp) and of the loads, its
-  /// ghosts refreshed by a halo exchange. Raises a SceneError (before anything is written) for
-  /// what a distributed run cannot take yet.
+  /// ghosts refreshed by a halo exchange. Raises a SceneError (before anything is written) for a
+  /// cut along another axis than the lattice's slowest.
   /// cut_axis: Options::cut_axis (-1, or the lattice's slowest axis: the layers are contiguous in
   /// the particles' numbering, which keeps the run bitwise the one-rank run's).
   void distribute(const scene::Scene& s, const parallel::Communicator& comm, int cut_axis = -1) {
     if (cut_axis >= 0 && cut_axis != D - 1)
       throw SceneError({s.file, 0, 0}, "--cut-along", std::string("a peridynamic run is cut across its lattice's slowest axis, ") +
                                                           (D == 3 ? "z" : "y") + ", alone (its layers of particles are ranges of their numbering)");
-    std::string missing = pd::not_distributable<D>(model);
     // dynamic relaxation, the in-situ stage and a fluid's cavity volume sum over the owned
     // particles in blocks (parallel/ordered_sum.hpp): the ranks' ranges start at whole blocks
     const bool block_sums = s.solver.kind != scene::SolverKind::explicit_dynamics || s.in_situ.enabled || !model.crack_bonds.neighbor.empty();
-    if (!missing.empty())
-      throw SceneError({s.file, 0, 0}, "mpirun -np " + std::to_string(comm.size()),
-                       "a run on more than one rank cannot take " + missing + " yet; run this scene on one rank");
     partition = pd::partition_by_bonds<D>(model, comm.size(), block_sums ? parallel::ordered_sum_block : 1,
                                           pd::fluid_reads_far<D>(model) ? pd::fluid_ghost_reaches : 1);
     const auto r = static_cast<std::size_t>(comm.rank());
