@@ -492,7 +492,7 @@ for case in "plate 20" "impact 100" "ves_bar 20" "insitu_platens 20" "borehole 1
   echo "ok: $scene: a checkpoint of 2 ranks continues on 3 and on 1 rank, the same bytes as the run never stopped"
 done
 
-# The material point method on slabs of cells (mpm/domain.hpp): a 2D cantilever under its weight
+# The material point method on boxes of cells (mpm/domain.hpp): a 2D cantilever under its weight
 # (MUSL, quadratic B-splines, fixed grid nodes, body force), two disks that fly across the cuts,
 # collide and part (multi-material contact: the contact sums exchanged too; points migrating
 # between ranks), and a 3D block (USL, APIC, uGIMP, a traction, fixed nodes) cut along z. The nodes
@@ -560,6 +560,20 @@ done
   { cat "$tmp/mpm_block-x.log"; fail "mpm_block: --cut-along x"; }
 grep -q "slabs of cells along x" "$tmp/mpm_block-x.log" || fail "mpm_block: --cut-along x did not cut along x"
 "$compare_fields" "$tmp/mpm_block-serial" "$tmp/mpm_block-x" 1e-12 || fail "mpm_block cut along x differs from the one-rank run"
+# processor grids (mpm/domain.hpp CellBoxes): the disks on 4 ranks (2 x 2 boxes, chosen), the block
+# on 8 (2 x 2 x 2: a node shared by 8 ranks at the corner, its parts added in the ranks' order on each)
+# and on 4 as 2 x 1 x 2; the DCB's crack across the boxes of 2 x 2 ranks below
+run_on_ranks mpm_disks 4
+grep -q "boxes of cells, 2 x 2" "$tmp/mpm_disks-np4.log" || fail "mpm_disks: 4 ranks did not take 2 x 2 boxes"
+"$compare_fields" "$tmp/mpm_disks-serial" "$tmp/mpm_disks-np4" 1e-12 || fail "mpm_disks on 2 x 2 ranks differs from the one-rank run"
+for grid in 2x2x2 2x1x2; do
+  np=$(( ${grid:0:1} * ${grid:2:1} * ${grid:4:1} ))
+  "${mpirun[@]}" -np "$np" "$rift" run "$tmp/mpm_block.toml" -o "$tmp/mpm_block-$grid" -q --processor-grid "$grid" > "$tmp/mpm_block-$grid.log" 2>&1 ||
+    { cat "$tmp/mpm_block-$grid.log"; fail "mpm_block: --processor-grid $grid"; }
+  grep -q "boxes of cells, ${grid//x/ x }" "$tmp/mpm_block-$grid.log" || fail "mpm_block: not cut into $grid boxes"
+  "$compare_fields" "$tmp/mpm_block-serial" "$tmp/mpm_block-$grid" 1e-12 || fail "mpm_block on $grid boxes differs from the one-rank run"
+done
+echo "ok: processor grids: mpm_disks on 2 x 2 ranks, mpm_block on 2 x 2 x 2 and 2 x 1 x 2, within 1e-12 of one rank"
 # the disks must have met (else the test shows nothing about contact across a cut): strain energy
 awk -F, 'NR > 1 && $4 > s { s = $4 } END { exit !(s > 1e-4) }' "$tmp/mpm_disks-serial/history.csv" || fail "mpm_disks: the disks did not collide"
 # explicit cracks (CRAMP) across the cuts: the DCB's crack runs along x, the axis cut into slabs, and
@@ -570,7 +584,10 @@ sed -e 's/end_time = 0.015/end_time = 0.0003/' -e 's/history_rows = 100/history_
 "${mpirun[@]}" -np 3 "$rift" run "$tmp/mpm_dcb.toml" -o "$tmp/mpm_dcb-np3" -q > "$tmp/mpm_dcb-np3.log" 2>&1 ||
   { cat "$tmp/mpm_dcb-np3.log"; fail "mpm_dcb: mpirun -np 3"; }
 "$compare_fields" "$tmp/mpm_dcb-serial" "$tmp/mpm_dcb-np3" 1e-12 || fail "mpm_dcb on 3 ranks differs from the one-rank run"
-echo "ok: mpm_dcb (an explicit crack across a cut, J and K at its tip on the middle rank) on 3 ranks within 1e-12 of one rank"
+"${mpirun[@]}" -np 4 "$rift" run "$tmp/mpm_dcb.toml" -o "$tmp/mpm_dcb-2x2" -q --processor-grid 2x2 > "$tmp/mpm_dcb-2x2.log" 2>&1 ||
+  { cat "$tmp/mpm_dcb-2x2.log"; fail "mpm_dcb: --processor-grid 2x2"; }
+"$compare_fields" "$tmp/mpm_dcb-serial" "$tmp/mpm_dcb-2x2" 1e-12 || fail "mpm_dcb on 2 x 2 ranks differs from the one-rank run"
+echo "ok: mpm_dcb (an explicit crack across a cut, J and K at its tip on the middle rank) on 3 ranks and on 2 x 2 within 1e-12 of one rank"
 # crack growth (maximum hoop stress, the toughness lowered so the crack grows within the short run):
 # rank 0 grows the cracks on the whole model and every rank takes them. The growth direction
 # amplifies round-off (a kinked crack's near-tip fields are steep), so the fields agree to 1e-10
@@ -594,13 +611,18 @@ printf '[checkpoint]\nevery_steps = 200\nfile = "ckpt_*.rift"\n' | cat "$tmp/mpm
   > "$tmp/mpm_disks-restart.log" 2>&1 || { cat "$tmp/mpm_disks-restart.log"; fail "mpm_disks: restart on 3 ranks"; }
 grep -q "continued from .*ckpt_200.rift at step 200" "$tmp/mpm_disks-restart.log" || fail "mpm_disks: the restart did not say where it continued"
 "$compare_fields" "$tmp/mpm_disks-serial" "$tmp/mpm_disks-ckpt" 1e-12 || fail "mpm_disks: restarted on 3 ranks from 2 ranks' checkpoint"
+# from 2 x 2 boxes' checkpoint (rank 0 gathers each box's points and nodes) to 3 slabs
+"${mpirun[@]}" -np 4 "$rift" run "$tmp/mpm_disks-ckpt.toml" -o "$tmp/mpm_disks-ckpt4" -q > /dev/null 2>&1 || fail "mpm_disks: checkpointed run on 4 ranks"
+"${mpirun[@]}" -np 3 "$rift" run "$tmp/mpm_disks-ckpt.toml" -o "$tmp/mpm_disks-ckpt4" -q --restart "$tmp/mpm_disks-ckpt4/ckpt_200.rift" \
+  > "$tmp/mpm_disks-restart4.log" 2>&1 || { cat "$tmp/mpm_disks-restart4.log"; fail "mpm_disks: restart on 3 ranks from 4"; }
+"$compare_fields" "$tmp/mpm_disks-serial" "$tmp/mpm_disks-ckpt4" 1e-12 || fail "mpm_disks: restarted on 3 ranks from 2 x 2 ranks' checkpoint"
 # and a cracked run's: the crack particles and the tips' file go on too
 printf '[checkpoint]\nevery_steps = 400\nfile = "ckpt_*.rift"\n' | cat "$tmp/mpm_dcb.toml" - > "$tmp/mpm_dcb-ckpt.toml"
 "${mpirun[@]}" -np 2 "$rift" run "$tmp/mpm_dcb-ckpt.toml" -o "$tmp/mpm_dcb-ckpt" -q > /dev/null 2>&1 || fail "mpm_dcb: checkpointed run on 2 ranks"
 "${mpirun[@]}" -np 3 "$rift" run "$tmp/mpm_dcb-ckpt.toml" -o "$tmp/mpm_dcb-ckpt" -q --restart "$tmp/mpm_dcb-ckpt/ckpt_400.rift" \
   > "$tmp/mpm_dcb-restart.log" 2>&1 || { cat "$tmp/mpm_dcb-restart.log"; fail "mpm_dcb: restart on 3 ranks"; }
 "$compare_fields" "$tmp/mpm_dcb-serial" "$tmp/mpm_dcb-ckpt" 1e-12 || fail "mpm_dcb: restarted on 3 ranks from 2 ranks' checkpoint"
-echo "ok: mpm_disks and mpm_dcb: a checkpoint of 2 ranks continues on 3, within 1e-12 of the one-rank run"
+echo "ok: mpm_disks and mpm_dcb: a checkpoint of 2 ranks (and of 2 x 2) continues on 3, within 1e-12 of the one-rank run"
 
 # refused on more than one rank, exit status 2, nothing written: an MPM grid too thin for its
 # ranks, a cut along an axis a run cannot be cut along
@@ -623,6 +645,9 @@ refused "$tmp/coarse_disks.toml" "a rank needs 4 of them" 3
 # --cut-along: a peridynamic run is cut across its slowest axis alone; a 2D grid has no z
 refused "$tmp/bar.toml" "cut across its lattice's slowest axis" 2 --cut-along x
 refused "$tmp/mpm_disks.toml" "has no z axis" 2 --cut-along z
+# --processor-grid: its product is the ranks' number; a peridynamic run takes 1 x N alone
+refused "$tmp/mpm_disks.toml" "its numbers' product must be the ranks' number" 4 --processor-grid 3x3
+refused "$tmp/impact.toml" "takes the grid 1x2 alone" 2 --processor-grid 2x1
 echo "ok: what a distributed run cannot take is refused with exit status 2"
 
 exit 0

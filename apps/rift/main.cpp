@@ -44,9 +44,28 @@ int rift_main(int argc, char** argv) {
   run->add_flag("-q,--quiet", quiet, "No progress output");
   run->add_option("--restart", restart, "Continue the run from this checkpoint (written by [checkpoint] or on SIGTERM/SIGINT)");
   run->add_option("--cut-along", cut_along,
-                  "mpirun: the axis across which the ranks' slabs are cut (default: the material point grid's longest axis; "
-                  "peridynamics: the lattice's slowest axis, z in 3D and y in 2D, the only one it takes)")
+                  "mpirun: cut the ranks' slabs across this axis alone (default: a material point grid's processor grid whose cuts "
+                  "cross the fewest nodes, see --processor-grid; peridynamics: the lattice's slowest axis, z in 3D and y in 2D, the "
+                  "only one it takes)")
       ->check(CLI::IsMember({"x", "y", "z"}));
+  std::string processor_grid;
+  run->add_option("--processor-grid", processor_grid,
+                  "mpirun: the ranks' boxes of a material point grid, PxQ in 2D or PxQxR in 3D, whose product is the number of ranks "
+                  "(default: the grid whose cuts cross the fewest nodes; peridynamics takes 1xN or 1x1xN alone)")
+      ->check(CLI::Validator(
+          [](const std::string& text) -> std::string {
+            std::size_t parts = 0, at = 0;
+            while (at <= text.size()) {
+              const auto x = std::min(text.find('x', at), text.size());
+              const auto part = text.substr(at, x - at);
+              if (part.empty() || part.size() > 6 || part.find_first_not_of("0123456789") != std::string::npos || std::stoi(part) < 1)
+                return "a processor grid is 2 or 3 positive whole numbers joined by x, as 2x2 or 2x1x2";
+              ++parts, at = x + 1;
+            }
+            return parts == 2 || parts == 3 ? std::string() : "a processor grid is 2 or 3 positive whole numbers joined by x, as 2x2 or 2x1x2";
+          },
+          "PxQ[xR]"))
+      ->excludes("--cut-along");
   auto* check = app.add_subcommand("check", "Validate a scene and print particles, bonds, memory, time step and outputs");
   check->add_option("scene", scene_path, "Scene file (TOML)")->required();
   try {
@@ -63,6 +82,11 @@ int rift_main(int argc, char** argv) {
     }
     rift::run::Options options{output_dir, threads, quiet, restart};
     if (!cut_along.empty()) options.cut_axis = cut_along[0] - 'x';
+    for (std::size_t at = 0; at < processor_grid.size();) {
+      const auto x = std::min(processor_grid.find('x', at), processor_grid.size());
+      options.processor_grid.push_back(std::stoi(processor_grid.substr(at, x - at)));
+      at = x + 1;
+    }
     rift::run::catch_stop_signals();
     auto r = rift::run::run(scene, options);
     if (r.stopped) {

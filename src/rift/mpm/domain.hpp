@@ -1,20 +1,24 @@
 // Domain decomposition of a material point run over the ranks of `mpirun -np N` (as Uintah and
-// Karamelo decompose theirs): the grid's cells are cut into slabs along one axis, one per rank.
-// A rank holds the material points inside its slab and the grid nodes they reach; a point in cell c
-// reaches the nodes c - 1 .. c + 2 along an axis with every shape function here (linear, uGIMP,
-// quadratic and cubic B-splines, shape_functions.hpp), so a rank owning the cells [a, b) holds the
-// nodes a - 1 .. b + 1: its cells' nodes and one layer beyond each face.
+// Karamelo decompose theirs): the grid's cells are cut by a processor grid of P_x x P_y (x P_z)
+// boxes, one per rank, each axis cut into P_a ranges of cells. A rank holds the material points
+// inside its box and the grid nodes they reach; a point in cell c reaches the nodes c - 1 .. c + 2
+// along an axis with every shape function here (linear, uGIMP, quadratic and cubic B-splines,
+// shape_functions.hpp), so a rank owning the cells [a, b) along an axis holds the nodes a - 1 ..
+// b + 1 along it: its cells' nodes and one layer beyond each face.
 //
 // One step of a distributed run (Solver::step):
-//   migration: points whose cell moved into a neighbour's slab go to that rank, with every member;
-//   particle to grid: each rank scatters its points; the nodes two neighbours share then hold each
-//     one's part, and they exchange and add them (the lower rank's part first, on both ranks, so
-//     both hold the same sums): every node of a rank's grid then holds the whole run's sums;
+//   migration: points whose cell moved into a neighbour's box go to that rank, with every member;
+//   particle to grid: each rank scatters its points; the nodes that neighbours share (up to 2^D
+//     ranks at a corner) then hold each one's part, and they exchange and add them in the order of
+//     the ranks, on every rank that holds the node, so all hold the same sums: every node of a
+//     rank's grid then holds the whole run's sums;
 //   the grid update and grid to particles are local to a node and to a point.
 // The results equal the one-rank run's to round-off: the sums at the shared nodes add the same
 // terms in another order.
 #pragma once
+#include <array>
 #include <cstdint>
+#include <optional>
 #include <cstring>
 #include <stdexcept>
 #include <string>
@@ -25,39 +29,53 @@
 
 namespace rift::mpm {
 
-/// The cut of the grid's cells along one axis into one slab per rank.
-struct Slabs {
-  /// A slab is at least this many cells thick, so that no node is reached from more than two ranks.
+/// The cut of the grid's cells into one box per rank: along each axis a into ranks[a] ranges;
+/// rank r sits at (r mod P_x, (r / P_x) mod P_y, r / (P_x P_y)) of the processor grid.
+struct CellBoxes {
+  /// A box is at least this many cells across along every cut axis, so that no node is reached from
+  /// more than two ranks along it.
   static constexpr long min_cells = 4;
-  int axis = 0;
-  std::vector<long> first_cell;  // rank r owns the cells [first_cell[r], first_cell[r + 1]) along the axis
-  /// The rank owning a cell (cells past either end of the grid: the first or last rank).
-  int owner(long cell) const;
-  /// The nodes along the axis that rank r holds: its cells' nodes and the ones its points reach.
-  std::pair<long, long> node_layers(int r, long nodes) const;
+  std::array<int, 3> ranks{1, 1, 1};
+  std::array<std::vector<long>, 3> first_cell;  // per axis: the range c owns [first_cell[a][c], first_cell[a][c + 1])
+  int size() const { return ranks[0] * ranks[1] * ranks[2]; }
+  std::array<int, 3> coordinates(int r) const { return {r % ranks[0], r / ranks[0] % ranks[1], r / (ranks[0] * ranks[1])}; }
+  int rank_at(const std::array<int, 3>& c) const { return c[0] + ranks[0] * (c[1] + ranks[1] * c[2]); }
+  /// The rank owning a cell (cells past either end of the grid: the first or last range).
+  int owner(const std::array<long, 3>& cell) const;
+  /// The nodes that rank r holds along each axis, [first, last]: its cells' nodes and the ones its
+  /// points reach (`nodes`: the whole grid's per axis).
+  std::array<std::pair<long, long>, 3> node_box(int r, const std::array<long, 3>& nodes) const;
+  /// The nodes whose sums rank r gathers for the whole grid (its cells' lower nodes; along an axis
+  /// the last range's top node too): every node is one rank's.
+  std::array<std::pair<long, long>, 3> own_nodes(int r, const std::array<long, 3>& nodes) const;
+  /// "2 x 2", or "slabs along x" where one axis alone is cut.
+  std::string describe(int dimension) const;
 };
 
-/// Slabs across `axis` (-1: the axis with the most cells), each holding about the same work: a
-/// material point weighs 1, or weight[p] where `weight` is given (a point near an explicit crack
-/// weighs more: crack_work_weights); a SceneError (for `file`) when the grid has fewer than
-/// Slabs::min_cells cells per rank along it.
+/// The boxes of `ranks` ranks, each holding about the same work along each cut axis: a material
+/// point weighs 1, or weight[p] where `weight` is given (a point near an explicit crack weighs more:
+/// crack_work_weights). `grid` (P_x, P_y, P_z; empty: chosen here) sets the processor grid; `axis`
+/// (>= 0) cuts that axis alone. Chosen: the grid whose cuts cross the fewest nodes (the least
+/// exchanged), every box CellBoxes::min_cells cells across. A SceneError (for `file`) where no grid of
+/// `ranks` boxes gives that.
 template <int D>
-Slabs cut_into_slabs(const Model<D>& whole, int ranks, const std::string& file, int axis = -1, const std::vector<double>* weight = nullptr);
+CellBoxes cut_into_boxes(const Model<D>& whole, int ranks, const std::string& file, int axis = -1, const std::vector<int>& grid = {},
+                         const std::vector<double>* weight = nullptr);
 
 template <int D>
 class Domain {
  public:
-  Domain(const parallel::Communicator& comm, Slabs slabs, const Model<D>& whole);
-  /// This rank's part of the whole run's model: the points in its slab, in the whole run's order,
-  /// and its layers of the grid.
+  Domain(const parallel::Communicator& comm, CellBoxes boxes, const Model<D>& whole);
+  /// This rank's part of the whole run's model: the points in its box, in the whole run's order,
+  /// and its box of the grid's nodes.
   Model<D> part_of(const Model<D>& whole);
   /// The whole run's number of each of this rank's points.
   const std::vector<std::uint64_t>& id() const { return id_; }
   std::size_t whole_points() const { return whole_points_; }
-  const Slabs& slabs() const { return slabs_; }
+  const CellBoxes& boxes() const { return boxes_; }
   const parallel::Communicator& communicator() const { return comm_; }
 
-  /// Sends the points that left this rank's slab to the neighbour whose slab they entered, and takes
+  /// Sends the points that left this rank's box to the neighbour whose box they entered, and takes
   /// in the neighbours' (each member of Particles); the points stay in the whole run's order. True
   /// when this rank's points changed. Every rank calls it at the same step.
   bool migrate(Model<D>& m);
@@ -65,12 +83,12 @@ class Domain {
   /// them (mass and momentum; the force; the contact quantities).
   void sum_shared_nodes(Grid<D>& g, bool force, bool contact) const;
 
-  /// Whether x lies in this rank's slab (its cell's owner is this rank).
+  /// Whether x lies in this rank's box (its cell's owner is this rank).
   bool owns(const Grid<D>& g, const Vec<D>& x) const {
-    const long c = cell_of(g, x);
-    return c != -2 && slabs_.owner(c) == comm_.rank();
+    const auto c = cell_of(g, x);
+    return c && boxes_.owner(*c) == comm_.rank();
   }
-  /// The nodes' sums and velocities of every rank's slab into the whole grid `whole` on rank 0 (null
+  /// The nodes' sums and velocities of every rank's box into the whole grid `whole` on rank 0 (null
   /// elsewhere), as one rank's grid after the same step.
   void gather_grid(Grid<D>& part, Grid<D>* whole) const;
   /// A per-point array (`width` entries per point) of every rank, on rank 0 in the whole run's
@@ -93,11 +111,14 @@ class Domain {
   std::string load_balance(const Model<D>& part, double loop_seconds, double in_mpi) const;
 
  private:
-  /// Cell of a point along the cut axis.
-  long cell_of(const Grid<D>& g, const Vec<D>& x) const;
+  /// The cell of a point (none where its position is not finite: it stays with its rank, whose
+  /// stencil then reports it, stencil.hpp).
+  std::optional<std::array<long, 3>> cell_of(const Grid<D>& g, const Vec<D>& x) const;
+  /// The ranks whose boxes touch this one's (up to 3^D - 1).
+  std::vector<int> neighbours() const;
   const parallel::Communicator& comm_;
-  Slabs slabs_;
-  long whole_nodes_ = 0;  // nodes of the whole grid along the axis
+  CellBoxes boxes_;
+  std::array<long, 3> whole_nodes_{1, 1, 1};  // nodes of the whole grid per axis
   std::size_t whole_points_ = 0;
   std::vector<std::uint64_t> id_;
 };

@@ -206,7 +206,7 @@ mpm::CrackSet broadcast_cracks(const parallel::Communicator& comm, const mpm::Cr
   return out;
 }
 
-/// Each point's weight in the cut into slabs (mpm/domain.hpp cut_into_slabs): 1, and 2 for a point
+/// Each point's weight in the cut into boxes (mpm/domain.hpp cut_into_boxes): 1, and 2 for a point
 /// within the solver's reach of an explicit crack (two cells of its box), which takes a velocity
 /// field per node by the line-crossing test (crack.hpp) on nodes that solve per field. Measured on
 /// the cracked DCB of bench/run_mpm on 2 ranks cut by points alone (2026-11-28), the rank holding
@@ -265,7 +265,7 @@ Result run_dim(const scene::Scene& s, const Options& o) {
   std::optional<mpm::Solver<D>> whole_solver;
   if (comm.distributed()) {
     const auto weight = crack_work_weights<D>(m, r.solver.cracks());
-    domain.emplace(comm, mpm::cut_into_slabs<D>(m, comm.size(), s.file, o.cut_axis, &weight), m);
+    domain.emplace(comm, mpm::cut_into_boxes<D>(m, comm.size(), s.file, o.cut_axis, o.processor_grid, &weight), m);
     auto part = domain->part_of(m);
     r.solver.distribute(m, part, *domain);
     if (comm.root()) whole.emplace(std::move(m));

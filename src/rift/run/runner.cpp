@@ -284,7 +284,7 @@ Result run_dim(const scene::Scene& s, const Options& o) {
   std::optional<Simulation<D>> whole;  // rank 0's, for the checkpoints of a distributed run
   std::optional<pd::DynamicRelaxation<D>> whole_dr;  // and of its relaxation
   if (comm.distributed()) {
-    p.distribute(s, comm, o.cut_axis);
+    p.distribute(s, comm, o.cut_axis, o.processor_grid);
     first_particle = p.partition.window_first[static_cast<std::size_t>(comm.rank())];
     if (dr) dr.emplace(m);  // its fictitious densities from the window's rows (an owned row is whole)
   }

@@ -18,8 +18,12 @@ struct Options {
   std::string restart;     // a checkpoint to continue from (io/checkpoint.hpp); empty: from the start
   long stop_after_step = 0;  // tests: stop after this step as a stop signal would (checkpoint, then return); 0: never
   /// mpirun: the axis (0, 1, 2: x, y, z) across which the ranks' slabs are cut; -1: chosen (material
-  /// points: the grid's longest; peridynamics: the lattice's slowest, the only one it takes)
+  /// points: the processor grid that crosses the fewest nodes; peridynamics: the lattice's slowest,
+  /// the only one it takes)
   int cut_axis = -1;
+  /// mpirun: the processor grid P_x, P_y (, P_z) of the ranks' boxes (material points: mpm/domain.hpp;
+  /// peridynamics takes N along the lattice's slowest axis alone); empty: chosen
+  std::vector<int> processor_grid = {};
 };
 
 struct Plan {

@@ -53,10 +53,16 @@ struct Simulation {
   /// cut along another axis than the lattice's slowest.
   /// cut_axis: Options::cut_axis (-1, or the lattice's slowest axis: the layers are contiguous in
   /// the particles' numbering, which keeps the run bitwise the one-rank run's).
-  void distribute(const scene::Scene& s, const parallel::Communicator& comm, int cut_axis = -1) {
+  void distribute(const scene::Scene& s, const parallel::Communicator& comm, int cut_axis = -1, const std::vector<int>& processor_grid = {}) {
     if (cut_axis >= 0 && cut_axis != D - 1)
       throw SceneError({s.file, 0, 0}, "--cut-along", std::string("a peridynamic run is cut across its lattice's slowest axis, ") +
                                                           (D == 3 ? "z" : "y") + ", alone (its layers of particles are ranges of their numbering)");
+    std::vector<int> slabs(D, 1);
+    slabs.back() = comm.size();
+    if (!processor_grid.empty() && processor_grid != slabs)
+      throw SceneError({s.file, 0, 0}, "--processor-grid",
+                       "a peridynamic run on " + std::to_string(comm.size()) + " ranks takes the grid " + (D == 3 ? "1x1x" : "1x") +
+                           std::to_string(comm.size()) + " alone (slabs across its lattice's slowest axis, whose layers are ranges of their numbering)");
     // dynamic relaxation, the in-situ stage and a fluid's cavity volume sum over the owned
     // particles in blocks (parallel/ordered_sum.hpp): the ranks' ranges start at whole blocks
     const bool block_sums = s.solver.kind != scene::SolverKind::explicit_dynamics || s.in_situ.enabled || !model.crack_bonds.neighbor.empty();
