@@ -397,31 +397,32 @@ void Domain<D>::sum_shared_nodes(Grid<D>& g, bool force, bool contact) const {
   }
   comm_.exchange(parcels);
   // every holder of a node adds its holders' parts in the order of the ranks, so all hold the same
-  // sums: the lower ranks' parts first (into `lower`), then this rank's, then the higher ranks'
+  // sums: the lower ranks' parts first (into `lower`, a row per slot that a lower rank shares), then
+  // this rank's, then the higher ranks'
   static thread_local std::vector<double> lower;
-  static thread_local std::vector<std::uint8_t> has_lower;
-  lower.resize(g.size() * static_cast<std::size_t>(g.fields) * per_slot);
-  has_lower.resize(g.size() * static_cast<std::size_t>(g.fields), 0);  // all 0 between calls
+  static thread_local std::vector<std::int32_t> row;  // per slot of the grid: its row in `lower`; -1: none (between calls too)
+  static thread_local std::vector<std::size_t> touched;
+  row.resize(g.size() * static_cast<std::size_t>(g.fields), -1);
+  lower.clear(), touched.clear();
   for (std::size_t p = 0; p < parcels.size(); ++p) {
     if (parcels[p].peer > me || empty(shared[p])) continue;
     std::size_t at = 0;
     each_slot_in_box<D>(g, shared[p], [&](std::size_t n) {
-      double* const sum = &lower[n * per_slot];
-      for (std::size_t t = 0; t < per_slot; ++t) {
-        const double other = take<double>(parcels[p].receive, at);
-        sum[t] = has_lower[n] ? sum[t] + other : other;
+      if (row[n] < 0) {
+        row[n] = static_cast<std::int32_t>(touched.size());
+        touched.push_back(n);
+        for (std::size_t t = 0; t < per_slot; ++t) lower.push_back(take<double>(parcels[p].receive, at));
+      } else {
+        double* const sum = &lower[static_cast<std::size_t>(row[n]) * per_slot];
+        for (std::size_t t = 0; t < per_slot; ++t) sum[t] += take<double>(parcels[p].receive, at);
       }
-      has_lower[n] = 1;
     });
   }
-  for (std::size_t p = 0; p < parcels.size(); ++p) {
-    if (parcels[p].peer > me || empty(shared[p])) continue;
-    each_slot_in_box<D>(g, shared[p], [&](std::size_t n) {
-      if (!has_lower[n]) return;  // taken already (boxes of two lower ranks overlap at a corner)
-      std::size_t t = 0;
-      each_sum<D>(g, n, force, contact, [&](double& v) { v = lower[n * per_slot + t++] + v; });
-      has_lower[n] = 0;
-    });
+  for (const std::size_t n : touched) {
+    std::size_t t = 0;
+    const double* const sum = &lower[static_cast<std::size_t>(row[n]) * per_slot];
+    each_sum<D>(g, n, force, contact, [&](double& v) { v = sum[t++] + v; });
+    row[n] = -1;
   }
   for (std::size_t p = 0; p < parcels.size(); ++p) {
     if (parcels[p].peer < me || empty(shared[p])) continue;
