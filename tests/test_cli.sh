@@ -150,6 +150,10 @@ cmp "$tmp/long/history.csv" "$tmp/history_before.csv"
 exits_2 "restart with the output directory of the run that wrote the checkpoint" \
   "$tmp/long.toml" -o "$tmp/elsewhere" --restart "$tmp/long/checkpoint.rift"
 test ! -e "$tmp/elsewhere"
+# a processor grid whose boxes are not the ranks (one, without mpirun), or not a grid: exit status 2, nothing written
+exits_2 "a grid of 4 boxes for 1 rank; its numbers' product must be the ranks' number" "$tmp/plate.toml" -o "$tmp/grid" --processor-grid 2x2
+exits_2 "a processor grid is 2 or 3 positive whole numbers joined by x" "$tmp/plate.toml" -o "$tmp/grid" --processor-grid 2x0
+test ! -e "$tmp/grid"
 # a mistake: exit status 2, the message (file:line:column, key), nothing written
 refused() {  # scene, expected text of the message
   exits_2 "$2" "$1" -o "$1.out"

@@ -638,7 +638,7 @@ refused() {  # scene file, what the message says, ranks (2 unless given), more o
   grep -q "$message" "$tmp/$name.log" || { cat "$tmp/$name.log"; fail "$name on $np ranks: no message \"$message\""; }
   [ ! -e "$tmp/$name-out" ] || fail "$name on $np ranks wrote its output directory"
 }
-# a grid of 8 cells along its longest axis on 3 ranks: 4 cells a rank at least (mpm/domain.hpp Slabs::min_cells)
+# a grid of 8 cells along its longest axis on 3 ranks: 4 cells a rank at least (mpm/domain.hpp CellBoxes::min_cells)
 sed -e 's/cell_size = 0.025/cell_size = 0.25/' -e 's/particles_per_cell = 2/particles_per_cell = 4/' \
   "$examples/mpm_colliding_disks.toml" > "$tmp/coarse_disks.toml"
 refused "$tmp/coarse_disks.toml" "a rank needs 4 of them" 3

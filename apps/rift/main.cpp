@@ -82,11 +82,17 @@ int rift_main(int argc, char** argv) {
     }
     rift::run::Options options{output_dir, threads, quiet, restart};
     if (!cut_along.empty()) options.cut_axis = cut_along[0] - 'x';
+    long boxes = 1;
     for (std::size_t at = 0; at < processor_grid.size();) {
       const auto x = std::min(processor_grid.find('x', at), processor_grid.size());
       options.processor_grid.push_back(std::stoi(processor_grid.substr(at, x - at)));
+      boxes *= options.processor_grid.back();
       at = x + 1;
     }
+    if (!processor_grid.empty() && boxes != comm.size())
+      throw rift::SceneError({scene_path, 0, 0}, "--processor-grid",
+                             fmt::format("a grid of {} boxes for {} rank{}; its numbers' product must be the ranks' number (mpirun -np {})", boxes,
+                                         comm.size(), comm.size() == 1 ? "" : "s", boxes));
     rift::run::catch_stop_signals();
     auto r = rift::run::run(scene, options);
     if (r.stopped) {

@@ -48,7 +48,7 @@ struct CellBoxes {
   /// The nodes whose sums rank r gathers for the whole grid (its cells' lower nodes; along an axis
   /// the last range's top node too): every node is one rank's.
   std::array<std::pair<long, long>, 3> own_nodes(int r, const std::array<long, 3>& nodes) const;
-  /// "2 x 2", or "slabs along x" where one axis alone is cut.
+  /// "boxes of cells, 2 x 2", or "slabs of cells along x" where one axis alone is cut.
   std::string describe(int dimension) const;
 };
 

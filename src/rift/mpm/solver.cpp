@@ -622,7 +622,7 @@ void Solver<D>::move_cracks(const Model<D>& m, double dt) {
       const double eps = 1e-6 * g.cell_size;
       // a crack particle's three velocities take three stencils and their crossing tests against the
       // crack: the work of some tens of grid-node updates, so a few dozen particles fill a team
-      // (a distributed run: the rank whose slab holds a position, whose grid holds its stencil, takes
+      // (a distributed run: the rank whose box holds a position, whose grid holds its stencil, takes
       // its velocity, the others 0, and the ranks add them up, so all move the crack alike)
       auto mine = [&](const Vec<2>& x) { return !domain_ || domain_->owns(g, x); };
 #pragma omp parallel for if(rift::parallel::worth_a_team(n * 32)) schedule(dynamic, 4)

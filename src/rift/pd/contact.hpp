@@ -38,7 +38,9 @@ class Contact {
   void add_forces(Model<D>& m);
   std::size_t candidate_pairs() const { return pairs_.size(); }
   /// Every member, for a checkpoint (pd/checkpoint_state.hpp): the Verlet lists and where they
-  /// were built, so a restart looks again exactly when the run it continues would have.
+  /// were built, so a restart looks again exactly when the run it continues would have (a distributed
+  /// run's checkpoint holds the list rank 0 makes for the whole model; the forces do not depend on
+  /// when a list was made).
   template <class A>
   void visit_state(A& a) {
     a("contact.enabled", enabled_), a("contact.skin", skin_), a("contact.max_distance", max_distance_);

@@ -40,7 +40,10 @@ class BeyondWindow {
     const std::size_t bodies = m.bodies.size();
     // each rank's window, in the whole run's numbers
     const auto windows = comm.all_gather(std::vector<double>{static_cast<double>(m.window_first), static_cast<double>(m.window_first + m.size())});
-    // each rank's boxes, one a body: low (D), high (D); an empty one has low > high
+    // each rank's boxes, one a body: low (D), high (D); an empty one has low > high. Grown a little
+    // past the reach: a pair at the reach to the last bit, which one rank lists, is not lost to the
+    // boxes' rounding (more candidates cost nothing but their test)
+    reach *= 1.0 + 1e-9;
     std::vector<double> boxes(bodies * 2 * D);
     for (std::size_t q = 0; q < bodies; ++q)
       for (int k = 0; k < D; ++k) boxes[(2 * q) * D + k] = std::numeric_limits<double>::max(), boxes[(2 * q + 1) * D + k] = -std::numeric_limits<double>::max();
@@ -50,7 +53,8 @@ class BeyondWindow {
         low[k] = std::min(low[k], m.position[i][k] - reach), high[k] = std::max(high[k], m.position[i][k] + reach);
       }
     const auto all_boxes = comm.all_gather(boxes);
-    // whether any of rank r's boxes meets one of this rank's (else none of its particles is inside)
+    // whether any of rank r's boxes meets one of this rank's (else none of either's particles is
+    // inside the other's: both leave the other out of the exchange)
     auto meets_mine = [&](std::size_t r) {
       for (std::size_t q = 0; q < bodies; ++q)
         for (std::size_t p = 0; p < bodies; ++p) {
@@ -68,9 +72,9 @@ class BeyondWindow {
       if (r == me) continue;
       const auto first = static_cast<std::size_t>(windows[2 * r]), last = static_cast<std::size_t>(windows[2 * r + 1]);
       const double* const theirs = &all_boxes[r * bodies * 2 * D];
+      if (!meets_mine(r)) continue;
       auto& parcel = parcels.emplace_back();
       parcel.peer = static_cast<int>(r);
-      if (!meets_mine(r)) continue;  // an empty parcel: every pair of ranks exchanges at a gather
       for (std::size_t i = m.owned_begin; i < m.owned_last(); ++i) {
         const std::size_t global = m.window_first + i;
         if (global >= first && global < last) continue;  // a particle of r's window: r has it

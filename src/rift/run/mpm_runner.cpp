@@ -256,7 +256,7 @@ Result run_dim(const scene::Scene& s, const Options& o) {
     // the whole checkpoint is read before any output is touched
     res.first_step = 1 + read_checkpoint(s, o, r.steps, [&](io::CheckpointReader& checkpoint) { visit_run(checkpoint, m); });
   }
-  // mpirun -np N: from here on each rank holds its slab of the model (a restart read the whole
+  // mpirun -np N: from here on each rank holds its box of the model (a restart read the whole
   // run's checkpoint first, so it continues on any number of ranks)
   std::optional<mpm::Domain<D>> domain;
   std::optional<mpm::Model<D>> whole;  // rank 0's, for the checkpoints of a distributed run

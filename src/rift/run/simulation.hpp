@@ -50,7 +50,8 @@ struct Simulation {
   pd::Contact<D>* contact_ptr() { return contact.enabled() ? &contact : nullptr; }
   /// `mpirun -np N`: keeps this rank's window of the model (pd/window.hpp) and of the loads, its
   /// ghosts refreshed by a halo exchange. Raises a SceneError (before anything is written) for a
-  /// cut along another axis than the lattice's slowest.
+  /// cut along another axis than the lattice's slowest (--cut-along, or a --processor-grid other
+  /// than 1 x .. x N).
   /// cut_axis: Options::cut_axis (-1, or the lattice's slowest axis: the layers are contiguous in
   /// the particles' numbering, which keeps the run bitwise the one-rank run's).
   void distribute(const scene::Scene& s, const parallel::Communicator& comm, int cut_axis = -1, const std::vector<int>& processor_grid = {}) {
