@@ -99,6 +99,29 @@ bool carries_fluid(const Model<D>& m, std::int64_t k, std::size_t i, std::size_t
   return law && interface_faces_apart<D>(m, k, i, j, *law);
 }
 
+/// The edges along which a fluid at particle i may go on, in the order one rank's search takes
+/// them: to(j, false) for each bond of i that carries fluid, then to(j, true) for each bond of i a
+/// dry pre-crack cut (which only a fluid that enters dry cracks crosses).
+template <int D, class To>
+void for_each_fluid_edge(const Model<D>& m, std::size_t i, To&& to) {
+  const Bonds& b = m.bonds;
+  const CrackBonds& w = m.crack_bonds;
+  for (auto k = b.offset[i]; k < b.offset[i + 1]; ++k)
+    if (carries_fluid<D>(m, k, i, static_cast<std::size_t>(b.neighbor[k]))) to(static_cast<std::size_t>(b.neighbor[k]), false);
+  for (auto k = w.offset[i]; k < w.offset[i + 1]; ++k)
+    if (m.fluid_network.dry[w.source[static_cast<std::size_t>(k)]] && w.neighbor[k] >= 0) to(static_cast<std::size_t>(w.neighbor[k]), true);
+}
+
+/// The source whose fluid particle i starts with: that of its first cut bond to a crack or borehole
+/// with pressure of its own (-1: none, i is not next to a source).
+template <int D>
+int source_next_to(const Model<D>& m, std::size_t i) {
+  const CrackBonds& w = m.crack_bonds;
+  for (auto k = w.offset[i]; k < w.offset[i + 1]; ++k)
+    if (!m.fluid_network.dry[w.source[static_cast<std::size_t>(k)]]) return w.source[static_cast<std::size_t>(k)];
+  return -1;
+}
+
 /// Per particle of rows [first, last): its intact and its broken bonds counted (bond states never
 /// heal, so any change of state among its bonds changes these). Returns the failed interface bonds
 /// of those rows.
@@ -347,8 +370,6 @@ void spread_over_ranks(Model<D>& m, std::vector<std::size_t>& queue, Spread&& sp
 template <int D>
 void label_as_one_rank(Model<D>& m, std::vector<std::size_t>& queue) {
   FluidNetwork& f = m.fluid_network;
-  const Bonds& b = m.bonds;
-  const CrackBonds& w = m.crack_bonds;
   const auto first = static_cast<std::int64_t>(m.window_first);
   // each owned row with any: its number, how many, then each bond's other end j as 2 j, or 2 j + 1
   // across a dry pre-crack (which only a fluid that enters dry cracks crosses)
@@ -356,17 +377,12 @@ void label_as_one_rank(Model<D>& m, std::vector<std::size_t>& queue) {
   for (std::size_t i = m.owned_begin; i < m.owned_last(); ++i) {
     const std::size_t at = rows.size();
     rows.push_back(first + static_cast<std::int64_t>(i)), rows.push_back(0);
-    for (auto k = b.offset[i]; k < b.offset[i + 1]; ++k)
-      if (carries_fluid<D>(m, k, i, static_cast<std::size_t>(b.neighbor[k]))) rows.push_back(2 * (first + b.neighbor[k]));
-    for (auto k = w.offset[i]; k < w.offset[i + 1]; ++k)
-      if (f.dry[w.source[static_cast<std::size_t>(k)]] && w.neighbor[k] >= 0) rows.push_back(2 * (first + w.neighbor[k]) + 1);
+    for_each_fluid_edge<D>(m, i, [&](std::size_t j, bool across_dry) {
+      rows.push_back(2 * (first + static_cast<std::int64_t>(j)) + (across_dry ? 1 : 0));
+    });
     rows[at + 1] = static_cast<std::int64_t>(rows.size() - at - 2);
     if (rows[at + 1] == 0) rows.resize(at);
-    for (auto k = w.offset[i]; k < w.offset[i + 1]; ++k)
-      if (!f.dry[w.source[static_cast<std::size_t>(k)]]) {
-        seeds.push_back(first + static_cast<std::int64_t>(i)), seeds.push_back(w.source[static_cast<std::size_t>(k)]);
-        break;
-      }
+    if (const int s = source_next_to<D>(m, i); s >= 0) seeds.push_back(first + static_cast<std::int64_t>(i)), seeds.push_back(s);
   }
   const auto& ranks = ranks_of<D>(m);
   const std::vector<std::int64_t> all_rows = ranks.all_gather(rows), all_seeds = ranks.all_gather(seeds);
@@ -488,11 +504,9 @@ void update_fluid_network(Model<D>& m) {
   // the fluid of i goes on across its bonds that carry fluid and the dry pre-cracks it may enter:
   // to(j) for each particle j it reaches
   auto spread_from = [&](std::size_t i, auto&& to) {
-    for (auto k = b.offset[i]; k < b.offset[i + 1]; ++k)
-      if (carries_fluid<D>(m, k, i, static_cast<std::size_t>(b.neighbor[k]))) to(static_cast<std::size_t>(b.neighbor[k]));
-    for (auto k = w.offset[i]; k < w.offset[i + 1]; ++k)
-      if (f.dry[w.source[static_cast<std::size_t>(k)]] && w.neighbor[k] >= 0 && f.enters_dry_cracks(f.source[i]))
-        to(static_cast<std::size_t>(w.neighbor[k]));
+    for_each_fluid_edge<D>(m, i, [&](std::size_t j, bool across_dry) {
+      if (!across_dry || f.enters_dry_cracks(f.source[i])) to(j);
+    });
   };
   auto spread = [&](std::size_t i) { spread_from(i, [&](std::size_t j) { reach(i, j); }); };
   if (grows) {
@@ -546,12 +560,7 @@ void update_fluid_network(Model<D>& m) {
     f.source.assign(n, -1);
     f.in_crack.assign(n, 0);
     for (std::size_t i = 0; i < n; ++i)
-      for (auto k = w.offset[i]; k < w.offset[i + 1]; ++k)
-        if (!f.dry[w.source[static_cast<std::size_t>(k)]]) {
-          f.source[i] = w.source[static_cast<std::size_t>(k)];
-          queue.push_back(i);
-          break;
-        }
+      if ((f.source[i] = source_next_to<D>(m, i)) >= 0) queue.push_back(i);
     // the faces of a pressurized pre-crack are in a crack (a borehole's cut bonds end at its sites, -1)
     for (std::size_t i : queue)
       for (auto k = w.offset[i]; k < w.offset[i + 1]; ++k)
