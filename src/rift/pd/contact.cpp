@@ -113,26 +113,22 @@ void Contact<D>::rebuild(const Model<D>& m) {
   auto number = [&](std::int32_t j) {
     return j < static_cast<std::int32_t>(n) ? static_cast<std::int64_t>(m.window_first) + j : beyond_.number[static_cast<std::size_t>(j) - n];
   };
-  std::vector<std::pair<std::int32_t, std::int64_t>> pairs;  // (row, the neighbour's whole-run number)
+  struct Pair {
+    std::int32_t row, neighbour;  // the neighbour's index here (n + k: beyond the window)
+    std::int64_t number;          // the neighbour's whole-run number
+  };
+  std::vector<Pair> pairs;
   for (const auto& mine : found)
     for (const auto& [i, j] : mine) {
-      pairs.emplace_back(i, number(j));
-      if (static_cast<std::size_t>(j) < n) pairs.emplace_back(j, number(i));
+      pairs.push_back({i, j, number(j)});
+      if (static_cast<std::size_t>(j) < n) pairs.push_back({j, i, number(i)});
     }
-  std::sort(pairs.begin(), pairs.end());
+  std::sort(pairs.begin(), pairs.end(), [](const Pair& a, const Pair& c) { return a.row != c.row ? a.row < c.row : a.number < c.number; });
   offset_.assign(n + 1, 0);
-  for (const auto& [i, j] : pairs) ++offset_[static_cast<std::size_t>(i) + 1];
+  for (const Pair& p : pairs) ++offset_[static_cast<std::size_t>(p.row) + 1];
   for (std::size_t i = 0; i < n; ++i) offset_[i + 1] += offset_[i];
   pairs_.resize(pairs.size());
-  const auto w0 = static_cast<std::int64_t>(m.window_first), w1 = w0 + static_cast<std::int64_t>(n);
-  std::vector<std::pair<std::int64_t, std::int32_t>> beyond_by_number;
-  for (std::size_t k = 0; k < beyond_.size(); ++k) beyond_by_number.emplace_back(beyond_.number[k], static_cast<std::int32_t>(n + k));
-  std::sort(beyond_by_number.begin(), beyond_by_number.end());
-  for (std::size_t p = 0; p < pairs.size(); ++p) {
-    const std::int64_t j = pairs[p].second;
-    pairs_[p] = j >= w0 && j < w1 ? static_cast<std::int32_t>(j - w0)
-                                  : std::lower_bound(beyond_by_number.begin(), beyond_by_number.end(), std::pair<std::int64_t, std::int32_t>{j, 0})->second;
-  }
+  for (std::size_t p = 0; p < pairs.size(); ++p) pairs_[p] = pairs[p].neighbour;
 }
 
 template <int D>
