@@ -251,7 +251,15 @@ CellBoxes cut_into_boxes(const Model<D>& whole, int ranks, const std::string& fi
 
 template <int D>
 Domain<D>::Domain(const parallel::Communicator& comm, CellBoxes boxes, const Model<D>& whole)
-    : comm_(comm), boxes_(std::move(boxes)), whole_nodes_(whole.grid.nodes), whole_points_(whole.particles.size()) {}
+    : comm_(comm), boxes_(std::move(boxes)), whole_nodes_(whole.grid.nodes), whole_points_(whole.particles.size()) {
+  const auto me = boxes_.coordinates(comm_.rank());
+  for (int r = 0; r < comm_.size(); ++r) {
+    const auto c = boxes_.coordinates(r);
+    bool touches = r != comm_.rank();
+    for (std::size_t a = 0; a < 3; ++a) touches = touches && std::abs(c[a] - me[a]) <= 1;
+    if (touches) neighbours_.push_back(r);
+  }
+}
 
 template <int D>
 std::optional<std::array<long, 3>> Domain<D>::cell_of(const Grid<D>& g, const Vec<D>& x) const {
@@ -262,19 +270,6 @@ std::optional<std::array<long, 3>> Domain<D>::cell_of(const Grid<D>& g, const Ve
     c[static_cast<std::size_t>(a)] = static_cast<long>(std::clamp(u, -1.0, double(whole_nodes_[static_cast<std::size_t>(a)])));
   }
   return c;
-}
-
-template <int D>
-std::vector<int> Domain<D>::neighbours() const {
-  const auto me = boxes_.coordinates(comm_.rank());
-  std::vector<int> near;
-  for (int r = 0; r < comm_.size(); ++r) {
-    const auto c = boxes_.coordinates(r);
-    bool touches = r != comm_.rank();
-    for (std::size_t a = 0; a < 3; ++a) touches = touches && std::abs(c[a] - me[a]) <= 1;
-    if (touches) near.push_back(r);
-  }
-  return near;
 }
 
 template <int D>

@@ -114,10 +114,11 @@ class Domain {
   /// The cell of a point (none where its position is not finite: it stays with its rank, whose
   /// stencil then reports it, stencil.hpp).
   std::optional<std::array<long, 3>> cell_of(const Grid<D>& g, const Vec<D>& x) const;
-  /// The ranks whose boxes touch this one's (up to 3^D - 1).
-  std::vector<int> neighbours() const;
+  /// The ranks whose boxes touch this one's (up to 3^D - 1), ascending.
+  const std::vector<int>& neighbours() const { return neighbours_; }
   const parallel::Communicator& comm_;
   CellBoxes boxes_;
+  std::vector<int> neighbours_;
   std::array<long, 3> whole_nodes_{1, 1, 1};  // nodes of the whole grid per axis
   std::size_t whole_points_ = 0;
   std::vector<std::uint64_t> id_;
