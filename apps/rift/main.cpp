@@ -16,6 +16,9 @@
 #include <algorithm>
 #include <cstdio>
 #include <iostream>
+#include <optional>
+#include <string>
+#include <vector>
 
 #include "rift/core/error.hpp"
 #include "rift/core/version.hpp"
@@ -26,6 +29,21 @@
 #include "rift/scene/parse.hpp"
 
 namespace {
+
+/// "PxQ" or "PxQxR" as its 2 or 3 positive numbers (none: not such a text).
+std::optional<std::vector<int>> processor_grid_of(const std::string& text) {
+  std::vector<int> grid;
+  for (std::size_t at = 0; at <= text.size();) {
+    const auto x = std::min(text.find('x', at), text.size());
+    const auto part = text.substr(at, x - at);
+    if (part.empty() || part.size() > 6 || part.find_first_not_of("0123456789") != std::string::npos || std::stoi(part) < 1)
+      return std::nullopt;
+    grid.push_back(std::stoi(part));
+    at = x + 1;
+  }
+  if (grid.size() != 2 && grid.size() != 3) return std::nullopt;
+  return grid;
+}
 
 int rift_main(int argc, char** argv) {
   const auto& comm = rift::parallel::Communicator::world();
@@ -53,16 +71,8 @@ int rift_main(int argc, char** argv) {
                   "mpirun: the ranks' boxes of a material point grid, PxQ in 2D or PxQxR in 3D, whose product is the number of ranks "
                   "(default: the grid whose cuts cross the fewest nodes; peridynamics takes 1xN or 1x1xN alone)")
       ->check(CLI::Validator(
-          [](const std::string& text) -> std::string {
-            std::size_t parts = 0, at = 0;
-            while (at <= text.size()) {
-              const auto x = std::min(text.find('x', at), text.size());
-              const auto part = text.substr(at, x - at);
-              if (part.empty() || part.size() > 6 || part.find_first_not_of("0123456789") != std::string::npos || std::stoi(part) < 1)
-                return "a processor grid is 2 or 3 positive whole numbers joined by x, as 2x2 or 2x1x2";
-              ++parts, at = x + 1;
-            }
-            return parts == 2 || parts == 3 ? std::string() : "a processor grid is 2 or 3 positive whole numbers joined by x, as 2x2 or 2x1x2";
+          [](const std::string& text) {
+            return processor_grid_of(text) ? std::string() : "a processor grid is 2 or 3 positive whole numbers joined by x, as 2x2 or 2x1x2";
           },
           "PxQ[xR]"))
       ->excludes("--cut-along");
@@ -82,13 +92,9 @@ int rift_main(int argc, char** argv) {
     }
     rift::run::Options options{output_dir, threads, quiet, restart};
     if (!cut_along.empty()) options.cut_axis = cut_along[0] - 'x';
+    if (!processor_grid.empty()) options.processor_grid = *processor_grid_of(processor_grid);
     long boxes = 1;
-    for (std::size_t at = 0; at < processor_grid.size();) {
-      const auto x = std::min(processor_grid.find('x', at), processor_grid.size());
-      options.processor_grid.push_back(std::stoi(processor_grid.substr(at, x - at)));
-      boxes *= options.processor_grid.back();
-      at = x + 1;
-    }
+    for (const int p : options.processor_grid) boxes *= p;
     if (!processor_grid.empty() && boxes != comm.size())
       throw rift::SceneError({scene_path, 0, 0}, "--processor-grid",
                              fmt::format("a grid of {} boxes for {} rank{}; its numbers' product must be the ranks' number (mpirun -np {})", boxes,
