@@ -111,7 +111,7 @@ void Contact<D>::rebuild(const Model<D>& m) {
   }
   // rows in the order of the whole run's numbers (one rank's: the window's own numbers)
   auto number = [&](std::int32_t j) {
-    return j < static_cast<std::int32_t>(n) ? static_cast<std::int64_t>(m.window_first) + j : beyond_.number[static_cast<std::size_t>(j) - n];
+    return j < static_cast<std::int32_t>(n) ? static_cast<std::int64_t>(m.numbering.whole(static_cast<std::size_t>(j))) : beyond_.number[static_cast<std::size_t>(j) - n];
   };
   struct Pair {
     std::int32_t row, neighbour;  // the neighbour's index here (n + k: beyond the window)
@@ -183,7 +183,6 @@ void Contact<D>::add_forces(Model<D>& m) {
   // displacements' rounding (a relative 6e-8 of displacements far below a spacing)
   if (family_skin_ > 0.0 && (!family_rows || !(family_moved2 <= 0.45 * 0.45 * family_skin_ * family_skin_))) look_at_family_rows(m);
   const NearBonds* const near = family_skin_ > 0.0 ? family_near_.data() : nullptr;
-  const auto window_first = static_cast<std::int64_t>(m.window_first);
   const Bonds& b = m.bonds;
 #pragma omp parallel for if(rift::parallel::worth_a_team(n)) schedule(static)
   for (std::size_t i = 0; i < n; ++i) {
@@ -208,7 +207,7 @@ void Contact<D>::add_forces(Model<D>& m) {
     auto p = offset_[i];
     const auto listed_end = offset_[i + 1];
     auto listed_before = [&](std::int32_t q, std::int32_t j) {
-      return q < static_cast<std::int32_t>(n) ? q < j : beyond_.number[static_cast<std::size_t>(q) - n] < window_first + j;
+      return q < static_cast<std::int32_t>(n) ? q < j : beyond_.number[static_cast<std::size_t>(q) - n] < static_cast<std::int64_t>(m.numbering.whole(static_cast<std::size_t>(j)));
     };
     auto family_pair = [&](std::int64_t k) {
       if (b.intact[static_cast<std::size_t>(k)] != bond_broken) return;

@@ -38,8 +38,14 @@ class BeyondWindow {
   void gather(const Model<D>& m, double reach, const parallel::Communicator& comm) {
     const auto ranks = static_cast<std::size_t>(comm.size()), me = static_cast<std::size_t>(comm.rank());
     const std::size_t bodies = m.bodies.size();
-    // each rank's window, in the whole run's numbers
-    const auto windows = comm.all_gather(std::vector<double>{static_cast<double>(m.window_first), static_cast<double>(m.window_first + m.size())});
+    // each rank's window, in the whole run's numbers: its count of ranges, then each range's first
+    // and last
+    std::vector<std::int64_t> mine{static_cast<std::int64_t>(m.numbering.ranges().size())};
+    for (const auto& a : m.numbering.ranges())
+      mine.push_back(static_cast<std::int64_t>(a.whole)), mine.push_back(static_cast<std::int64_t>(a.whole + a.count));
+    const auto all_windows = comm.all_gather(mine);
+    std::vector<std::size_t> window_at(ranks);  // where rank r's ranges start in all_windows
+    for (std::size_t r = 0, at = 0; r < ranks; at += 1 + 2 * static_cast<std::size_t>(all_windows[at]), ++r) window_at[r] = at;
     // each rank's boxes, one a body: low (D), high (D); an empty one has low > high. Grown a little
     // past the reach: a pair at the reach to the last bit, which one rank lists, is not lost to the
     // boxes' rounding (more candidates cost nothing but their test)
@@ -70,14 +76,23 @@ class BeyondWindow {
     std::vector<parallel::Communicator::Parcel> parcels;
     for (std::size_t r = 0; r < ranks; ++r) {
       if (r == me) continue;
-      const auto first = static_cast<std::size_t>(windows[2 * r]), last = static_cast<std::size_t>(windows[2 * r + 1]);
+      const std::int64_t* const window = &all_windows[window_at[r]];
+      auto in_window = [&](std::int64_t g) {  // whether rank r's window holds g: the last range from at or below g
+        std::int64_t low = 0, high = window[0];  // the ranges before `low` start at or below g, those from `high` above it
+        while (low < high) {
+          const std::int64_t mid = (low + high) / 2;
+          if (window[1 + 2 * mid] <= g) low = mid + 1;
+          else high = mid;
+        }
+        return low > 0 && g < window[2 * low];
+      };
       const double* const theirs = &all_boxes[r * bodies * 2 * D];
       if (!meets_mine(r)) continue;
       auto& parcel = parcels.emplace_back();
       parcel.peer = static_cast<int>(r);
       for (std::size_t i = m.owned_begin; i < m.owned_last(); ++i) {
-        const std::size_t global = m.window_first + i;
-        if (global >= first && global < last) continue;  // a particle of r's window: r has it
+        const auto global = static_cast<std::int64_t>(m.numbering.whole(i));
+        if (in_window(global)) continue;  // a particle of r's window: r has it
         bool inside = false;
         for (std::size_t q = 0; q < bodies && !inside; ++q) {
           inside = true;

@@ -65,7 +65,7 @@ double DynamicRelaxation<D>::measure_fictitious_density(Model<D>& m, const load:
   std::vector<Vec<D>> v(n);
   for (std::size_t i = 0; i < n; ++i)
     for (int q = 0; q < D; ++q) {
-      std::uint64_t z = ((m.window_first + i) * D + static_cast<std::size_t>(q) + 1) * 0x9e3779b97f4a7c15ull;
+      std::uint64_t z = (m.numbering.whole(i) * D + static_cast<std::size_t>(q) + 1) * 0x9e3779b97f4a7c15ull;
       z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ull, z = (z ^ (z >> 27)) * 0x94d049bb133111ebull, z ^= z >> 31;
       v[i][q] = m.constrained[i] >> q & 1 ? 0.0 : ((z & 1) ? 1.0 : -1.0);
     }

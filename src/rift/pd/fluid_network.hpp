@@ -370,19 +370,18 @@ void spread_over_ranks(Model<D>& m, std::vector<std::size_t>& queue, Spread&& sp
 template <int D>
 void label_as_one_rank(Model<D>& m, std::vector<std::size_t>& queue) {
   FluidNetwork& f = m.fluid_network;
-  const auto first = static_cast<std::int64_t>(m.window_first);
+  const Numbering& numbers = m.numbering;
+  auto number = [&](std::size_t i) { return static_cast<std::int64_t>(numbers.whole(i)); };
   // each owned row with any: its number, how many, then each bond's other end j as 2 j, or 2 j + 1
   // across a dry pre-crack (which only a fluid that enters dry cracks crosses)
   std::vector<std::int64_t> rows, seeds;  // seeds: (number, source) of the particles next to a source
   for (std::size_t i = m.owned_begin; i < m.owned_last(); ++i) {
     const std::size_t at = rows.size();
-    rows.push_back(first + static_cast<std::int64_t>(i)), rows.push_back(0);
-    for_each_fluid_edge<D>(m, i, [&](std::size_t j, bool across_dry) {
-      rows.push_back(2 * (first + static_cast<std::int64_t>(j)) + (across_dry ? 1 : 0));
-    });
+    rows.push_back(number(i)), rows.push_back(0);
+    for_each_fluid_edge<D>(m, i, [&](std::size_t j, bool across_dry) { rows.push_back(2 * number(j) + (across_dry ? 1 : 0)); });
     rows[at + 1] = static_cast<std::int64_t>(rows.size() - at - 2);
     if (rows[at + 1] == 0) rows.resize(at);
-    if (const int s = source_next_to<D>(m, i); s >= 0) seeds.push_back(first + static_cast<std::int64_t>(i)), seeds.push_back(s);
+    if (const int s = source_next_to<D>(m, i); s >= 0) seeds.push_back(number(i)), seeds.push_back(s);
   }
   const auto& ranks = ranks_of<D>(m);
   const std::vector<std::int64_t> all_rows = ranks.all_gather(rows), all_seeds = ranks.all_gather(seeds);
@@ -395,9 +394,8 @@ void label_as_one_rank(Model<D>& m, std::vector<std::size_t>& queue) {
     reached.push_back(all_seeds[p]);
   }
   const std::size_t next_to_source = reached.size();
-  const auto n = static_cast<std::int64_t>(m.size());
   auto mark_in_crack = [&](std::int64_t g) {
-    if (g >= first && g < first + n) f.in_crack[static_cast<std::size_t>(g - first)] = 1;
+    if (const std::size_t i = numbers.here(static_cast<std::size_t>(g)); i != Numbering::none) f.in_crack[i] = 1;
   };
   for (std::size_t q = 0; q < reached.size(); ++q) {
     const std::int64_t g = reached[q];
@@ -413,11 +411,11 @@ void label_as_one_rank(Model<D>& m, std::vector<std::size_t>& queue) {
     }
   }
   for (std::size_t i = 0; i < m.size(); ++i) {
-    const auto found = label.find(first + static_cast<std::int64_t>(i));
+    const auto found = label.find(number(i));
     f.source[i] = found == label.end() ? -1 : found->second;
   }
   for (std::size_t q = next_to_source; q < reached.size(); ++q)
-    if (reached[q] >= first && reached[q] < first + n) queue.push_back(static_cast<std::size_t>(reached[q] - first));
+    if (const std::size_t i = numbers.here(static_cast<std::size_t>(reached[q])); i != Numbering::none) queue.push_back(i);
 }
 
 /// Adds particle i to the particles the network load must evaluate again.

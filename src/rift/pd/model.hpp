@@ -11,6 +11,7 @@
 #include "rift/core/vec.hpp"
 #include "rift/pd/bonds.hpp"
 #include "rift/pd/material_constants.hpp"
+#include "rift/pd/numbering.hpp"
 #include "rift/pd/platens.hpp"
 
 namespace rift::pd {
@@ -75,7 +76,7 @@ struct Model {
   // [owned_begin, owned_end) and the ghosts around them, which `ghosts` refreshes from their owners.
   // One rank: every particle is owned, no ghosts.
   std::size_t owned_begin = 0, owned_end = static_cast<std::size_t>(-1);
-  std::size_t window_first = 0;  // the whole run's number of the window's particle 0
+  Numbering numbering;  // the whole run's numbers of the window's particles (empty: one rank's)
   // the window's particles whose rows are whole (a ghost's row within the bonds' reach of the
   // window's edge is cut to the window): [uncut_rows_begin, uncut_rows_end)
   std::size_t uncut_rows_begin = 0, uncut_rows_end = static_cast<std::size_t>(-1);

@@ -231,7 +231,7 @@ Model<D> window_of(const Model<D>& m, const Partition& p, int rank) {
   w.time = m.time;
   w.owned_begin = p.owned[r] - w0;
   w.owned_end = p.owned[r + 1] - w0;
-  w.window_first = w0;
+  w.numbering = Numbering::range(w0, n);
   w.uncut_rows_begin = w0 == 0 ? 0 : std::min(n, p.reach);
   w.uncut_rows_end = w1 == m.size() ? n : n - std::min(n, p.reach);
 

@@ -101,7 +101,7 @@ void gather_fluid(const parallel::Communicator& comm, const pd::Model<D>& m, pd:
     for (const std::int64_t k : list) {
       const std::size_t i = b.row_of(k);
       if (i < m.owned_begin || i >= m.owned_last()) continue;
-      rows_and_places.push_back(static_cast<std::int64_t>(m.window_first + i)), rows_and_places.push_back(k - b.offset[i]);
+      rows_and_places.push_back(static_cast<std::int64_t>(m.numbering.whole(i))), rows_and_places.push_back(k - b.offset[i]);
     }
     const auto all = comm.gather(rows_and_places);
     if (!into) return;

@@ -151,24 +151,22 @@ std::vector<double> vector_field(const pd::Model<D>& m, const std::vector<Vec<D>
 }
 
 /// A snapshot of the fields; the ranks of a distributed run write it together, each its owned
-/// particles' rows (first_particle: the whole run's number of the window's particle 0).
+/// particles' rows (at their whole-run numbers, Model::numbering).
 template <int D>
-void write_snapshot(io::FieldWriter& fields, pd::Model<D>& m, const scene::Scene& s, const parallel::Communicator& comm,
-                    std::size_t first_particle) {
+void write_snapshot(io::FieldWriter& fields, pd::Model<D>& m, const scene::Scene& s, const parallel::Communicator& comm) {
   pd::update_damage<D>(m);
   struct Together {
     io::FieldWriter& fields;
     const pd::Model<D>& m;
     const parallel::Communicator& comm;
-    std::size_t first_particle;
     void write(const std::string& name, const std::vector<double>& values, int components) {
       if (!comm.distributed()) return fields.write(name, values, components);
       const auto width = static_cast<std::size_t>(components);
       const auto first = static_cast<std::ptrdiff_t>(m.owned_begin * width), last = static_cast<std::ptrdiff_t>(m.owned_last() * width);
       fields.write_rows(name, std::vector<double>(values.begin() + first, values.begin() + last), components,
-                        {{first_particle + m.owned_begin, m.owned_last() - m.owned_begin}});
+                        {{m.numbering.whole(m.owned_begin), m.owned_last() - m.owned_begin}});
     }
-  } w{fields, m, comm, first_particle};
+  } w{fields, m, comm};
   fields.begin_snapshot(m.time);
   w.write("position", vector_field<D>(m, m.position, false), 3);
   for (const auto& f : s.output.fields) {
@@ -197,16 +195,15 @@ void write_snapshot(io::FieldWriter& fields, pd::Model<D>& m, const scene::Scene
   fields.end_snapshot();
 }
 
-/// first_particle: the whole run's number of the model's particle 0 (a distributed run's window).
 template <int D>
-void check_finite(const pd::Model<D>& m, long step, const pd::EnergySummary& e, std::size_t first_particle) {
+void check_finite(const pd::Model<D>& m, long step, const pd::EnergySummary& e) {
   if (std::isfinite(e.kinetic) && std::isfinite(e.strain)) return;
   for (std::size_t i = m.owned_begin; i < m.owned_last(); ++i)
     for (int k = 0; k < D; ++k)
       if (!std::isfinite(m.position[i][k]) || !std::isfinite(m.velocity[i][k])) {
         std::string where;
         for (int q = 0; q < D; ++q) where += (q ? ", " : "") + std::to_string(m.reference_position[i][q]);
-        throw PhysicsError("step " + std::to_string(step) + ": particle " + std::to_string(i + first_particle) + " of body \"" +
+        throw PhysicsError("step " + std::to_string(step) + ": particle " + std::to_string(m.numbering.whole(i)) + " of body \"" +
                            m.bodies[m.body[i]].name + "\" (reference position " + where +
                            ") has a non-finite position or velocity; the time step is likely above the stable limit or a load is unbounded");
       }
@@ -235,12 +232,11 @@ Result run_dim(const scene::Scene& s, const Options& o) {
   // mpirun -np N: each rank keeps its window of the model (pd/window.hpp); rank 0 writes the outputs
   const auto& comm = parallel::Communicator::world();
   const std::size_t particles = p.model.size();
-  std::size_t first_particle = 0;  // the whole run's number of the window's first particle (set below)
   auto& m = p.model;
   // the damage of probe k: its owner's (the others add nothing)
   auto probe_damage = [&](std::size_t g) {
-    const bool owned = g >= first_particle + m.owned_begin && g < first_particle + m.owned_last();
-    return comm.sum(owned ? m.damage[g - first_particle] : 0.0);
+    const std::size_t i = m.numbering.here(g);
+    return comm.sum(i != pd::Numbering::none && i >= m.owned_begin && i < m.owned_last() ? m.damage[i] : 0.0);
   };
   Result res;
   res.output_dir = o.output_dir.empty() ? "results/" + s.name : o.output_dir;
@@ -285,7 +281,6 @@ Result run_dim(const scene::Scene& s, const Options& o) {
   std::optional<pd::DynamicRelaxation<D>> whole_dr;  // and of its relaxation
   if (comm.distributed()) {
     p.distribute(s, comm, o.cut_axis, o.processor_grid);
-    first_particle = p.partition.window_first[static_cast<std::size_t>(comm.rank())];
     if (dr) dr.emplace(m);  // its fictitious densities from the window's rows (an owned row is whole)
   }
   if (comm.root()) std::filesystem::create_directories(res.output_dir);
@@ -319,7 +314,7 @@ Result run_dim(const scene::Scene& s, const Options& o) {
                                          [](const std::string& q) { return q == "strain_energy" || q == "total_energy"; });
   auto history_row = [&](long step, std::vector<double> extra) {
     auto e = reduce(comm, pd::summarize_and_update_damage<D>(m, strain_column));
-    check_finite<D>(m, step, e, first_particle);
+    check_finite<D>(m, step, e);
     const double dmax = max_damage<D>(comm, m);
     std::vector<double> row{m.time, double(step)};
     for (const auto& q : s.output.history) {
@@ -410,7 +405,7 @@ Result run_dim(const scene::Scene& s, const Options& o) {
   };
   if (s.solver.kind == scene::SolverKind::explicit_dynamics) {
     if (!restarted) {
-      write_snapshot<D>(fields, m, s, comm, first_particle);
+      write_snapshot<D>(fields, m, s, comm);
       history_row(0, {});
     }
     for (long step = res.first_step; step <= p.steps; ++step) {
@@ -426,7 +421,7 @@ Result run_dim(const scene::Scene& s, const Options& o) {
           while (next_history * p.steps <= step * s.output.history_count) ++next_history;
         }
         if (snap) {
-          write_snapshot<D>(fields, m, s, comm, first_particle);
+          write_snapshot<D>(fields, m, s, comm);
           while (next_snapshot * p.steps <= step * s.output.count) ++next_snapshot;
         }
       }
@@ -434,7 +429,7 @@ Result run_dim(const scene::Scene& s, const Options& o) {
     }
   } else {
     if (!dr) dr.emplace(m);
-    if (!restarted) write_snapshot<D>(fields, m, s, comm, first_particle);
+    if (!restarted) write_snapshot<D>(fields, m, s, comm);
     for (long step = res.first_step; step <= p.steps; ++step) {
       const double t = s.solver.end_time * double(step) / double(p.steps);
       auto r = p.relax(*dr, s.solver, t);
@@ -444,7 +439,7 @@ Result run_dim(const scene::Scene& s, const Options& o) {
       {
         PhaseClock output_clock(Phase::output);
         auto e = history_row(step, extra);
-        write_snapshot<D>(fields, m, s, comm, first_particle);
+        write_snapshot<D>(fields, m, s, comm);
         progress.update(step, m.time, e.broken_fraction, true);
       }
       if (!r.converged && !o.quiet && comm.root()) {  // rank 0 speaks for a distributed run
