@@ -7,6 +7,7 @@
 #include <cstddef>
 #include <vector>
 
+#include "rift/core/index_range.hpp"
 #include "rift/parallel/communicator.hpp"
 
 namespace rift::parallel {
@@ -50,6 +51,19 @@ std::array<double, K> ordered_sums(std::size_t n, F&& f) {
 template <std::size_t K, class F>
 std::array<double, K> ordered_sums(const Communicator& comm, std::size_t first, std::size_t n, F&& f) {
   auto partial = block_sums<K>(first, n, f);
+  if (comm.distributed()) partial = comm.all_gather(partial);
+  return add_in_order<K>(partial);
+}
+
+/// The same over ranks that own a few ranges each (ascending), each range cut at whole blocks of
+/// the whole numbering: a rank's block sums range after range, then every rank's in rank order.
+template <std::size_t K, class F>
+std::array<double, K> ordered_sums(const Communicator& comm, const std::vector<IndexRange>& owned, F&& f) {
+  std::vector<std::array<double, K>> partial;
+  for (const IndexRange& r : owned) {
+    const auto sums = block_sums<K>(r.first, r.size(), f);
+    partial.insert(partial.end(), sums.begin(), sums.end());
+  }
   if (comm.distributed()) partial = comm.all_gather(partial);
   return add_in_order<K>(partial);
 }

@@ -25,6 +25,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "rift/core/index_range.hpp"
 #include "rift/core/vec.hpp"
 #include "rift/parallel/communicator.hpp"
 #include "rift/parallel/fixed_point_sums.hpp"
@@ -40,18 +41,19 @@ class CoarseSpace {
   /// Groups the particles at reference positions x into aggregates of edge `edge`, numbered in
   /// the order of their cells on the grid from the body's lowest corner. False where the body spans
   /// fewer than three aggregates on an axis (no coarse space: the diagonal alone serves). A
-  /// distributed run's window (pd/window.hpp) gives its owned range [owned_first, owned_first +
-  /// owned) and the ranks' communicator: the aggregates are the whole body's on every rank, and
+  /// distributed run's window (pd/window.hpp) gives its owned ranges (none: every particle) and
+  /// the ranks' communicator: the aggregates are the whole body's on every rank, and
   /// every sum over particles (assemble, solve) adds every rank's owned particles' terms.
   bool make_aggregates(const std::vector<Vec<D>>& x, double edge, const parallel::Communicator& comm = parallel::Communicator::one(),
-                       std::size_t owned_first = 0, std::size_t owned = static_cast<std::size_t>(-1)) {
+                       const std::vector<IndexRange>& owned = {}) {
     const std::size_t n = x.size();
-    comm_ = &comm, owned_first_ = std::min(owned_first, n), owned_last_ = owned_first_ + std::min(owned, n - owned_first_);
+    comm_ = &comm, owned_ = owned.empty() ? std::vector<IndexRange>{{0, x.size()}} : owned;
     if (!(edge > 0.0)) return false;
     Vec<D> low, high;
     for (int k = 0; k < D; ++k) low[k] = 1e300, high[k] = -1e300;
-    for (std::size_t i = owned_first_; i < owned_last_; ++i)
-      for (int k = 0; k < D; ++k) low[k] = std::min(low[k], x[i][k]), high[k] = std::max(high[k], x[i][k]);
+    for (const IndexRange& r : owned_)
+      for (std::size_t i = r.first; i < r.last; ++i)
+        for (int k = 0; k < D; ++k) low[k] = std::min(low[k], x[i][k]), high[k] = std::max(high[k], x[i][k]);
     for (int k = 0; k < D; ++k) low[k] = comm.min(low[k]), high[k] = comm.max(high[k]);
     if (!(low[0] <= high[0])) return false;  // no particle
     for (int k = 0; k < D; ++k) {
@@ -67,7 +69,8 @@ class CoarseSpace {
     };
     // the cells that hold a particle, every rank's owned ones, in grid order
     std::vector<std::uint64_t> occupied;
-    for (std::size_t i = owned_first_; i < owned_last_; ++i) occupied.push_back(cell_of(x[i]));
+    for (const IndexRange& r : owned_)
+      for (std::size_t i = r.first; i < r.last; ++i) occupied.push_back(cell_of(x[i]));
     auto sort_unique = [](std::vector<std::uint64_t>& v) {
       std::sort(v.begin(), v.end());
       v.erase(std::unique(v.begin(), v.end()), v.end());
@@ -210,19 +213,21 @@ class CoarseSpace {
   /// axis (D values per aggregate), in fixed point.
   template <class Counts, class Value>
   std::vector<double> sum_over_aggregates(Counts&& counts, Value&& value) const {
-    std::vector<Vec<D>> values(owned_last_ - owned_first_);
+    std::vector<Vec<D>> values(aggregate_.size());
     double largest = 0.0;
-    for (std::size_t i = owned_first_; i < owned_last_; ++i) {
-      if (aggregate_[i] == none || !counts(i)) continue;
-      const Vec<D> v = value(i);
-      values[i - owned_first_] = v;
-      for (int k = 0; k < D; ++k) largest = std::max(largest, std::abs(v[k]));
-    }
+    for (const IndexRange& r : owned_)
+      for (std::size_t i = r.first; i < r.last; ++i) {
+        if (aggregate_[i] == none || !counts(i)) continue;
+        const Vec<D> v = value(i);
+        values[i] = v;
+        for (int k = 0; k < D; ++k) largest = std::max(largest, std::abs(v[k]));
+      }
     parallel::FixedPointSums sums(cell_.size() * D, comm_->max(largest));
-    for (std::size_t i = owned_first_; i < owned_last_; ++i) {
-      if (aggregate_[i] == none || !counts(i)) continue;
-      for (int k = 0; k < D; ++k) sums.add(std::size_t{aggregate_[i]} * D + static_cast<std::size_t>(k), values[i - owned_first_][k]);
-    }
+    for (const IndexRange& r : owned_)
+      for (std::size_t i = r.first; i < r.last; ++i) {
+        if (aggregate_[i] == none || !counts(i)) continue;
+        for (int k = 0; k < D; ++k) sums.add(std::size_t{aggregate_[i]} * D + static_cast<std::size_t>(k), values[i][k]);
+      }
     sums.add_over(*comm_);
     std::vector<double> out(sums.size());
     for (std::size_t q = 0; q < out.size(); ++q) out[q] = sums[q];
@@ -239,7 +244,7 @@ class CoarseSpace {
   std::vector<std::array<std::int64_t, D>> cell_;
   std::vector<double> blocks_;  // per aggregate, neighbour slot: the D x D block of K_c
   const parallel::Communicator* comm_ = &parallel::Communicator::one();
-  std::size_t owned_first_ = 0, owned_last_ = 0;  // the particles whose terms this rank adds
+  std::vector<IndexRange> owned_;  // the particles whose terms this rank adds
   Eigen::SparseMatrix<double> matrix_;
   Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> solver_;
   Eigen::VectorXd rhs_, solution_;

@@ -53,11 +53,12 @@ class BeyondWindow {
     std::vector<double> boxes(bodies * 2 * D);
     for (std::size_t q = 0; q < bodies; ++q)
       for (int k = 0; k < D; ++k) boxes[(2 * q) * D + k] = std::numeric_limits<double>::max(), boxes[(2 * q + 1) * D + k] = -std::numeric_limits<double>::max();
-    for (std::size_t i = m.owned_begin; i < m.owned_last(); ++i)
-      for (int k = 0; k < D; ++k) {
-        double* const low = &boxes[(2 * m.body[i]) * D], *const high = low + D;
-        low[k] = std::min(low[k], m.position[i][k] - reach), high[k] = std::max(high[k], m.position[i][k] + reach);
-      }
+    for (const IndexRange& owned : m.owned())
+      for (std::size_t i = owned.first; i < owned.last; ++i)
+        for (int k = 0; k < D; ++k) {
+          double* const low = &boxes[(2 * m.body[i]) * D], *const high = low + D;
+          low[k] = std::min(low[k], m.position[i][k] - reach), high[k] = std::max(high[k], m.position[i][k] + reach);
+        }
     const auto all_boxes = comm.all_gather(boxes);
     // whether any of rank r's boxes meets one of this rank's (else none of either's particles is
     // inside the other's: both leave the other out of the exchange)
@@ -90,21 +91,22 @@ class BeyondWindow {
       if (!meets_mine(r)) continue;
       auto& parcel = parcels.emplace_back();
       parcel.peer = static_cast<int>(r);
-      for (std::size_t i = m.owned_begin; i < m.owned_last(); ++i) {
-        const auto global = static_cast<std::int64_t>(m.numbering.whole(i));
-        if (in_window(global)) continue;  // a particle of r's window: r has it
-        bool inside = false;
-        for (std::size_t q = 0; q < bodies && !inside; ++q) {
-          inside = true;
-          for (int k = 0; k < D; ++k)
-            inside = inside && m.position[i][k] >= theirs[(2 * q) * D + k] && m.position[i][k] <= theirs[(2 * q + 1) * D + k];
+      for (const IndexRange& owned : m.owned())
+        for (std::size_t i = owned.first; i < owned.last; ++i) {
+          const auto global = static_cast<std::int64_t>(m.numbering.whole(i));
+          if (in_window(global)) continue;  // a particle of r's window: r has it
+          bool inside = false;
+          for (std::size_t q = 0; q < bodies && !inside; ++q) {
+            inside = true;
+            for (int k = 0; k < D; ++k)
+              inside = inside && m.position[i][k] >= theirs[(2 * q) * D + k] && m.position[i][k] <= theirs[(2 * q + 1) * D + k];
+          }
+          if (!inside) continue;
+          send_[r].push_back(i);
+          // whole-run number, position, volume, body
+          const std::array<double, D + 3> entry = packed(static_cast<double>(global), m.position[i], m.volume[i], static_cast<double>(m.body[i]));
+          append(parcel.send, entry.data(), entry.size());
         }
-        if (!inside) continue;
-        send_[r].push_back(i);
-        // whole-run number, position, volume, body
-        const std::array<double, D + 3> entry = packed(static_cast<double>(global), m.position[i], m.volume[i], static_cast<double>(m.body[i]));
-        append(parcel.send, entry.data(), entry.size());
-      }
     }
     comm.exchange(parcels);
     number.clear(), position.clear(), volume.clear(), body.clear();

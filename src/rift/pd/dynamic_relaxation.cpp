@@ -43,8 +43,8 @@ double DynamicRelaxation<D>::measure_fictitious_density(Model<D>& m, const load:
   // sums and maxima over the owned particles (a distributed run's: every rank's, in the one-rank
   // order, parallel/ordered_sum.hpp); the ghosts' probe from their owners
   const auto& comm = ranks_of<D>(m);
-  const std::size_t owned_begin = m.owned_begin, owned = m.owned_last() - m.owned_begin;
-  if (comm.sum(static_cast<double>(owned)) == 0.0) return row_sum_factor;
+  const std::vector<IndexRange> owned = m.owned();
+  if (comm.sum(static_cast<double>(count_of(owned))) == 0.0) return row_sum_factor;
   // the row-sum bound of eq. 10, lambda_i / row_sum_factor
   std::vector<double> bound(n);
   for (std::size_t i = 0; i < n; ++i) bound[i] = fictitious_density_[i] / row_sum_factor;
@@ -75,7 +75,7 @@ double DynamicRelaxation<D>::measure_fictitious_density(Model<D>& m, const load:
     for (std::size_t i = 0; i < n; ++i) m.position[i] = start[i] + probe * v[i];
     const std::vector<Vec<D>> moved = total_force();
     // w = K v / bound (K v = -(F(x + probe v) - F(x)) / probe); Rayleigh's quotient in the bound's metric
-    const auto sums = parallel::ordered_sums<2>(comm, owned_begin, owned, [&](std::size_t i, std::array<double, 2>& acc) {
+    const auto sums = parallel::ordered_sums<2>(comm, owned, [&](std::size_t i, std::array<double, 2>& acc) {
       for (int q = 0; q < D; ++q) {
         const double kv = m.constrained[i] >> q & 1 ? 0.0 : -(moved[i][q] - at_start[i][q]) / probe;
         acc[0] += m.volume[i] * v[i][q] * kv;
@@ -84,8 +84,9 @@ double DynamicRelaxation<D>::measure_fictitious_density(Model<D>& m, const load:
       }
     });
     double largest = 0.0;
-    for (std::size_t i = owned_begin; i < owned_begin + owned; ++i)
-      for (int q = 0; q < D; ++q) largest = std::max(largest, std::abs(v[i][q]));
+    for (const IndexRange& r : owned)
+      for (std::size_t i = r.first; i < r.last; ++i)
+        for (int q = 0; q < D; ++q) largest = std::max(largest, std::abs(v[i][q]));
     largest = comm.max(largest);
     if (sums[1] > 0.0) mu = sums[0] / sums[1];
     if (!(largest > 0.0) || !std::isfinite(largest)) break;
@@ -115,7 +116,7 @@ RigidAcceleration<D> rigid_acceleration(const Model<D>& m, const std::vector<dou
         for (int k = 0; k < D; ++k) f[k] = (m.force[i][k] + m.body_force[i][k]) * m.volume[i];
         return f;
       },
-      &comm, m.owned_begin, m.owned_last() - m.owned_begin);
+      &comm, m.owned());
 }
 
 template <int D>
@@ -132,8 +133,8 @@ RelaxationResult DynamicRelaxation<D>::relax(Model<D>& m, const load::Boundaries
   // one-rank order (ordered_sum.hpp), so the damping and the residual are its bits
   const auto& comm = ranks_of<D>(m);
   const bool distributed = comm.distributed();
-  const std::size_t owned = m.owned_last() - m.owned_begin;
-  auto sum_over = [&](auto&& f) { return parallel::ordered_sums<4>(comm, m.owned_begin, owned, f); };
+  const std::vector<IndexRange> owned = m.owned();
+  auto sum_over = [&](auto&& f) { return parallel::ordered_sums<4>(comm, owned, f); };
   auto squared_load = [&] {  // ||external force||^2
     return sum_over([&](std::size_t i, std::array<double, 4>& acc) { acc[0] += dot<D>(m.body_force[i], m.body_force[i]) * m.volume[i] * m.volume[i]; })[0];
   };

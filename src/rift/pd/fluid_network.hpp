@@ -202,8 +202,9 @@ void immerse_over_ranks(Model<D>& m) {
   FluidNetwork& f = m.fluid_network;
   f.immersed.assign(m.size(), 0);
   std::vector<std::size_t> wet;
-  for (std::size_t i = m.owned_begin; i < m.owned_last(); ++i)
-    if (f.source[i] >= 0) wet.push_back(i);
+  for (const IndexRange& owned : m.owned())
+    for (std::size_t i = owned.first; i < owned.last; ++i)
+      if (f.source[i] >= 0) wet.push_back(i);
   std::vector<std::size_t> unused;
   close_pieces<D>(m, wet, unused);
   refresh_ghost_values<D>(m, f.immersed);
@@ -303,7 +304,6 @@ void peel_fragments(Model<D>& m, std::vector<std::size_t> candidates, bool over_
   // on N ranks every rank goes through every round (the ghosts' marks are exchanged in each), and
   // takes as its next candidates its own particles alone
   const auto& ranks = ranks_of<D>(m);
-  const std::size_t own_first = over_ranks ? m.owned_begin : 0, own_last = over_ranks ? m.owned_last() : n;
   std::vector<std::size_t> peeled;
   while (over_ranks ? ranks.any(!candidates.empty()) : !candidates.empty()) {
     peel.assign(candidates.size(), 0);
@@ -322,7 +322,7 @@ void peel_fragments(Model<D>& m, std::vector<std::size_t> candidates, bool over_
     for (const std::size_t i : peeled)
       for (auto k = b.offset[i]; k < b.offset[i + 1]; ++k) {
         const auto j = static_cast<std::size_t>(b.neighbor[k]);
-        if (b.intact[k] != bond_intact || f.immersed[j] || f.source[j] < 0 || queued[j] || j < own_first || j >= own_last) continue;
+        if (b.intact[k] != bond_intact || f.immersed[j] || f.source[j] < 0 || queued[j] || (over_ranks && !m.owns(j))) continue;
         queued[j] = 1;
         next.push_back(j);
       }
@@ -375,14 +375,15 @@ void label_as_one_rank(Model<D>& m, std::vector<std::size_t>& queue) {
   // each owned row with any: its number, how many, then each bond's other end j as 2 j, or 2 j + 1
   // across a dry pre-crack (which only a fluid that enters dry cracks crosses)
   std::vector<std::int64_t> rows, seeds;  // seeds: (number, source) of the particles next to a source
-  for (std::size_t i = m.owned_begin; i < m.owned_last(); ++i) {
-    const std::size_t at = rows.size();
-    rows.push_back(number(i)), rows.push_back(0);
-    for_each_fluid_edge<D>(m, i, [&](std::size_t j, bool across_dry) { rows.push_back(2 * number(j) + (across_dry ? 1 : 0)); });
-    rows[at + 1] = static_cast<std::int64_t>(rows.size() - at - 2);
-    if (rows[at + 1] == 0) rows.resize(at);
-    if (const int s = source_next_to<D>(m, i); s >= 0) seeds.push_back(number(i)), seeds.push_back(s);
-  }
+  for (const IndexRange& owned : m.owned())
+    for (std::size_t i = owned.first; i < owned.last; ++i) {
+      const std::size_t at = rows.size();
+      rows.push_back(number(i)), rows.push_back(0);
+      for_each_fluid_edge<D>(m, i, [&](std::size_t j, bool across_dry) { rows.push_back(2 * number(j) + (across_dry ? 1 : 0)); });
+      rows[at + 1] = static_cast<std::int64_t>(rows.size() - at - 2);
+      if (rows[at + 1] == 0) rows.resize(at);
+      if (const int s = source_next_to<D>(m, i); s >= 0) seeds.push_back(number(i)), seeds.push_back(s);
+    }
   const auto& ranks = ranks_of<D>(m);
   const std::vector<std::int64_t> all_rows = ranks.all_gather(rows), all_seeds = ranks.all_gather(seeds);
   std::unordered_map<std::int64_t, std::size_t> row_at;  // a particle's number: where its row starts
@@ -452,21 +453,21 @@ void update_fluid_network(Model<D>& m) {
   const auto& ranks = ranks_of<D>(m);
   const bool distributed = ranks.distributed();
   // the rows this rank decides: on N ranks its owned particles' (the owners decide the ghosts')
-  const std::size_t owned_first = m.owned_begin, owned_last = m.owned_last();
+  const std::vector<IndexRange> owned = m.owned(), ghost_rows = m.ghost_ranges();
   static thread_local std::vector<std::uint64_t> counts;  // the calling thread's, kept between calls
   counts.resize(n);
-  const std::int64_t owned_failed = count_bond_states(b, owned_first, owned_last, counts);
+  std::int64_t owned_failed = 0;
+  for (const IndexRange& r : owned) owned_failed += count_bond_states(b, r.first, r.last, counts);
   const auto count_ghost_rows = [&] {
-    count_bond_states(b, 0, owned_first, counts);
-    count_bond_states(b, owned_last, n, counts);
+    for (const IndexRange& r : ghost_rows) count_bond_states(b, r.first, r.last, counts);
   };
   count_ghost_rows();
-  const std::size_t rows_first = distributed ? owned_first : 0, rows_last = distributed ? owned_last : n;
   // the particles whose bonds changed state since the last update
   std::vector<std::size_t> changed;
   if (made)
-    for (std::size_t i = rows_first; i < rows_last; ++i)
-      if (counts[i] != f.bond_counts[i]) changed.push_back(i);
+    for (const IndexRange& r : owned)
+      for (std::size_t i = r.first; i < r.last; ++i)
+        if (counts[i] != f.bond_counts[i]) changed.push_back(i);
   bool any_changed = !changed.empty();
   if (distributed) {
     // the ghosts' rows as their owners broke them, once a bond changed on any rank
@@ -580,7 +581,7 @@ void update_fluid_network(Model<D>& m) {
     f.vented.assign(f.dry.size(), 0);
     if (f.outer_surface.size() == n)
       for (std::size_t q = next_to_source; q < queue.size(); ++q)
-        if (queue[q] >= owned_first && queue[q] < owned_last && f.outer_surface[queue[q]]) f.vented[static_cast<std::size_t>(f.source[queue[q]])] = 1;
+        if (m.owns(queue[q]) && f.outer_surface[queue[q]]) f.vented[static_cast<std::size_t>(f.source[queue[q]])] = 1;
     set_on_any_rank(ranks, f.vented);
     for (std::size_t s = 0; s < f.vented.size(); ++s) f.broke_through[s] |= f.vented[s];
     {
@@ -691,7 +692,7 @@ double cavity_volume_change(const Model<D>& m, int s, bool wall_only = false) {
   const std::vector<double>* network = static_cast<std::size_t>(s) < loads.size() && !loads[static_cast<std::size_t>(s)].empty()
                                            ? &loads[static_cast<std::size_t>(s)] : nullptr;
   // over the owned particles, in the one-rank run's order on any number of ranks (ordered_sum.hpp)
-  const auto sums = parallel::ordered_sums<1>(ranks_of<D>(m), m.owned_begin, m.owned_last() - m.owned_begin, [&](std::size_t i, std::array<double, 1>& acc) {
+  const auto sums = parallel::ordered_sums<1>(ranks_of<D>(m), m.owned(), [&](std::size_t i, std::array<double, 1>& acc) {
     for (auto k = w.offset[i]; k < w.offset[i + 1]; ++k) {
       if (pressure_bond_source<D>(m, k, i) != s || (wall_only && w.neighbor[k] >= 0)) continue;
       const auto& x = w.xi[k];

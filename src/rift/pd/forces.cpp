@@ -120,9 +120,8 @@ EnergySummary summarize_rows(const Model<D>& m, bool strain_energy, double* dama
   densities.resize(strain_energy ? m.size() : 0);
   double* const density = densities.data();
   if (strain_energy) strain_energy_densities<D>(m, density);
-  const std::size_t first = m.owned_begin, last = m.owned_last();  // a distributed run's ranks sum their own
-  auto sums = parallel::ordered_sums<3>(last - first, [&](std::size_t owned, std::array<double, 3>& acc) {
-    const std::size_t i = first + owned;
+  const std::vector<IndexRange> owned = m.owned();  // a distributed run's ranks sum their own
+  auto sums = parallel::ordered_sums<3>(parallel::Communicator::one(), owned, [&](std::size_t i, std::array<double, 3>& acc) {
     const double rho = m.constants_of(i).density;
     acc[0] += 0.5 * rho * dot<D>(m.velocity[i], m.velocity[i]) * m.volume[i];
     if (strain_energy) {
@@ -141,7 +140,8 @@ EnergySummary summarize_rows(const Model<D>& m, bool strain_energy, double* dama
   s.kinetic = sums[0];
   s.strain = sums[1];
   s.failed_directed = sums[2];
-  s.directed = static_cast<double>(m.bonds.offset[last] - m.bonds.offset[first]);
+  s.directed = 0.0;
+  for (const IndexRange& r : owned) s.directed += static_cast<double>(m.bonds.offset[r.last] - m.bonds.offset[r.first]);
   s.broken_bonds = static_cast<std::int64_t>(s.failed_directed) / 2;
   s.broken_fraction = s.directed > 0.0 ? s.failed_directed / s.directed : 0.0;
   return s;
@@ -184,10 +184,12 @@ template <int D>
 std::size_t failed_bonds(const Model<D>& m) {
   std::size_t failed = 0;
   const auto& intact = m.bonds.intact;
-  if (m.bonds.offset.size() <= m.owned_last()) return 0;
-  const auto first = static_cast<std::size_t>(m.bonds.offset[m.owned_begin]), last = static_cast<std::size_t>(m.bonds.offset[m.owned_last()]);
+  if (m.bonds.offset.size() != m.size() + 1) return 0;
+  for (const IndexRange& r : m.owned()) {
+    const auto first = static_cast<std::size_t>(m.bonds.offset[r.first]), last = static_cast<std::size_t>(m.bonds.offset[r.last]);
 #pragma omp parallel for if(rift::parallel::worth_a_team(last - first)) schedule(static) reduction(+ : failed)
-  for (std::size_t k = first; k < last; ++k) failed += intact[k] != bond_intact;
+    for (std::size_t k = first; k < last; ++k) failed += intact[k] != bond_intact;
+  }
   return failed;
 }
 

@@ -48,7 +48,8 @@ void refresh_ghost_bond_states(Model<D>& m) {
   if (!m.ghosts) return;
   Bonds& b = m.bonds;
   std::vector<std::int64_t>& crossing = m.fluid_network.crossing_broken;
-  const std::size_t n = m.size(), owned_begin = m.owned_begin, owned_last = m.owned_last();
+  const std::size_t n = m.size();
+  const std::vector<IndexRange> owned = m.owned();
   constexpr std::size_t per_double = 16, bits = 3;
   std::size_t family = 0;
   for (const BodyInfo& body : m.bodies) family = std::max(family, body.family_count);
@@ -57,35 +58,36 @@ void refresh_ghost_bond_states(Model<D>& m) {
   auto place = [&](std::size_t i, std::int64_t k) { return b.family[static_cast<std::size_t>(k)] - m.bodies[m.body[i]].first_family; };
   std::vector<double> packed(n * width, 0.0);
   {
-    auto marked = std::lower_bound(crossing.begin(), crossing.end(), b.offset[owned_begin]);
     std::vector<std::uint64_t> words(width);
-    for (std::size_t i = owned_begin; i < owned_last; ++i) {
-      std::fill(words.begin(), words.end(), 0);
-      for (auto k = b.offset[i]; k < b.offset[i + 1]; ++k) {
-        while (marked != crossing.end() && *marked < k) ++marked;
-        const bool crossed = marked != crossing.end() && *marked == k;
-        const std::uint64_t code = b.intact[static_cast<std::size_t>(k)] | (crossed ? 4u : 0u);
-        const std::size_t a = place(i, k);
-        words[a / per_double] |= code << (bits * (a % per_double));
+    for (const IndexRange& r : owned) {
+      auto marked = std::lower_bound(crossing.begin(), crossing.end(), b.offset[r.first]);
+      for (std::size_t i = r.first; i < r.last; ++i) {
+        std::fill(words.begin(), words.end(), 0);
+        for (auto k = b.offset[i]; k < b.offset[i + 1]; ++k) {
+          while (marked != crossing.end() && *marked < k) ++marked;
+          const bool crossed = marked != crossing.end() && *marked == k;
+          const std::uint64_t code = b.intact[static_cast<std::size_t>(k)] | (crossed ? 4u : 0u);
+          const std::size_t a = place(i, k);
+          words[a / per_double] |= code << (bits * (a % per_double));
+        }
+        for (std::size_t q = 0; q < width; ++q) packed[i * width + q] = static_cast<double>(words[q]);
       }
-      for (std::size_t q = 0; q < width; ++q) packed[i * width + q] = static_cast<double>(words[q]);
     }
   }
   m.ghosts->refresh(packed.data(), width);
   // the owned rows' marks kept, the ghosts' rows' from their owners
   std::vector<std::int64_t> marks;
-  const std::int64_t owned_first_bond = b.offset[owned_begin], owned_last_bond = b.offset[owned_last];
-  for (const std::int64_t k : crossing)
-    if (k >= owned_first_bond && k < owned_last_bond) marks.push_back(k);
-  for (std::size_t i = 0; i < n; ++i) {
-    if (i >= owned_begin && i < owned_last) continue;
-    for (auto k = b.offset[i]; k < b.offset[i + 1]; ++k) {
-      const std::size_t a = place(i, k);
-      const auto code = static_cast<std::uint64_t>(packed[i * width + a / per_double]) >> (bits * (a % per_double)) & 7u;
-      b.intact[static_cast<std::size_t>(k)] = static_cast<std::uint8_t>(code & 3u);
-      if (code & 4u) marks.push_back(k);
-    }
-  }
+  for (const IndexRange& r : owned)
+    marks.insert(marks.end(), std::lower_bound(crossing.begin(), crossing.end(), b.offset[r.first]),
+                 std::lower_bound(crossing.begin(), crossing.end(), b.offset[r.last]));
+  for (const IndexRange& r : m.ghost_ranges())
+    for (std::size_t i = r.first; i < r.last; ++i)
+      for (auto k = b.offset[i]; k < b.offset[i + 1]; ++k) {
+        const std::size_t a = place(i, k);
+        const auto code = static_cast<std::uint64_t>(packed[i * width + a / per_double]) >> (bits * (a % per_double)) & 7u;
+        b.intact[static_cast<std::size_t>(k)] = static_cast<std::uint8_t>(code & 3u);
+        if (code & 4u) marks.push_back(k);
+      }
   std::sort(marks.begin(), marks.end());
   crossing = std::move(marks);
 }

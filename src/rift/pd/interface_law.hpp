@@ -161,26 +161,25 @@ template <int D>
 void update_interface_strain(Model<D>& m) {
   InterfaceBonds& ib = m.interface_bonds;
   const auto& rows = ib.particles;
-  const std::size_t owned_first = m.owned_begin, owned_last = m.owned_last();
   ib.strain.resize(rows.size());
 #pragma omp parallel for if(rift::parallel::worth_a_team(rows.size())) schedule(static)
   for (std::size_t r = 0; r < rows.size(); ++r) {
     const auto i = static_cast<std::size_t>(rows[r]);
-    if (i >= owned_first && i < owned_last) ib.strain[r] = bulk_strain<D>(m, i);
+    if (m.owns(i)) ib.strain[r] = bulk_strain<D>(m, i);
   }
   if (!m.ghosts) return;
   constexpr std::size_t width = D * D;
   std::vector<double> field(m.size() * width, 0.0);
   for (std::size_t r = 0; r < rows.size(); ++r) {
     const auto i = static_cast<std::size_t>(rows[r]);
-    if (i < owned_first || i >= owned_last) continue;
+    if (!m.owns(i)) continue;
     for (int p = 0; p < D; ++p)
       for (int q = 0; q < D; ++q) field[i * width + static_cast<std::size_t>(D * p + q)] = ib.strain[r][static_cast<std::size_t>(3 * p + q)];
   }
   m.refresh_ghosts(field, width);
   for (std::size_t r = 0; r < rows.size(); ++r) {
     const auto i = static_cast<std::size_t>(rows[r]);
-    if (i >= owned_first && i < owned_last) continue;
+    if (m.owns(i)) continue;
     ib.strain[r] = {};
     for (int p = 0; p < D; ++p)
       for (int q = 0; q < D; ++q) ib.strain[r][static_cast<std::size_t>(3 * p + q)] = field[i * width + static_cast<std::size_t>(D * p + q)];
@@ -198,8 +197,7 @@ void apply_interface_law(Model<D>& m) {
   update_interface_strain<D>(m);
   Bonds& b = m.bonds;
   const auto& rows = ib.particles;
-  const std::size_t owned_first = m.owned_begin, owned_last = m.owned_last();
-  auto owned = [&](std::size_t i) { return i >= owned_first && i < owned_last; };
+  auto owned = [&](std::size_t i) { return m.owns(i); };
   std::vector<std::array<double, 9>> stress(rows.size());
   std::vector<double> pressure(rows.size());
 #pragma omp parallel for if(rift::parallel::worth_a_team(rows.size())) schedule(static)

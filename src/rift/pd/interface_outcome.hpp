@@ -80,43 +80,44 @@ std::vector<InterfaceOutcome> classify_interfaces(const Model<D>& m) {
   };
   // over the owned rows (on N ranks each rank's, then reduced: a rank's window holds its owned
   // particles' whole rows)
-  const std::size_t owned_first = m.owned_begin, owned_last = m.owned_last();
   // crossed, and reached by rock broken near the plane
-  for (std::size_t i = owned_first; i < owned_last; ++i)
-    for (auto k = b.offset[i]; k < b.offset[i + 1]; ++k) {
-      const auto j = static_cast<std::size_t>(b.neighbor[k]);
-      if (j < i || b.intact[k] != bond_broken) continue;
-      const bool fed = wet(i) && wet(j);  // part of the fracture the fluid drives, not stray damage (block corners)
-      const Point3 x = point_of(m.reference_position[i], m.reference_position[j]);
-      for (std::size_t f = 0; f < out.size(); ++f) {
-        const auto& law = ib.laws[f];
-        const double d = dot<3>(x - law.point, law.normal);
-        if (!within_extent(f, x, d)) continue;
-        if (std::abs(d) < crossing_depth * horizon) out[f].reached = true;
-        if (!fed || law.near_side == 0 || d * law.near_side >= 0.0) continue;
-        out[f].crossing_distance = std::max(out[f].crossing_distance, std::abs(d));
+  for (const IndexRange& owned : m.owned())
+    for (std::size_t i = owned.first; i < owned.last; ++i)
+      for (auto k = b.offset[i]; k < b.offset[i + 1]; ++k) {
+        const auto j = static_cast<std::size_t>(b.neighbor[k]);
+        if (j < i || b.intact[k] != bond_broken) continue;
+        const bool fed = wet(i) && wet(j);  // part of the fracture the fluid drives, not stray damage (block corners)
+        const Point3 x = point_of(m.reference_position[i], m.reference_position[j]);
+        for (std::size_t f = 0; f < out.size(); ++f) {
+          const auto& law = ib.laws[f];
+          const double d = dot<3>(x - law.point, law.normal);
+          if (!within_extent(f, x, d)) continue;
+          if (std::abs(d) < crossing_depth * horizon) out[f].reached = true;
+          if (!fed || law.near_side == 0 || d * law.near_side >= 0.0) continue;
+          out[f].crossing_distance = std::max(out[f].crossing_distance, std::abs(d));
+        }
       }
-    }
   // dilated: span of the open, wet failed interface bonds
   std::vector<double> lo(out.size(), std::numeric_limits<double>::max()), hi(out.size(), -std::numeric_limits<double>::max());
   std::vector<double> lo2 = lo, hi2 = hi;
-  for (std::size_t i = owned_first; i + 1 < ib.offset.size() && i < owned_last; ++i)
-    for (auto q = ib.offset[i]; q < ib.offset[i + 1]; ++q) {
-      const auto k = static_cast<std::size_t>(ib.slot[static_cast<std::size_t>(q)]);
-      if (b.intact[k] == bond_intact) continue;
-      const std::size_t f = ib.interface[static_cast<std::size_t>(q)];
-      out[f].reached = true;
-      if (b.intact[k] != bond_interface_failed) continue;  // broke as rock: the crossing fracture's, not the interface's opening
-      const auto j = static_cast<std::size_t>(b.neighbor[k]);
-      if (!wet(i) || !wet(j)) continue;
-      const auto& law = ib.laws[f];
-      if (net.pressure[static_cast<std::size_t>(net.source[i])] <= law.in_situ_normal_compression) continue;  // held shut (EQ 4.7)
-      if (!interface_faces_apart<D>(m, static_cast<std::int64_t>(k), i, j, law)) continue;  // open as far as a rock bond breaks
-      const Point3 x = point_of(m.reference_position[i], m.reference_position[j]);
-      const double t = dot<3>(x - law.point, law.tangent), t2 = dot<3>(x - law.point, law.binormal);
-      lo[f] = std::min(lo[f], t), hi[f] = std::max(hi[f], t);
-      lo2[f] = std::min(lo2[f], t2), hi2[f] = std::max(hi2[f], t2);
-    }
+  for (const IndexRange& owned : m.owned())
+    for (std::size_t i = owned.first; i + 1 < ib.offset.size() && i < owned.last; ++i)
+      for (auto q = ib.offset[i]; q < ib.offset[i + 1]; ++q) {
+        const auto k = static_cast<std::size_t>(ib.slot[static_cast<std::size_t>(q)]);
+        if (b.intact[k] == bond_intact) continue;
+        const std::size_t f = ib.interface[static_cast<std::size_t>(q)];
+        out[f].reached = true;
+        if (b.intact[k] != bond_interface_failed) continue;  // broke as rock: the crossing fracture's, not the interface's opening
+        const auto j = static_cast<std::size_t>(b.neighbor[k]);
+        if (!wet(i) || !wet(j)) continue;
+        const auto& law = ib.laws[f];
+        if (net.pressure[static_cast<std::size_t>(net.source[i])] <= law.in_situ_normal_compression) continue;  // held shut (EQ 4.7)
+        if (!interface_faces_apart<D>(m, static_cast<std::int64_t>(k), i, j, law)) continue;  // open as far as a rock bond breaks
+        const Point3 x = point_of(m.reference_position[i], m.reference_position[j]);
+        const double t = dot<3>(x - law.point, law.tangent), t2 = dot<3>(x - law.point, law.binormal);
+        lo[f] = std::min(lo[f], t), hi[f] = std::max(hi[f], t);
+        lo2[f] = std::min(lo2[f], t2), hi2[f] = std::max(hi2[f], t2);
+      }
   const auto& ranks = ranks_of<D>(m);
   if (ranks.distributed()) {
     // the largest of each over the ranks: reached, the crossing distance, and the open span's ends

@@ -11,6 +11,7 @@
 #include "rift/core/vec.hpp"
 #include "rift/pd/bonds.hpp"
 #include "rift/pd/material_constants.hpp"
+#include "rift/core/index_range.hpp"
 #include "rift/pd/numbering.hpp"
 #include "rift/pd/platens.hpp"
 
@@ -72,10 +73,10 @@ struct Model {
   int dimension = D;
   double thickness = 1.0;
   double time = 0.0;
-  // A distributed run (pd/window.hpp): this rank's window of the particles, the owned ones
-  // [owned_begin, owned_end) and the ghosts around them, which `ghosts` refreshes from their owners.
-  // One rank: every particle is owned, no ghosts.
-  std::size_t owned_begin = 0, owned_end = static_cast<std::size_t>(-1);
+  // A distributed run (pd/window.hpp): this rank's window of the particles, the owned ones (ranges
+  // of it, ascending) and the ghosts around them, which `ghosts` refreshes from their owners. One
+  // rank: every particle is owned (no ranges), no ghosts.
+  std::vector<IndexRange> owned_ranges;
   Numbering numbering;  // the whole run's numbers of the window's particles (empty: one rank's)
   // the window's particles whose rows are whole (a ghost's row within the bonds' reach of the
   // window's edge is cut to the window): [uncut_rows_begin, uncut_rows_end)
@@ -83,7 +84,28 @@ struct Model {
   const Ghosts* ghosts = nullptr;
 
   std::size_t size() const { return position.size(); }
-  std::size_t owned_last() const { return std::min(owned_end, size()); }
+  /// The owned particles: ranges of the window, ascending (one rank: [0, size())).
+  std::vector<IndexRange> owned() const { return owned_ranges.empty() ? std::vector<IndexRange>{{0, size()}} : owned_ranges; }
+  bool owns(std::size_t i) const { return owned_ranges.empty() ? i < size() : any_contains(owned_ranges, i); }
+  std::size_t owned_count() const { return owned_ranges.empty() ? size() : count_of(owned_ranges); }
+  /// The directed bonds of the owned particles' rows.
+  std::size_t owned_bonds() const {
+    std::size_t count = 0;
+    for (const IndexRange& r : owned())
+      if (bonds.offset.size() > r.last) count += static_cast<std::size_t>(bonds.offset[r.last] - bonds.offset[r.first]);
+    return count;
+  }
+  /// The ghosts: the window's particles between and around the owned ranges (one rank: none).
+  std::vector<IndexRange> ghost_ranges() const {
+    std::vector<IndexRange> ghosts;
+    std::size_t from = 0;
+    for (const IndexRange& r : owned()) {
+      if (r.first > from) ghosts.push_back({from, r.first});
+      from = std::max(from, r.last);
+    }
+    if (from < size()) ghosts.push_back({from, size()});
+    return ghosts;
+  }
   /// The ghosts' copies of a field of doubles or vectors, from their owners (nothing on one rank).
   void refresh_ghosts(std::vector<double>& field, std::size_t width = 1) const {
     if (ghosts && !field.empty()) ghosts->refresh(field.data(), width);

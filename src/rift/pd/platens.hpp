@@ -44,7 +44,7 @@ std::array<double, K> platen_sums(const Model& m, const Platen& p, Values&& valu
   }
   std::vector<double> owned;  // K values per owned particle
   for (const auto i : p.particles)
-    if (i >= m.owned_begin && i < m.owned_last()) {
+    if (m.owns(i)) {
       const std::array<double, K> v = values(i);
       owned.insert(owned.end(), v.begin(), v.end());
     }

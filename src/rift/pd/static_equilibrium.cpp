@@ -33,10 +33,10 @@ RelaxationResult solve_static_equilibrium(Model<D>& m, const load::Boundaries<D>
   // in the one-rank order (parallel/ordered_sum.hpp), and its ghosts' iterates come from their
   // owners, so its iterations are the one-rank run's bits (a rank that owns none goes along).
   const auto& comm = ranks_of<D>(m);
-  const std::size_t owned_begin = m.owned_begin, owned = m.owned_last() - m.owned_begin;
-  const double particles = comm.sum(static_cast<double>(owned));  // the whole run's
+  const std::vector<IndexRange> owned = m.owned();
+  const double particles = comm.sum(static_cast<double>(count_of(owned)));  // the whole run's
   if (particles == 0.0 || !(shortest < std::numeric_limits<double>::max())) return result;
-  auto sum_over = [&](auto&& f) { return parallel::ordered_sums<2>(comm, owned_begin, owned, f); };
+  auto sum_over = [&](auto&& f) { return parallel::ordered_sums<2>(comm, owned, f); };
   const bool held_here = std::any_of(m.constrained.begin(), m.constrained.end(), [](std::uint8_t c) { return c != 0; });
   const bool free_body = !comm.any(held_here);
   const std::vector<std::uint8_t> on_platen = platen_components(m);
@@ -95,7 +95,7 @@ RelaxationResult solve_static_equilibrium(Model<D>& m, const load::Boundaries<D>
   std::vector<double> platen_force(m.platens.size());
   CoarseSpace<D> coarse;
   auto prepare = [&] {
-    if (free_body) rigid = rigid_acceleration<D>(base, weight, [&](std::size_t i) { return r[i]; }, &comm, owned_begin, owned);
+    if (free_body) rigid = rigid_acceleration<D>(base, weight, [&](std::size_t i) { return r[i]; }, &comm, owned);
     for (std::size_t a = 0; a < m.platens.size(); ++a) {
       const int k = m.platens[a].axis;
       platen_force[a] = platen_sums<1>(m, m.platens[a], [&](std::size_t i) { return std::array<double, 1>{r[i][k]}; })[0];
@@ -109,7 +109,7 @@ RelaxationResult solve_static_equilibrium(Model<D>& m, const load::Boundaries<D>
       return y;
     });
     if (free_body)
-      coarse_rigid = rigid_acceleration<D>(base, weight, [&](std::size_t i) { return weight(i) * coarse.at(i); }, &comm, owned_begin, owned);
+      coarse_rigid = rigid_acceleration<D>(base, weight, [&](std::size_t i) { return weight(i) * coarse.at(i); }, &comm, owned);
   };
   auto preconditioned = [&](std::size_t i) {
     Vec<D> z{};
@@ -155,7 +155,7 @@ RelaxationResult solve_static_equilibrium(Model<D>& m, const load::Boundaries<D>
   // forces' change as that colour's aggregates move along the axis by a millionth of the shortest bond
   double reach = 0.0, spacing = std::numeric_limits<double>::max();
   for (const auto& body : m.bodies) reach = std::max(reach, body.constants.horizon), spacing = std::min(spacing, body.constants.spacing);
-  if (m.platens.empty() && coarse.make_aggregates(m.reference_position, 2.0 * reach + spacing, comm, owned_begin, owned)) {
+  if (m.platens.empty() && coarse.make_aggregates(m.reference_position, 2.0 * reach + spacing, comm, owned)) {
     const double probe = 1e-6 * shortest;
     coarse.assemble(held, [&](auto direction) {
 #pragma omp parallel for if(rift::parallel::worth_a_team(n)) schedule(static)
@@ -186,8 +186,9 @@ RelaxationResult solve_static_equilibrium(Model<D>& m, const load::Boundaries<D>
     for (std::size_t i = 0; i < n; ++i) p[i] = preconditioned(i) + beta * p[i];
     m.refresh_ghosts(p);  // a ghost's preconditioned residual is its owner's to make
     double largest = 0.0;
-    for (std::size_t i = owned_begin; i < owned_begin + owned; ++i)
-      for (int k = 0; k < D; ++k) largest = std::max(largest, std::abs(p[i][k]));
+    for (const IndexRange& r : owned)
+      for (std::size_t i = r.first; i < r.last; ++i)
+        for (int k = 0; k < D; ++k) largest = std::max(largest, std::abs(p[i][k]));
     largest = comm.max(largest);
     if (!(largest > 0.0) || !std::isfinite(largest)) break;
     // K p from a probe of a millionth of the shortest bond at the base

@@ -99,16 +99,16 @@ double viscous_fluid_pressure(Model<D>& m, std::size_t s, double t, double injec
   // reaches, ascending. On N ranks each rank numbers its owned particles' nodes after the lower
   // ranks' (the one-rank numbering), and the ghosts take their owners' numbers.
   const auto& ranks = ranks_of<D>(m);
-  const std::size_t owned_first = m.owned_begin, owned_last = m.owned_last();  // one rank: every particle
   const CrackBonds& w = m.crack_bonds;
   std::vector<std::size_t> wet;
   std::vector<std::uint8_t> wall(n, 0), notch(f.dry.size(), 0);
-  for (std::size_t i = owned_first; i < owned_last; ++i) {
-    if (f.source[i] != static_cast<int>(s) || (!f.immersed.empty() && f.immersed[i])) continue;
-    wet.push_back(i);
-    for (auto k = w.offset[i]; k < w.offset[i + 1] && !wall[i]; ++k)
-      wall[i] = w.neighbor[static_cast<std::size_t>(k)] < 0 && w.source[static_cast<std::size_t>(k)] == s;
-  }
+  for (const IndexRange& owned : m.owned())
+    for (std::size_t i = owned.first; i < owned.last; ++i) {
+      if (f.source[i] != static_cast<int>(s) || (!f.immersed.empty() && f.immersed[i])) continue;
+      wet.push_back(i);
+      for (auto k = w.offset[i]; k < w.offset[i + 1] && !wall[i]; ++k)
+        wall[i] = w.neighbor[static_cast<std::size_t>(k)] < 0 && w.source[static_cast<std::size_t>(k)] == s;
+    }
   // a dry pre-crack that a wall particle's bonds cross starts in the borehole: a notch, whose faces
   // share its pressure (a pre-crack closed at first carries no flow, and the fluid would never enter)
   for (const std::size_t i : wet)
@@ -213,19 +213,20 @@ double viscous_fluid_pressure(Model<D>& m, std::size_t s, double t, double injec
   if (s < f.network_load.size() && !f.network_load[s].empty()) {
     const auto& g = f.network_load[s];
     const Bonds& b = m.bonds;
-    for (std::size_t i = owned_first; i < owned_last; ++i) {
-      if (node[i] >= 0) continue;
-      bool loaded = false;
-      for (int q = 0; q < D; ++q) loaded = loaded || g[i * D + static_cast<std::size_t>(q)] != 0.0;
-      if (!loaded) continue;
-      double sum = 0.0;
-      int count = 0;
-      for (auto k = b.offset[i]; k < b.offset[i + 1]; ++k) {
-        const auto j = static_cast<std::size_t>(b.neighbor[k]);
-        if (node[j] >= 0) sum += p[static_cast<std::size_t>(node[j])], ++count;
+    for (const IndexRange& owned : m.owned())
+      for (std::size_t i = owned.first; i < owned.last; ++i) {
+        if (node[i] >= 0) continue;
+        bool loaded = false;
+        for (int q = 0; q < D; ++q) loaded = loaded || g[i * D + static_cast<std::size_t>(q)] != 0.0;
+        if (!loaded) continue;
+        double sum = 0.0;
+        int count = 0;
+        for (auto k = b.offset[i]; k < b.offset[i + 1]; ++k) {
+          const auto j = static_cast<std::size_t>(b.neighbor[k]);
+          if (node[j] >= 0) sum += p[static_cast<std::size_t>(node[j])], ++count;
+        }
+        f.local_pressure[i] = count > 0 ? sum / count : p[0];
       }
-      f.local_pressure[i] = count > 0 ? sum / count : p[0];
-    }
   }
   m.refresh_ghosts(f.local_pressure);
   if (s < f.cavity_volume.size()) {

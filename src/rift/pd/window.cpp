@@ -80,11 +80,11 @@ void window_viscous_history(const Bonds& b, const std::vector<BodyInfo>& bodies,
   c.summed_bonds = slice(b.summed_bonds, w0, w1);
 }
 
-/// Drops the runs (bond_runs.hpp) without an owned end [owned_begin, owned_end): the bonds between
+/// Drops the runs (bond_runs.hpp) without an owned end (in the ranges `owned`): the bonds between
 /// two ghosts are their owners' to compute (the ghosts' fields come from there). A run with one is
 /// kept whole, in its place: cut shorter it could change from the vector form to the bond-by-bond
 /// one, which adds a particle's two ends of one run in the other order.
-void drop_runs_of_ghosts(BodyInfo& part, std::size_t owned_begin, std::size_t owned_end) {
+void drop_runs_of_ghosts(BodyInfo& part, const std::vector<IndexRange>& owned) {
   if (part.runs.empty()) return;
   std::vector<BondRun> kept;
   std::vector<std::size_t> slab_runs(part.slab_runs.size(), 0);
@@ -92,7 +92,10 @@ void drop_runs_of_ghosts(BodyInfo& part, std::size_t owned_begin, std::size_t ow
     for (std::size_t k = part.slab_runs[q]; k < part.slab_runs[q + 1]; ++k) {
       const BondRun& r = part.runs[k];
       const auto i = static_cast<std::size_t>(r.i), j = static_cast<std::size_t>(r.j);
-      const bool owned_lower = i < owned_end && i + r.length > owned_begin, owned_upper = j < owned_end && j + r.length > owned_begin;
+      auto any_owned = [&](std::size_t first, std::size_t last) {
+        return std::any_of(owned.begin(), owned.end(), [&](const IndexRange& a) { return first < a.last && last > a.first; });
+      };
+      const bool owned_lower = any_owned(i, i + r.length), owned_upper = any_owned(j, j + r.length);
       if (!owned_lower && !owned_upper) continue;
       kept.push_back(r);
       ++slab_runs[q + 1];
@@ -229,8 +232,7 @@ Model<D> window_of(const Model<D>& m, const Partition& p, int rank) {
   w.dimension = m.dimension;
   w.thickness = m.thickness;
   w.time = m.time;
-  w.owned_begin = p.owned[r] - w0;
-  w.owned_end = p.owned[r + 1] - w0;
+  w.owned_ranges = {{p.owned[r] - w0, p.owned[r + 1] - w0}};
   w.numbering = Numbering::range(w0, n);
   w.uncut_rows_begin = w0 == 0 ? 0 : std::min(n, p.reach);
   w.uncut_rows_end = w1 == m.size() ? n : n - std::min(n, p.reach);
@@ -269,7 +271,7 @@ Model<D> window_of(const Model<D>& m, const Partition& p, int rank) {
     part.last = std::clamp(body.last, w0, w1) - w0;
     part.origin = static_cast<std::int64_t>(body.first) - static_cast<std::int64_t>(w0);
     make_bond_runs(c, part);
-    drop_runs_of_ghosts(part, w.owned_begin, w.owned_end);
+    drop_runs_of_ghosts(part, w.owned_ranges);
     w.bodies.push_back(std::move(part));
   }
   if (!b.back_extension.empty()) window_viscous_history(b, m.bodies, w.bodies, w0, w1, c);

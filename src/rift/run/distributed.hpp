@@ -28,13 +28,25 @@ inline pd::EnergySummary reduce(const parallel::Communicator& comm, pd::EnergySu
   return e;
 }
 
+/// The entries of the owned particles' rows, range after range: `width` per particle, or with
+/// `offset` (a CSR's, one more than the particles) the entries [offset[i], offset[i + 1]) of row i.
+template <int D, class T>
+std::vector<T> owned_entries(const pd::Model<D>& m, const std::vector<T>& v, std::size_t width = 1, const std::vector<std::int64_t>* offset = nullptr) {
+  std::vector<T> out;
+  for (const IndexRange& r : m.owned()) {
+    const auto first = offset ? static_cast<std::size_t>((*offset)[r.first]) : r.first * width;
+    const auto last = offset ? static_cast<std::size_t>((*offset)[r.last]) : r.last * width;
+    out.insert(out.end(), v.begin() + static_cast<std::ptrdiff_t>(first), v.begin() + static_cast<std::ptrdiff_t>(last));
+  }
+  return out;
+}
+
 /// A per-particle field (`width` values each) of the owned particles, the whole run's on rank 0.
 template <int D>
 std::vector<double> gather_owned(const parallel::Communicator& comm, const pd::Model<D>& m, const std::vector<double>& field,
                                  std::size_t width) {
   if (!comm.distributed()) return field;
-  const auto first = static_cast<std::ptrdiff_t>(m.owned_begin * width), last = static_cast<std::ptrdiff_t>(m.owned_last() * width);
-  return comm.gather(std::vector<double>(field.begin() + first, field.begin() + last));
+  return comm.gather(owned_entries<D>(m, field, width));
 }
 
 /// The owned particles' share of a per-particle array (`width` entries each), the whole run's on
@@ -43,8 +55,7 @@ template <int D, class T>
 void gather_into(const parallel::Communicator& comm, const pd::Model<D>& m, const std::vector<T>& local, std::vector<T>* whole,
                  std::size_t width = 1) {
   if (local.empty()) return;
-  const auto first = static_cast<std::ptrdiff_t>(m.owned_begin * width), last = static_cast<std::ptrdiff_t>(m.owned_last() * width);
-  auto all = comm.gather(std::vector<T>(local.begin() + first, local.begin() + last));
+  auto all = comm.gather(owned_entries<D>(m, local, width));
   if (whole) *whole = std::move(all);
 }
 
@@ -100,7 +111,7 @@ void gather_fluid(const parallel::Communicator& comm, const pd::Model<D>& m, pd:
     std::vector<std::int64_t> rows_and_places;
     for (const std::int64_t k : list) {
       const std::size_t i = b.row_of(k);
-      if (i < m.owned_begin || i >= m.owned_last()) continue;
+      if (!m.owns(i)) continue;
       rows_and_places.push_back(static_cast<std::int64_t>(m.numbering.whole(i))), rows_and_places.push_back(k - b.offset[i]);
     }
     const auto all = comm.gather(rows_and_places);
@@ -127,9 +138,8 @@ void gather_interfaces(const parallel::Communicator& comm, const pd::Model<D>& m
   const pd::InterfaceBonds& ib = m.interface_bonds;
   pd::InterfaceBonds* g = whole ? &whole->interface_bonds : nullptr;
   if (ib.offset.empty()) return;
-  const auto first = static_cast<std::ptrdiff_t>(ib.offset[m.owned_begin]), last = static_cast<std::ptrdiff_t>(ib.offset[m.owned_last()]);
   auto entries = [&](const auto& v, auto* into) {
-    auto all = comm.gather(std::remove_cvref_t<decltype(v)>(v.begin() + first, v.begin() + last));
+    auto all = comm.gather(owned_entries<D>(m, v, 1, &ib.offset));
     if (into) *into = std::move(all);
   };
   entries(ib.slip, g ? &g->slip : nullptr);
@@ -140,7 +150,8 @@ void gather_interfaces(const parallel::Communicator& comm, const pd::Model<D>& m
     return std::lower_bound(rows.begin(), rows.end(), static_cast<std::int32_t>(i)) - rows.begin();
   };
   if (comm.any(ib.strain.size() == rows.size() && !rows.empty())) {
-    std::vector<std::array<double, 9>> strain(ib.strain.begin() + first_row_at(m.owned_begin), ib.strain.begin() + first_row_at(m.owned_last()));
+    std::vector<std::array<double, 9>> strain;
+    for (const IndexRange& r : m.owned()) strain.insert(strain.end(), ib.strain.begin() + first_row_at(r.first), ib.strain.begin() + first_row_at(r.last));
     auto all = comm.gather(strain);
     if (g) g->strain = std::move(all);
   }
@@ -166,8 +177,7 @@ void gather_model(const parallel::Communicator& comm, const pd::Model<D>& m, pd:
   const pd::Bonds& b = m.bonds;
   pd::Bonds* w = whole ? &whole->bonds : nullptr;
   {
-    const auto first = b.intact.begin() + b.offset[m.owned_begin], last = b.intact.begin() + b.offset[m.owned_last()];
-    auto all = comm.gather(std::vector<std::uint8_t>(first, last));
+    auto all = comm.gather(owned_entries<D>(m, b.intact, 1, &b.offset));
     if (w) w->intact = std::move(all);
   }
   if (!b.back_extension.empty()) {
@@ -186,9 +196,10 @@ void gather_model(const parallel::Communicator& comm, const pd::Model<D>& m, pd:
       }
     };
     std::vector<float> mine;
-    each_slot(m, m.owned_begin, m.owned_last(), [&](std::size_t h) {
-      mine.insert(mine.end(), {b.back_extension[h], b.back_extension[pd::mirror_history_slot(h)], b.last_extension[pd::pair_slot(h)]});
-    });
+    for (const IndexRange& r : m.owned())
+      each_slot(m, r.first, r.last, [&](std::size_t h) {
+        mine.insert(mine.end(), {b.back_extension[h], b.back_extension[pd::mirror_history_slot(h)], b.last_extension[pd::pair_slot(h)]});
+      });
     const auto all = comm.gather(mine);
     if (w) {
       std::size_t at = 0;
@@ -207,7 +218,8 @@ void gather_model(const parallel::Communicator& comm, const pd::Model<D>& m, pd:
 template <int D>
 double max_damage(const parallel::Communicator& comm, const pd::Model<D>& m) {
   double d = 0.0;
-  for (std::size_t i = m.owned_begin; i < m.owned_last(); ++i) d = std::max(d, m.damage[i]);
+  for (const IndexRange& owned : m.owned())
+    for (std::size_t i = owned.first; i < owned.last; ++i) d = std::max(d, m.damage[i]);
   return comm.max(d);
 }
 

@@ -162,9 +162,14 @@ void write_snapshot(io::FieldWriter& fields, pd::Model<D>& m, const scene::Scene
     void write(const std::string& name, const std::vector<double>& values, int components) {
       if (!comm.distributed()) return fields.write(name, values, components);
       const auto width = static_cast<std::size_t>(components);
-      const auto first = static_cast<std::ptrdiff_t>(m.owned_begin * width), last = static_cast<std::ptrdiff_t>(m.owned_last() * width);
-      fields.write_rows(name, std::vector<double>(values.begin() + first, values.begin() + last), components,
-                        {{m.numbering.whole(m.owned_begin), m.owned_last() - m.owned_begin}});
+      std::vector<double> owned_values;
+      std::vector<io::FieldWriter::Rows> rows;
+      for (const IndexRange& r : m.owned()) {
+        owned_values.insert(owned_values.end(), values.begin() + static_cast<std::ptrdiff_t>(r.first * width),
+                            values.begin() + static_cast<std::ptrdiff_t>(r.last * width));
+        if (r.size() > 0) rows.push_back({m.numbering.whole(r.first), r.size()});
+      }
+      fields.write_rows(name, owned_values, components, rows);
     }
   } w{fields, m, comm};
   fields.begin_snapshot(m.time);
@@ -198,15 +203,16 @@ void write_snapshot(io::FieldWriter& fields, pd::Model<D>& m, const scene::Scene
 template <int D>
 void check_finite(const pd::Model<D>& m, long step, const pd::EnergySummary& e) {
   if (std::isfinite(e.kinetic) && std::isfinite(e.strain)) return;
-  for (std::size_t i = m.owned_begin; i < m.owned_last(); ++i)
-    for (int k = 0; k < D; ++k)
-      if (!std::isfinite(m.position[i][k]) || !std::isfinite(m.velocity[i][k])) {
-        std::string where;
-        for (int q = 0; q < D; ++q) where += (q ? ", " : "") + std::to_string(m.reference_position[i][q]);
-        throw PhysicsError("step " + std::to_string(step) + ": particle " + std::to_string(m.numbering.whole(i)) + " of body \"" +
-                           m.bodies[m.body[i]].name + "\" (reference position " + where +
-                           ") has a non-finite position or velocity; the time step is likely above the stable limit or a load is unbounded");
-      }
+  for (const IndexRange& owned : m.owned())
+    for (std::size_t i = owned.first; i < owned.last; ++i)
+      for (int k = 0; k < D; ++k)
+        if (!std::isfinite(m.position[i][k]) || !std::isfinite(m.velocity[i][k])) {
+          std::string where;
+          for (int q = 0; q < D; ++q) where += (q ? ", " : "") + std::to_string(m.reference_position[i][q]);
+          throw PhysicsError("step " + std::to_string(step) + ": particle " + std::to_string(m.numbering.whole(i)) + " of body \"" +
+                             m.bodies[m.body[i]].name + "\" (reference position " + where +
+                             ") has a non-finite position or velocity; the time step is likely above the stable limit or a load is unbounded");
+        }
   throw PhysicsError("step " + std::to_string(step) + ": energy is not finite");
 }
 
@@ -216,8 +222,7 @@ void check_finite(const pd::Model<D>& m, long step, const pd::EnergySummary& e) 
 template <int D>
 std::string load_balance(const parallel::Communicator& comm, const pd::Model<D>& m, double loop_seconds, double in_mpi, std::size_t ghosts) {
   constexpr std::size_t k = 5;
-  const auto all = comm.gather(std::vector<double>{double(m.owned_last() - m.owned_begin), double(ghosts),
-                                double(m.bonds.offset[m.owned_last()] - m.bonds.offset[m.owned_begin]), loop_seconds, in_mpi});
+  const auto all = comm.gather(std::vector<double>{double(m.owned_count()), double(ghosts), double(m.owned_bonds()), loop_seconds, in_mpi});
   std::string out = fmt::format("load balance over {} ranks (owned particles, ghosts, directed bonds, loop time, of it in MPI calls):", comm.size());
   for (std::size_t r = 0; k * r < all.size(); ++r)
     out += fmt::format("{} rank {}: {:.0f}, {:.0f}, {:.0f}, {:.3g} s, {:.3g} s", r ? ";" : "", r, all[k * r], all[k * r + 1], all[k * r + 2],
@@ -236,7 +241,7 @@ Result run_dim(const scene::Scene& s, const Options& o) {
   // the damage of probe k: its owner's (the others add nothing)
   auto probe_damage = [&](std::size_t g) {
     const std::size_t i = m.numbering.here(g);
-    return comm.sum(i != pd::Numbering::none && i >= m.owned_begin && i < m.owned_last() ? m.damage[i] : 0.0);
+    return comm.sum(i != pd::Numbering::none && m.owns(i) ? m.damage[i] : 0.0);
   };
   Result res;
   res.output_dir = o.output_dir.empty() ? "results/" + s.name : o.output_dir;
@@ -363,7 +368,7 @@ Result run_dim(const scene::Scene& s, const Options& o) {
   }
   // the whole run's directed bonds (a distributed run's ranks each count their owned rows): the
   // in-situ stage's share broken and the bonds per second printed at the end
-  const double bonds = comm.sum(double(m.bonds.offset[m.owned_last()] - m.bonds.offset[m.owned_begin]));
+  const double bonds = comm.sum(double(m.owned_bonds()));
   auto failed_bonds = [&] { return static_cast<std::size_t>(comm.sum(static_cast<double>(pd::failed_bonds<D>(m)))); };
   const std::size_t failed_before_start = s.in_situ.enabled && !restarted ? failed_bonds() : 0;
   if (!restarted) p.start();  // a checkpoint holds the forces of its step
