@@ -142,7 +142,8 @@ TEST(BondRuns, RowsBySlabsVisitEachRowOfAWindowOnceInTheOneRankOrder) {
   int cut_short = 0;  // windows whose first slab starts before them
   for (int r = 0; r < ranks; ++r) {
     const auto w = rift::pd::window_of<3>(m, p, r);
-    const std::size_t w0 = p.window_first[static_cast<std::size_t>(r)], w1 = p.window_last[static_cast<std::size_t>(r)];
+    ASSERT_EQ(p.window[static_cast<std::size_t>(r)].size(), 1u);  // slabs: one range each
+    const std::size_t w0 = p.window[static_cast<std::size_t>(r)][0].first, w1 = p.window[static_cast<std::size_t>(r)][0].last;
     const auto& part = w.bodies[0];
     if (part.origin < 0 && static_cast<std::size_t>(-part.origin) % part.slab_length != 0) ++cut_short;
     std::vector<std::size_t> order, expected;

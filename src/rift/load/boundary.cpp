@@ -207,15 +207,16 @@ std::vector<Vec<D>> Boundaries<D>::reactions(const pd::Model<D>& m) const {
 }
 
 template <int D>
-void Boundaries<D>::restrict_to(std::size_t first, std::size_t last, std::size_t owned_first, std::size_t owned_last) {
-  auto keep = [](std::vector<std::size_t>& particles, std::size_t from, std::size_t to, std::size_t base) {
+void Boundaries<D>::restrict_to(const pd::Numbering& window, const std::vector<IndexRange>& owned) {
+  // the particles the window holds (the owned ones alone), numbered as the window numbers them
+  auto keep = [&](std::vector<std::size_t>& particles, bool owned_alone) {
     std::vector<std::size_t> kept;
     for (auto i : particles)
-      if (i >= from && i < to) kept.push_back(i - base);
+      if ((!owned_alone || any_contains(owned, i)) && window.holds(i)) kept.push_back(window.here(i));
     particles = std::move(kept);
   };
-  for (auto& a : applied_) keep(a.particles, first, last, first);
-  for (auto& parts : reaction_particles_) keep(parts, owned_first, owned_last, first);
+  for (auto& a : applied_) keep(a.particles, false);
+  for (auto& parts : reaction_particles_) keep(parts, true);
 }
 
 template class Boundaries<2>;

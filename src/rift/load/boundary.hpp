@@ -26,10 +26,10 @@ class Boundaries {
   /// Reaction force of each tagged region: minus the internal force its particles carry.
   std::vector<Vec<D>> reactions(const pd::Model<D>& m) const;
   const std::vector<std::string>& reaction_names() const { return reaction_names_; }
-  /// A distributed run (pd/window.hpp): the loads of the particles [first, last) of the whole
-  /// numbering, numbered from `first`; the reactions of the owned ones [owned_first, owned_last)
+  /// A distributed run (pd/window.hpp): the loads of the window's particles, numbered as the
+  /// window numbers them; the reactions of the owned ones (`owned`, ranges of the whole numbering)
   /// alone (the ranks' reactions add up to the whole run's).
-  void restrict_to(std::size_t first, std::size_t last, std::size_t owned_first, std::size_t owned_last);
+  void restrict_to(const pd::Numbering& window, const std::vector<IndexRange>& owned);
   bool has_kinematic() const { return any_kinematic_; }
   /// Whether a load depends on the deformation (an injected fluid's pressure on its cavity volume).
   bool state_dependent() const {

@@ -235,7 +235,7 @@ void close_pieces(Model<D>& m, const std::vector<std::size_t>& starts, std::vect
       for (auto k = b.offset[piece[q]]; k < b.offset[piece[q] + 1]; ++k) {
         const auto j = static_cast<std::size_t>(b.neighbor[k]);
         if (b.intact[k] != bond_intact || label[j] == search) continue;
-        if (label[j] == -1 || piece.size() >= family || j < m.uncut_rows_begin || j >= m.uncut_rows_end) {
+        if (label[j] == -1 || piece.size() >= family || any_contains(m.cut_rows, j)) {
           closed = false;
           break;
         }

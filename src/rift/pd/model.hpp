@@ -78,9 +78,9 @@ struct Model {
   // rank: every particle is owned (no ranges), no ghosts.
   std::vector<IndexRange> owned_ranges;
   Numbering numbering;  // the whole run's numbers of the window's particles (empty: one rank's)
-  // the window's particles whose rows are whole (a ghost's row within the bonds' reach of the
-  // window's edge is cut to the window): [uncut_rows_begin, uncut_rows_end)
-  std::size_t uncut_rows_begin = 0, uncut_rows_end = static_cast<std::size_t>(-1);
+  // the window's particles whose rows are cut to it (ghosts within the bonds' reach of its edges
+  // lose their bonds beyond it), ascending; one rank: none
+  std::vector<IndexRange> cut_rows;
   const Ghosts* ghosts = nullptr;
 
   std::size_t size() const { return position.size(); }

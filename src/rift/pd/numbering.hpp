@@ -6,8 +6,9 @@
 #pragma once
 #include <algorithm>
 #include <cstddef>
-#include <utility>
 #include <vector>
+
+#include "rift/core/index_range.hpp"
 
 namespace rift::pd {
 
@@ -23,7 +24,7 @@ class Numbering {
   Numbering() = default;
   /// The ranges of the whole numbering a window holds, ascending and apart: numbered here one after
   /// the other. Neighbouring ranges are joined.
-  explicit Numbering(const std::vector<std::pair<std::size_t, std::size_t>>& whole_ranges) : one_rank_(false) {
+  explicit Numbering(const std::vector<IndexRange>& whole_ranges) : one_rank_(false) {
     std::size_t here = 0;
     for (const auto& [first, last] : whole_ranges) {
       if (last <= first) continue;
@@ -51,6 +52,18 @@ class Numbering {
     return g - a.whole < a.count ? a.here + (g - a.whole) : none;
   }
   bool holds(std::size_t g) const { return here(g) != none; }
+  /// The window's numbers here of whole-run ranges it holds (ascending), each cut to the window.
+  std::vector<IndexRange> here_of(const std::vector<IndexRange>& whole_ranges) const {
+    if (one_rank_) return whole_ranges;
+    std::vector<IndexRange> out;
+    for (const IndexRange& w : whole_ranges)
+      for (const Range& a : ranges_) {
+        const std::size_t first = std::max(w.first, a.whole), last = std::min(w.last, a.whole + a.count);
+        if (first < last) out.push_back({a.here + (first - a.whole), a.here + (last - a.whole)});
+      }
+    std::sort(out.begin(), out.end(), [](const IndexRange& x, const IndexRange& y) { return x.first < y.first; });
+    return out;
+  }
   /// One rank's: every particle's number its own (no ranges).
   bool one_rank() const { return one_rank_; }
   const std::vector<Range>& ranges() const { return ranges_; }

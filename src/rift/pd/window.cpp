@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cstdint>
 #include <map>
+#include <stdexcept>
 #include <utility>
 
 #include "rift/pd/bond_runs.hpp"
@@ -18,14 +19,14 @@ Partition partition_by_bonds(const Model<D>& m, int ranks, std::size_t granulari
   const std::size_t n = m.size();
   const auto& offset = m.bonds.offset;
   const auto total = static_cast<double>(offset[n]) + static_cast<double>(n);  // a particle's fields weigh as one bond
-  p.owned.assign(static_cast<std::size_t>(ranks) + 1, n);
-  p.owned[0] = 0;
+  std::vector<std::size_t> cuts(static_cast<std::size_t>(ranks) + 1, n);  // rank r owns [cuts[r], cuts[r + 1])
+  cuts[0] = 0;
   std::size_t i = 0;
   for (int r = 1; r < ranks; ++r) {
     const double share = total * r / ranks;
     while (i < n && static_cast<double>(offset[i]) + static_cast<double>(i) < share) ++i;
     const std::size_t cut = std::min(n, (i + granularity / 2) / granularity * granularity);
-    p.owned[static_cast<std::size_t>(r)] = std::max(cut, p.owned[static_cast<std::size_t>(r) - 1]);
+    cuts[static_cast<std::size_t>(r)] = std::max(cut, cuts[static_cast<std::size_t>(r) - 1]);
   }
   for (std::size_t a = 0; a < n; ++a)
     for (auto k = offset[a]; k < offset[a + 1]; ++k) {
@@ -33,28 +34,39 @@ Partition partition_by_bonds(const Model<D>& m, int ranks, std::size_t granulari
       p.reach = std::max(p.reach, j > a ? j - a : a - j);
     }
   for (int r = 0; r < ranks; ++r) {
-    const auto first = p.owned[static_cast<std::size_t>(r)], last = p.owned[static_cast<std::size_t>(r) + 1];
+    const auto first = cuts[static_cast<std::size_t>(r)], last = cuts[static_cast<std::size_t>(r) + 1];
     const std::size_t around = reaches * p.reach;
-    p.window_first.push_back(first == last ? first : first - std::min(first, around));
-    p.window_last.push_back(first == last ? last : std::min(n, last + around));
+    p.owned.push_back({{first, last}});
+    p.window.push_back({{first == last ? first : first - std::min(first, around), first == last ? last : std::min(n, last + around)}});
   }
   return p;
 }
 
 namespace {
 
+/// The entries (`width` per particle) of the window's particles, range after range.
 template <class T>
-std::vector<T> slice(const std::vector<T>& v, std::size_t first, std::size_t last, std::size_t width = 1) {
+std::vector<T> slice(const std::vector<T>& v, const Numbering& window, std::size_t width = 1) {
   if (v.empty()) return {};
-  return std::vector<T>(v.begin() + static_cast<std::ptrdiff_t>(first * width), v.begin() + static_cast<std::ptrdiff_t>(last * width));
+  std::vector<T> out;
+  for (const auto& a : window.ranges())
+    out.insert(out.end(), v.begin() + static_cast<std::ptrdiff_t>(a.whole * width), v.begin() + static_cast<std::ptrdiff_t>((a.whole + a.count) * width));
+  return out;
+}
+
+/// f(a, i) for each particle of the window: a its number here, i the whole run's.
+template <class F>
+void for_each_in(const Numbering& window, F&& f) {
+  for (const auto& r : window.ranges())
+    for (std::size_t a = r.here; a < r.here + r.count; ++a) f(a, r.whole + (a - r.here));
 }
 
 /// The VES history of the window's bodies (bonds.hpp, bond_slabs.hpp history_index): the whole
 /// blocks of Bonds::history_block particles that hold its particles, laid out as in the whole run
 /// from the window's first block on (each part's history_base counts from its body's first block,
 /// so it may be negative), and the per-particle sums.
-void window_viscous_history(const Bonds& b, const std::vector<BodyInfo>& bodies, std::vector<BodyInfo>& parts, std::size_t w0,
-                            std::size_t w1, Bonds& c) {
+void window_viscous_history(const Bonds& b, const std::vector<BodyInfo>& bodies, std::vector<BodyInfo>& parts, const Numbering& window,
+                            Bonds& c) {
   constexpr std::size_t block = Bonds::history_block;
   std::size_t slots = 0;
   for (std::size_t q = 0; q < parts.size(); ++q) {
@@ -73,11 +85,11 @@ void window_viscous_history(const Bonds& b, const std::vector<BodyInfo>& bodies,
                             b.last_extension.begin() + static_cast<std::ptrdiff_t>((from + count) / 2));
     slots += count;
   }
-  c.history_dilatation = slice(b.history_dilatation, w0, w1);
-  c.deviatoric_sum = slice(b.deviatoric_sum, w0, w1);
-  c.back_sum = slice(b.back_sum, w0, w1);
-  c.intact_weighted_volume = slice(b.intact_weighted_volume, w0, w1);
-  c.summed_bonds = slice(b.summed_bonds, w0, w1);
+  c.history_dilatation = slice(b.history_dilatation, window);
+  c.deviatoric_sum = slice(b.deviatoric_sum, window);
+  c.back_sum = slice(b.back_sum, window);
+  c.intact_weighted_volume = slice(b.intact_weighted_volume, window);
+  c.summed_bonds = slice(b.summed_bonds, window);
 }
 
 /// Drops the runs (bond_runs.hpp) without an owned end (in the ranges `owned`): the bonds between
@@ -110,18 +122,17 @@ void drop_runs_of_ghosts(BodyInfo& part, const std::vector<IndexRange>& owned) {
 /// it is, the particles' labels left to be made again on this rank's particles (fluid_network.hpp:
 /// they follow from the bonds' states and the sources'), the outer surface cut to the window.
 template <int D>
-void window_pressure_bonds(const Model<D>& m, std::size_t w0, std::size_t w1, Model<D>& w) {
+void window_pressure_bonds(const Model<D>& m, const Numbering& window, Model<D>& w) {
   const CrackBonds& from = m.crack_bonds;
   CrackBonds& to = w.crack_bonds;
-  const std::size_t n = w1 - w0;
-  to.offset.assign(n + 1, 0);
+  to.offset.assign(w.size() + 1, 0);
   if (from.neighbor.empty()) return;
-  for (std::size_t a = 0; a < n; ++a) {
-    const std::size_t i = w0 + a;
+  for_each_in(window, [&](std::size_t a, std::size_t i) {
     for (auto k = static_cast<std::size_t>(from.offset[i]); k < static_cast<std::size_t>(from.offset[i + 1]); ++k) {
       const std::int32_t j = from.neighbor[k];
-      if (j >= 0 && (static_cast<std::size_t>(j) < w0 || static_cast<std::size_t>(j) >= w1)) continue;
-      to.neighbor.push_back(j < 0 ? j : static_cast<std::int32_t>(static_cast<std::size_t>(j) - w0));
+      const std::size_t j_here = j < 0 ? Numbering::none : window.here(static_cast<std::size_t>(j));
+      if (j >= 0 && j_here == Numbering::none) continue;
+      to.neighbor.push_back(j < 0 ? j : static_cast<std::int32_t>(j_here));
       to.volume.push_back(from.volume[k]);
       to.source.push_back(from.source[k]);
       to.xi.push_back(from.xi[k]);
@@ -129,27 +140,27 @@ void window_pressure_bonds(const Model<D>& m, std::size_t w0, std::size_t w1, Mo
       to.coefficient.push_back(from.coefficient[k]);
     }
     to.offset[a + 1] = static_cast<std::int64_t>(to.neighbor.size());
-  }
+  });
   FluidNetwork& f = w.fluid_network;
   const FluidNetwork& g = m.fluid_network;
   f.pressure_bonds = g.pressure_bonds, f.dry = g.dry, f.reference_volume = g.reference_volume;
   f.take_sources_state(g);
   // a viscous fluid's: the fluid in the window's nodes and the pressure at its particles
   f.viscous = g.viscous;
-  for (ViscousFluid& v : f.viscous) v.stored = slice(v.stored, w0, w1), v.trial = slice(v.trial, w0, w1);
-  f.local_pressure = slice(g.local_pressure, w0, w1), f.local_pore_pressure = slice(g.local_pore_pressure, w0, w1);
-  f.outer_surface = slice(g.outer_surface, w0, w1);
+  for (ViscousFluid& v : f.viscous) v.stored = slice(v.stored, window), v.trial = slice(v.trial, window);
+  f.local_pressure = slice(g.local_pressure, window), f.local_pore_pressure = slice(g.local_pore_pressure, window);
+  f.outer_surface = slice(g.outer_surface, window);
   // a continued run's labels, marks and network load (run/distributed.hpp gather_fluid; a run that
   // starts has none yet)
   f.relabel = g.relabel, f.load_from_scratch = g.load_from_scratch;
-  f.source = slice(g.source, w0, w1), f.bond_counts = slice(g.bond_counts, w0, w1);
-  f.in_crack = slice(g.in_crack, w0, w1), f.immersed = slice(g.immersed, w0, w1);
-  f.pore_stretch = slice(g.pore_stretch, w0, w1), f.load_changed_mark = slice(g.load_changed_mark, w0, w1);
+  f.source = slice(g.source, window), f.bond_counts = slice(g.bond_counts, window);
+  f.in_crack = slice(g.in_crack, window), f.immersed = slice(g.immersed, window);
+  f.pore_stretch = slice(g.pore_stretch, window), f.load_changed_mark = slice(g.load_changed_mark, window);
   f.list_load_changed_from_marks();
   f.network_load.resize(g.network_load.size()), f.is_end.resize(g.is_end.size()), f.network_ends.resize(g.network_ends.size());
-  for (std::size_t s = 0; s < g.network_load.size(); ++s) f.network_load[s] = slice(g.network_load[s], w0, w1, D);
-  for (std::size_t s = 0; s < g.is_end.size(); ++s) f.is_end[s] = slice(g.is_end[s], w0, w1);
-  for (std::size_t s = 0; s < g.network_ends.size(); ++s) f.network_ends[s] = slice(g.network_ends[s], w0, w1);
+  for (std::size_t s = 0; s < g.network_load.size(); ++s) f.network_load[s] = slice(g.network_load[s], window, D);
+  for (std::size_t s = 0; s < g.is_end.size(); ++s) f.is_end[s] = slice(g.is_end[s], window);
+  for (std::size_t s = 0; s < g.network_ends.size(); ++s) f.network_ends[s] = slice(g.network_ends[s], window);
   // the crossing marks and the open interface bonds of the window's rows, each bond found by its
   // neighbour (a ghost's row is cut)
   const Bonds& b = m.bonds;
@@ -157,10 +168,10 @@ void window_pressure_bonds(const Model<D>& m, std::size_t w0, std::size_t w1, Mo
   auto window_bonds = [&](const std::vector<std::int64_t>& list) {
     std::vector<std::int64_t> out;
     for (const std::int64_t k : list) {
-      const std::size_t i = b.row_of(k), j = static_cast<std::size_t>(b.neighbor[static_cast<std::size_t>(k)]);
-      if (i < w0 || i >= w1 || j < w0 || j >= w1) continue;
-      const auto first = c.neighbor.begin() + c.offset[i - w0], last = c.neighbor.begin() + c.offset[i - w0 + 1];
-      out.push_back(std::lower_bound(first, last, static_cast<std::int32_t>(j - w0)) - c.neighbor.begin());
+      const std::size_t i = window.here(b.row_of(k)), j = window.here(static_cast<std::size_t>(b.neighbor[static_cast<std::size_t>(k)]));
+      if (i == Numbering::none || j == Numbering::none) continue;
+      const auto first = c.neighbor.begin() + c.offset[i], last = c.neighbor.begin() + c.offset[i + 1];
+      out.push_back(std::lower_bound(first, last, static_cast<std::int32_t>(j)) - c.neighbor.begin());
     }
     return out;  // ascending: rows and their neighbours keep their order in the window
   };
@@ -175,36 +186,34 @@ void window_pressure_bonds(const Model<D>& m, std::size_t w0, std::size_t w1, Mo
 /// bond is in the window (only ghosts' rows lose entries), at their bonds' places in the window's
 /// rows, with each entry's slip and mark and each particle's strain as the whole model has them.
 template <int D>
-void window_interface_bonds(const Model<D>& m, std::size_t w0, std::size_t w1, Model<D>& w) {
+void window_interface_bonds(const Model<D>& m, const Numbering& window, Model<D>& w) {
   const InterfaceBonds& from = m.interface_bonds;
   InterfaceBonds& to = w.interface_bonds;
   to.laws = from.laws;
   if (from.offset.empty()) return;
   const Bonds& b = m.bonds;
   const Bonds& c = w.bonds;
-  const std::size_t n = w1 - w0;
   const bool slips = from.slip.size() == from.slot.size(), marks = from.across_crack.size() == from.slot.size();
   const bool strains = !from.strain.empty() && from.strain.size() == from.particles.size();
-  to.offset.assign(n + 1, 0);
-  for (std::size_t a = 0; a < n; ++a) {
-    const std::size_t i = w0 + a;
+  to.offset.assign(w.size() + 1, 0);
+  for_each_in(window, [&](std::size_t a, std::size_t i) {
     for (auto q = static_cast<std::size_t>(from.offset[i]); q < static_cast<std::size_t>(from.offset[i + 1]); ++q) {
-      const auto j = static_cast<std::size_t>(b.neighbor[static_cast<std::size_t>(from.slot[q])]);
-      if (j < w0 || j >= w1) continue;
+      const std::size_t j = window.here(static_cast<std::size_t>(b.neighbor[static_cast<std::size_t>(from.slot[q])]));
+      if (j == Numbering::none) continue;
       const auto first = c.neighbor.begin() + c.offset[a], last = c.neighbor.begin() + c.offset[a + 1];
-      to.slot.push_back(std::lower_bound(first, last, static_cast<std::int32_t>(j - w0)) - c.neighbor.begin());
+      to.slot.push_back(std::lower_bound(first, last, static_cast<std::int32_t>(j)) - c.neighbor.begin());
       to.interface.push_back(from.interface[q]);
       if (slips) to.slip.push_back(from.slip[q]);
       if (marks) to.across_crack.push_back(from.across_crack[q]);
     }
     to.offset[a + 1] = static_cast<std::int64_t>(to.slot.size());
-    if (to.offset[a + 1] == to.offset[a]) continue;
+    if (to.offset[a + 1] == to.offset[a]) return;
     to.particles.push_back(static_cast<std::int32_t>(a));
     if (strains) {
       const auto row = std::lower_bound(from.particles.begin(), from.particles.end(), static_cast<std::int32_t>(i)) - from.particles.begin();
       to.strain.push_back(from.strain[static_cast<std::size_t>(row)]);
     }
-  }
+  });
 }
 
 }  // namespace
@@ -212,50 +221,53 @@ void window_interface_bonds(const Model<D>& m, std::size_t w0, std::size_t w1, M
 template <int D>
 Model<D> window_of(const Model<D>& m, const Partition& p, int rank) {
   const auto r = static_cast<std::size_t>(rank);
-  const std::size_t w0 = p.window_first[r], w1 = p.window_last[r], n = w1 - w0;
+  const Numbering window(p.window[r]);
+  const std::size_t n = count_of(p.window[r]);
   Model<D> w;
-  w.reference_position = slice(m.reference_position, w0, w1);
-  w.position = slice(m.position, w0, w1);
-  w.velocity = slice(m.velocity, w0, w1);
-  w.force = slice(m.force, w0, w1);
-  w.body_force = slice(m.body_force, w0, w1);
-  w.volume = slice(m.volume, w0, w1);
-  w.weighted_volume = slice(m.weighted_volume, w0, w1);
-  w.dilatation = slice(m.dilatation, w0, w1);
-  w.dilatation_coupling = slice(m.dilatation_coupling, w0, w1);
-  w.stretch_limit = slice(m.stretch_limit, w0, w1);
-  w.next_stretch_limit = slice(m.next_stretch_limit, w0, w1);
-  w.damage = slice(m.damage, w0, w1);
-  w.failure_strain = slice(m.failure_strain, w0, w1, stress_components<D>);
-  w.body = slice(m.body, w0, w1);
-  w.constrained = slice(m.constrained, w0, w1);
+  w.reference_position = slice(m.reference_position, window);
+  w.position = slice(m.position, window);
+  w.velocity = slice(m.velocity, window);
+  w.force = slice(m.force, window);
+  w.body_force = slice(m.body_force, window);
+  w.volume = slice(m.volume, window);
+  w.weighted_volume = slice(m.weighted_volume, window);
+  w.dilatation = slice(m.dilatation, window);
+  w.dilatation_coupling = slice(m.dilatation_coupling, window);
+  w.stretch_limit = slice(m.stretch_limit, window);
+  w.next_stretch_limit = slice(m.next_stretch_limit, window);
+  w.damage = slice(m.damage, window);
+  w.failure_strain = slice(m.failure_strain, window, stress_components<D>);
+  w.body = slice(m.body, window);
+  w.constrained = slice(m.constrained, window);
   w.dimension = m.dimension;
   w.thickness = m.thickness;
   w.time = m.time;
-  w.owned_ranges = {{p.owned[r] - w0, p.owned[r + 1] - w0}};
-  w.numbering = Numbering::range(w0, n);
-  w.uncut_rows_begin = w0 == 0 ? 0 : std::min(n, p.reach);
-  w.uncut_rows_end = w1 == m.size() ? n : n - std::min(n, p.reach);
+  w.owned_ranges = window.here_of(p.owned[r]);
+  if (w.owned_ranges.empty()) w.owned_ranges = {{0, 0}};  // owns none (an empty range, not one rank's none)
+  w.numbering = window;
 
-  // rows of the window, each cut to the neighbours inside it (only ghosts' rows lose bonds); a
-  // row of factors (bonds.hpp) comes along once however many particles share it
+  // rows of the window, each cut to the neighbours inside it (only ghosts' rows lose bonds: their
+  // ranges are cut_rows); a row of factors (bonds.hpp) comes along once however many particles share it
   const Bonds& b = m.bonds;
   Bonds& c = w.bonds;
   c.families = b.families;
   c.offset.assign(n + 1, 0);
   c.factor_row.resize(n);
   std::map<std::pair<std::int64_t, std::uint32_t>, std::int64_t> factor_rows;  // (row, body) to its place here
-  for (std::size_t a = 0; a < n; ++a) {
-    const std::size_t i = w0 + a;
+  for_each_in(window, [&](std::size_t a, std::size_t i) {
     const BodyInfo& body = m.bodies[m.body[i]];
     for (auto k = b.offset[i]; k < b.offset[i + 1]; ++k) {
-      const auto j = static_cast<std::size_t>(b.neighbor[static_cast<std::size_t>(k)]);
-      if (j < w0 || j >= w1) continue;
-      c.neighbor.push_back(static_cast<std::int32_t>(j - w0));
+      const std::size_t j = window.here(static_cast<std::size_t>(b.neighbor[static_cast<std::size_t>(k)]));
+      if (j == Numbering::none) continue;
+      c.neighbor.push_back(static_cast<std::int32_t>(j));
       c.family.push_back(b.family[static_cast<std::size_t>(k)]);
       c.intact.push_back(b.intact[static_cast<std::size_t>(k)]);
     }
     c.offset[a + 1] = c.size();
+    if (c.offset[a + 1] - c.offset[a] != b.offset[i + 1] - b.offset[i]) {
+      if (!w.cut_rows.empty() && w.cut_rows.back().last == a) ++w.cut_rows.back().last;
+      else w.cut_rows.push_back({a, a + 1});
+    }
     const auto first_family = static_cast<std::int64_t>(body.first_family), count = static_cast<std::int64_t>(body.family_count);
     auto [row, added] = factor_rows.try_emplace({b.factor_row[i], m.body[i]}, static_cast<std::int64_t>(c.factors.size()) - first_family);
     if (added) {
@@ -263,26 +275,30 @@ Model<D> window_of(const Model<D>& m, const Partition& p, int rank) {
       c.factors.insert(c.factors.end(), from, from + count);
     }
     c.factor_row[a] = row->second;
-  }
+  });
   // the bodies: the part of each inside the window, numbered from the whole body's first particle
+  // (its slabs, runs and VES history blocks are the whole body's: BodyInfo::origin, one range)
+  if (window.ranges().size() > 1)
+    throw std::logic_error("window_of: a window of more than one range of the numbering (the bond runs and VES history take one)");
+  const std::size_t w0 = window.ranges().empty() ? 0 : window.ranges()[0].whole;
   for (const BodyInfo& body : m.bodies) {
     BodyInfo part = body;
-    part.first = std::clamp(body.first, w0, w1) - w0;
-    part.last = std::clamp(body.last, w0, w1) - w0;
+    part.first = std::clamp(body.first, w0, w0 + n) - w0;
+    part.last = std::clamp(body.last, w0, w0 + n) - w0;
     part.origin = static_cast<std::int64_t>(body.first) - static_cast<std::int64_t>(w0);
     make_bond_runs(c, part);
     drop_runs_of_ghosts(part, w.owned_ranges);
     w.bodies.push_back(std::move(part));
   }
-  if (!b.back_extension.empty()) window_viscous_history(b, m.bodies, w.bodies, w0, w1, c);
-  window_pressure_bonds(m, w0, w1, w);
-  window_interface_bonds(m, w0, w1, w);
+  if (!b.back_extension.empty()) window_viscous_history(b, m.bodies, w.bodies, window, c);
+  window_pressure_bonds(m, window, w);
+  window_interface_bonds(m, window, w);
   // every platen, on every rank (its sums gather all ranks' owned particles: platens.hpp), with the
   // particles of its face that are in the window
   for (const Platen& plate : m.platens) {
     Platen part{plate.axis, {}};
     for (const auto i : plate.particles)
-      if (i >= w0 && i < w1) part.particles.push_back(i - w0);
+      if (const std::size_t a = window.here(i); a != Numbering::none) part.particles.push_back(a);
     w.platens.push_back(std::move(part));
   }
   return w;

@@ -9,13 +9,15 @@
 #include <cstddef>
 #include <vector>
 
+#include "rift/core/index_range.hpp"
 #include "rift/pd/model.hpp"
 
 namespace rift::pd {
 
 struct Partition {
-  std::vector<std::size_t> owned;  // size ranks + 1: rank r owns [owned[r], owned[r + 1])
-  std::vector<std::size_t> window_first, window_last;  // each rank's window [first, last)
+  // each rank's owned particles and its window, as ranges of the whole run's numbering (ascending;
+  // a slab's one each)
+  std::vector<std::vector<IndexRange>> owned, window;
   std::size_t reach = 0;  // the farthest bond in the numbering, max |i - j|
 };
 

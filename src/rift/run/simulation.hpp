@@ -70,10 +70,9 @@ struct Simulation {
     partition = pd::partition_by_bonds<D>(model, comm.size(), block_sums ? parallel::ordered_sum_block : 1,
                                           pd::fluid_reads_far<D>(model) ? pd::fluid_ghost_reaches : 1);
     const auto r = static_cast<std::size_t>(comm.rank());
-    const std::size_t w0 = partition.window_first[r], w1 = partition.window_last[r];
-    loads.restrict_to(w0, w1, partition.owned[r], partition.owned[r + 1]);
+    loads.restrict_to(pd::Numbering(partition.window[r]), partition.owned[r]);
     model = pd::window_of<D>(model, partition, comm.rank());
-    halo = std::make_unique<parallel::Halo>(comm.rank(), partition.owned, partition.window_first, partition.window_last);
+    halo = std::make_unique<parallel::Halo>(comm.rank(), partition.owned, partition.window, model.numbering);
     model.ghosts = halo.get();
     contact = pd::Contact<D>(s.contact, model);  // its pairs among the window's particles and those beyond it within reach
   }
