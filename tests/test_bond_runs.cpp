@@ -10,7 +10,8 @@
 // (4) the SSE2, AVX2 and AVX-512 clones of the run kernels give the same bits (core/vector_isa.hpp),
 //     PMB, LPS and VES (its history too);
 // (5) a distributed run's window (pd/window.hpp) visits its rows in the passes that go row by row
-//     (bond_slabs.hpp for_each_row_by_slabs) each once, in the one-rank run's order;
+//     (bond_slabs.hpp for_each_row_by_slabs) each once, in the one-rank run's order, and a window of
+//     several ranges of the numbering gives its owned particles the whole model's PMB forces;
 // (6) the strain energy densities in runs (pd/energy_runs.hpp) equal the row forms, and under a
 //     uniform dilatation eps the state-based W of a particle whose family is whole is the continuum's
 //     K (3 eps)^2 / 2.
@@ -19,6 +20,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <cstring>
 #include <iterator>
 #include <limits>
@@ -118,6 +120,27 @@ void check_runs_cover_forward_bonds(const rift::pd::Model<D>& m) {
   }
 }
 
+// A window's runs (pd/window.hpp): every forward bond with an owned end in exactly one run, and no
+// run across a jump of the numbering.
+void check_runs_cover_owned_ends(const rift::pd::Model<3>& w) {
+  const auto& b = w.bonds;
+  std::set<std::int64_t> seen;
+  for (const auto& run : w.bodies[0].runs)
+    for (std::size_t t = 0; t < run.length; ++t) {
+      const auto i = static_cast<std::size_t>(run.i) + t, j = static_cast<std::size_t>(run.j) + t;
+      ASSERT_EQ(w.numbering.whole(i), w.numbering.whole(static_cast<std::size_t>(run.i)) + t);
+      ASSERT_EQ(w.numbering.whole(j), w.numbering.whole(static_cast<std::size_t>(run.j)) + t);
+      ASSERT_TRUE(seen.insert(rift::pd::run_bond(b, run, t)).second);
+    }
+  for (std::size_t i = 0; i < w.size(); ++i)
+    for (auto k = b.offset[i]; k < b.offset[i + 1]; ++k) {
+      const auto j = static_cast<std::size_t>(b.neighbor[k]);
+      if (j > i && (w.owns(i) || w.owns(j))) {
+        EXPECT_TRUE(seen.count(k)) << "bond " << i << "-" << j << " of an owned end in no run";
+      }
+    }
+}
+
 TEST(BondRuns, EveryForwardBondInExactlyOneRun) {
   check_runs_cover_forward_bonds(block<3>(false));
   check_runs_cover_forward_bonds(block<2>(true));
@@ -135,7 +158,7 @@ TEST(BondRuns, RowsBySlabsVisitEachRowOfAWindowOnceInTheOneRankOrder) {
   const auto m = block<3>(false);
   const auto& body = m.bodies[0];
   std::vector<std::size_t> whole_order;
-  rift::pd::for_each_row_by_slabs(body, [&](std::size_t i) { whole_order.push_back(i); });
+  rift::pd::for_each_row_by_slabs(body, m.numbering, [&](std::size_t i) { whole_order.push_back(i); });
   EXPECT_EQ(whole_order.size(), m.size());
   constexpr int ranks = 3;
   const auto p = rift::pd::partition_by_bonds<3>(m, ranks);
@@ -147,7 +170,7 @@ TEST(BondRuns, RowsBySlabsVisitEachRowOfAWindowOnceInTheOneRankOrder) {
     const auto& part = w.bodies[0];
     if (part.origin < 0 && static_cast<std::size_t>(-part.origin) % part.slab_length != 0) ++cut_short;
     std::vector<std::size_t> order, expected;
-    rift::pd::for_each_row_by_slabs(part, [&](std::size_t i) { order.push_back(i + w0); });
+    rift::pd::for_each_row_by_slabs(part, w.numbering, [&](std::size_t i) { order.push_back(i + w0); });
     std::copy_if(whole_order.begin(), whole_order.end(), std::back_inserter(expected), [&](std::size_t i) { return i >= w0 && i < w1; });
     EXPECT_EQ(order, expected) << "rank " << r << "'s window [" << w0 << ", " << w1 << ")";
     std::vector<std::size_t> rows(w1 - w0);
@@ -157,6 +180,72 @@ TEST(BondRuns, RowsBySlabsVisitEachRowOfAWindowOnceInTheOneRankOrder) {
   }
   EXPECT_GE(cut_short, 1);  // else the case above is not tried
   omp_set_num_threads(threads);
+}
+
+// A window of several ranges of the numbering (a box of a processor grid: the lattice lines of one
+// side of a cut across y, in every layer, with their ghosts and the whole runs of its owned
+// particles, window.hpp with_whole_runs): its owned particles' PMB forces and bond states after a
+// pass are the whole model's to the bit (the runs made over the window with an owned end are the
+// whole run's, and its slabs the whole body's), and its rows by slabs come in the one-rank order.
+TEST(BondRuns, AWindowOfManyRangesGivesItsOwnedParticlesTheWholeRunsForces) {
+  // a plate 61 x 41 sites and 7 layers thick (a run, at most 256 pairs, spans a few lattice lines)
+  std::string scene = block_scene(3, false);
+  auto set = [&](const std::string& from, const std::string& to) { scene.replace(scene.find(from), from.size(), to); };
+  set("max = [0.014, 0.011, 0.009]", "max = [0.060, 0.040, 0.006]");
+  set("center = [0.007, 0.0055, -0.005]", "center = [0.020, 0.012, -0.005]");
+  auto m = rift::pd::discretize<3>(rift::scene::parse_string(scene, "plate.toml"));
+  deform_and_break(m);
+  const double cut = 0.020, reach = 0.003015 + 1e-9;
+  // the particles below the cut, and within the bonds' reach of it, as ranges of the numbering
+  auto ranges_where = [&](auto&& keep) {
+    std::vector<rift::IndexRange> out;
+    for (std::size_t i = 0; i < m.size(); ++i)
+      if (keep(m.reference_position[i])) {
+        if (!out.empty() && out.back().last == i) ++out.back().last;
+        else out.push_back({i, i + 1});
+      }
+    return out;
+  };
+  rift::pd::Partition p;
+  p.owned = {ranges_where([&](const auto& x) { return x[1] < cut; }), ranges_where([&](const auto& x) { return x[1] >= cut; })};
+  p.window = {ranges_where([&](const auto& x) { return x[1] < cut + reach; }), ranges_where([&](const auto& x) { return x[1] >= cut - reach; })};
+  for (std::size_t r = 0; r < 2; ++r) p.window[r] = rift::pd::with_whole_runs<3>(m, p.owned[r], p.window[r]);
+  ASSERT_GT(p.window[0].size(), 5u);  // a range a layer or so: jumps in the numbering
+  ASSERT_GT(p.window[1].size(), 5u);
+  auto whole = m;
+  rift::pd::compute_forces<3>(whole, nullptr);
+  const int threads = omp_get_max_threads();
+  omp_set_num_threads(1);
+  std::vector<std::size_t> whole_order;
+  rift::pd::for_each_row_by_slabs(m.bodies[0], m.numbering, [&](std::size_t i) { whole_order.push_back(i); });
+  omp_set_num_threads(threads);
+  for (int r = 0; r < 2; ++r) {
+    auto w = rift::pd::window_of<3>(m, p, r);
+    ASSERT_EQ(w.size(), rift::count_of(p.window[static_cast<std::size_t>(r)]));
+    ASSERT_EQ(w.owned_count(), rift::count_of(p.owned[static_cast<std::size_t>(r)]));
+    // the rows by slabs: the window's particles in the one-rank order
+    omp_set_num_threads(1);
+    std::vector<std::size_t> order, expected;
+    rift::pd::for_each_row_by_slabs(w.bodies[0], w.numbering, [&](std::size_t a) { order.push_back(w.numbering.whole(a)); });
+    omp_set_num_threads(threads);
+    std::copy_if(whole_order.begin(), whole_order.end(), std::back_inserter(expected), [&](std::size_t i) { return w.numbering.holds(i); });
+    EXPECT_EQ(order, expected) << "rank " << r;
+    check_runs_cover_owned_ends(w);
+    rift::pd::compute_forces<3>(w, nullptr);
+    std::size_t compared = 0;
+    for (const rift::IndexRange& owned : w.owned())
+      for (std::size_t a = owned.first; a < owned.last; ++a, ++compared) {
+        const std::size_t i = w.numbering.whole(a);
+        ASSERT_EQ(std::memcmp(w.force[a].data(), whole.force[i].data(), sizeof(w.force[a])), 0)
+            << "rank " << r << ": particle " << i << " force " << w.force[a][0] << " against " << whole.force[i][0];
+        ASSERT_EQ(w.bonds.offset[a + 1] - w.bonds.offset[a], whole.bonds.offset[i + 1] - whole.bonds.offset[i]);
+        for (auto k = w.bonds.offset[a]; k < w.bonds.offset[a + 1]; ++k)
+          ASSERT_EQ(w.bonds.intact[static_cast<std::size_t>(k)], whole.bonds.intact[static_cast<std::size_t>(whole.bonds.offset[i] + (k - w.bonds.offset[a]))]);
+      }
+    EXPECT_GT(compared, 500u);
+    std::printf("rank %d of a cut across y: %zu owned, a window of %zu particles in %zu ranges, forces bitwise the whole model's\n", r,
+                compared, w.size(), w.numbering.ranges().size());
+  }
 }
 
 // The pass against Silling and Askari's formulas row by row.

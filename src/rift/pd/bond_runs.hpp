@@ -31,16 +31,19 @@ inline constexpr std::size_t max_run_length = Bonds::history_block;
 inline constexpr std::size_t short_run = 4;
 
 /// Groups the body's forward bonds into runs (after its bonds and slab length are made): every
-/// forward bond belongs to exactly one run.
-inline void make_bond_runs(const Bonds& b, BodyInfo& body) {
+/// forward bond belongs to exactly one run. A distributed run's window (pd/window.hpp) gives its
+/// numbering: its runs are the whole run's, cut to the window, and none spans a jump of the
+/// numbering.
+inline void make_bond_runs(const Bonds& b, BodyInfo& body, const Numbering& numbering = {}) {
   body.runs.clear();
   body.slab_runs.clear();
   if (body.last <= body.first) return;
   const std::size_t length = body.slab_length;
-  // the slabs and blocks are the whole body's (BodyInfo::origin)
-  auto slab = [&](std::size_t i) { return static_cast<std::size_t>(static_cast<std::int64_t>(i) - body.origin) / length; };
-  // and inside one block of the VES history (bonds.hpp), which holds max_run_length particles
-  auto block = [&](std::size_t i) { return static_cast<std::size_t>(static_cast<std::int64_t>(i) - body.origin) / max_run_length; };
+  // the slabs are the whole body's (BodyInfo::whole_first)
+  auto slab = [&](std::size_t i) { return (numbering.whole(i) - body.whole_first) / length; };
+  // and inside one block of the VES history (bonds.hpp), which holds max_run_length particles: the
+  // whole body's blocks too (a window's history holds whole blocks, BodyInfo::origin)
+  auto block = [&](std::size_t i) { return (numbering.whole(i) - body.whole_first) / max_run_length; };
   body.first_slab = slab(body.first);
   std::vector<std::int64_t> open(body.family_count, -1);  // per family offset: the run that may grow
   for (std::size_t i = body.first; i < body.last; ++i)
@@ -52,7 +55,8 @@ inline void make_bond_runs(const Bonds& b, BodyInfo& body) {
       if (o >= 0) {
         BondRun& r = body.runs[static_cast<std::size_t>(o)];
         if (static_cast<std::size_t>(r.i) + r.length == i && r.j + r.length == j && slab(static_cast<std::size_t>(r.i)) == slab(i) &&
-            block(static_cast<std::size_t>(r.i)) == block(i)) {
+            block(static_cast<std::size_t>(r.i)) == block(i) && numbering.whole(static_cast<std::size_t>(r.i)) + r.length == numbering.whole(i) &&
+            numbering.whole(static_cast<std::size_t>(r.j)) + r.length == numbering.whole(static_cast<std::size_t>(j))) {
           if (r.position != position) r.position = BondRun::varies;
           ++r.length;
           continue;

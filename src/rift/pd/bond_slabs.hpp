@@ -110,18 +110,17 @@ inline std::size_t slab_length(const Bonds& b, std::size_t first, std::size_t la
   return length;
 }
 
-/// Calls row(i) for every particle of the body, slab by slab as above.
+/// Calls row(i) for every particle of the body, slab by slab as above (`numbering`: a distributed
+/// run's window's, pd/window.hpp).
 template <class Row>
-void for_each_row_by_slabs(const BodyInfo& body, Row&& row) {
+void for_each_row_by_slabs(const BodyInfo& body, const Numbering& numbering, Row&& row) {
   const std::size_t first = body.first, last = body.last, length = body.slab_length;
   if (last <= first) return;
-  // the whole body's slabs (BodyInfo::origin): the first here may be cut short, and start before
-  // the window's first particle (a distributed run's window, pd/window.hpp: origin < 0)
-  const auto start = [&](std::size_t slab) {
-    return static_cast<std::size_t>(std::max(body.origin + static_cast<std::int64_t>(slab * length), std::int64_t{0}));
-  };
-  const std::size_t first_slab = static_cast<std::size_t>(static_cast<std::int64_t>(first) - body.origin) / length;
-  const std::size_t end_slab = static_cast<std::size_t>(static_cast<std::int64_t>(last - 1) - body.origin) / length + 1;
+  // the whole body's slabs (BodyInfo::whole_first): the first here may be cut short, and start
+  // before the window's first particle (a distributed run's window, pd/window.hpp)
+  const auto start = [&](std::size_t slab) { return numbering.first_from(body.whole_first + slab * length); };
+  const std::size_t first_slab = (numbering.whole(first) - body.whole_first) / length;
+  const std::size_t end_slab = (numbering.whole(last - 1) - body.whole_first) / length + 1;
   for (std::size_t parity = 0; parity < 2; ++parity) {
     const std::size_t skip = (first_slab + parity) % 2;
     const auto count = static_cast<std::int64_t>((end_slab - first_slab + 1 - skip) / 2);

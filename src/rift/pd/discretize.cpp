@@ -369,6 +369,7 @@ Model<D> discretize(const scene::Scene& s) {
     info.name = b.name;
     info.first = m.reference_position.size();  // m.size() counts positions, set after the loop
     info.origin = static_cast<std::int64_t>(info.first);
+    info.whole_first = info.first;
     fill_body<D>(s, b, bi, m, lattice_index);
     info.last = m.reference_position.size();
     if (info.last == info.first)

@@ -259,9 +259,9 @@ void dilatation_pass(Model<D>& m, const BodyInfo& body, double* coupling, double
   RowStates rows;
   if (c.normal_stress_failure && c.breakable) {
     if (wet)
-      for_each_row_by_slabs(body, [&](std::size_t i) { row.template operator()<true, true>(i); });
+      for_each_row_by_slabs(body, m.numbering, [&](std::size_t i) { row.template operator()<true, true>(i); });
     else
-      for_each_row_by_slabs(body, [&](std::size_t i) { row.template operator()<false, true>(i); });
+      for_each_row_by_slabs(body, m.numbering, [&](std::size_t i) { row.template operator()<false, true>(i); });
   } else {
     rows = whole_rows(b, body);
     dilatation_runs<D, Omega, Coupling, Corrected>(m, body, rows, coupling, smallest, broken, crossing);

@@ -30,6 +30,9 @@ struct BodyInfo {
   // runs and VES history blocks count from the whole body's first particle, so every sum of an
   // owned particle is made in the same order as on one rank.
   std::int64_t origin = 0;
+  // the whole run's number of the whole body's first particle: the slabs of the passes count from it
+  // (bond_slabs.hpp), in a window of any number of ranges of the numbering
+  std::size_t whole_first = 0;
   std::size_t first_slab = 0;  // the whole body's number of the first slab here (its parity orders the passes)
   MaterialConstants constants;
 };

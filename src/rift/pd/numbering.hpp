@@ -52,6 +52,14 @@ class Numbering {
     return g - a.whole < a.count ? a.here + (g - a.whole) : none;
   }
   bool holds(std::size_t g) const { return here(g) != none; }
+  /// The number here of the window's first particle whose whole-run number is g or above (the
+  /// window's size, or one rank's g, where there is none).
+  std::size_t first_from(std::size_t g) const {
+    if (one_rank_) return g;
+    const auto r = std::upper_bound(ranges_.begin(), ranges_.end(), g, [](std::size_t x, const Range& a) { return x < a.whole + a.count; });
+    if (r == ranges_.end()) return ranges_.empty() ? 0 : ranges_.back().here + ranges_.back().count;
+    return r->here + (g > r->whole ? g - r->whole : 0);
+  }
   /// The window's numbers here of whole-run ranges it holds (ascending), each cut to the window.
   std::vector<IndexRange> here_of(const std::vector<IndexRange>& whole_ranges) const {
     if (one_rank_) return whole_ranges;

@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cstdint>
 #include <map>
-#include <stdexcept>
 #include <utility>
 
 #include "rift/pd/bond_runs.hpp"
@@ -63,8 +62,8 @@ void for_each_in(const Numbering& window, F&& f) {
 
 /// The VES history of the window's bodies (bonds.hpp, bond_slabs.hpp history_index): the whole
 /// blocks of Bonds::history_block particles that hold its particles, laid out as in the whole run
-/// from the window's first block on (each part's history_base counts from its body's first block,
-/// so it may be negative), and the per-particle sums.
+/// from the window's first block on, one block after the other (each part's history_base counts
+/// from its body's first block, so it may be negative), and the per-particle sums.
 void window_viscous_history(const Bonds& b, const std::vector<BodyInfo>& bodies, std::vector<BodyInfo>& parts, const Numbering& window,
                             Bonds& c) {
   constexpr std::size_t block = Bonds::history_block;
@@ -77,13 +76,18 @@ void window_viscous_history(const Bonds& b, const std::vector<BodyInfo>& bodies,
     const auto index = [&](std::size_t i) { return static_cast<std::size_t>(static_cast<std::int64_t>(i) - part.origin); };
     const std::size_t first_block = index(part.first) / block, blocks = index(part.last - 1) / block + 1 - first_block;
     part.history_base = static_cast<std::int64_t>(slots) - static_cast<std::int64_t>(first_block * per_block);
-    const auto from = static_cast<std::size_t>(body.history_base) + first_block * per_block, count = blocks * per_block;
-    c.back_extension.insert(c.back_extension.end(), b.back_extension.begin() + static_cast<std::ptrdiff_t>(from),
-                            b.back_extension.begin() + static_cast<std::ptrdiff_t>(from + count));
-    // one pair slot per two history slots (bond_slabs.hpp pair_slot): the blocks' halves
-    c.last_extension.insert(c.last_extension.end(), b.last_extension.begin() + static_cast<std::ptrdiff_t>(from / 2),
-                            b.last_extension.begin() + static_cast<std::ptrdiff_t>((from + count) / 2));
-    slots += count;
+    for (std::size_t q = 0; q < blocks; ++q) {
+      // the whole body's block that holds block q here: that of its first particle in the window
+      const std::size_t first_here = std::max(part.first, static_cast<std::size_t>(part.origin + static_cast<std::int64_t>((first_block + q) * block)));
+      const std::size_t whole_block = (window.whole(first_here) - body.first) / block;
+      const auto from = static_cast<std::size_t>(body.history_base) + whole_block * per_block;
+      c.back_extension.insert(c.back_extension.end(), b.back_extension.begin() + static_cast<std::ptrdiff_t>(from),
+                              b.back_extension.begin() + static_cast<std::ptrdiff_t>(from + per_block));
+      // one pair slot per two history slots (bond_slabs.hpp pair_slot): the blocks' halves
+      c.last_extension.insert(c.last_extension.end(), b.last_extension.begin() + static_cast<std::ptrdiff_t>(from / 2),
+                              b.last_extension.begin() + static_cast<std::ptrdiff_t>((from + per_block) / 2));
+    }
+    slots += blocks * per_block;
   }
   c.history_dilatation = slice(b.history_dilatation, window);
   c.deviatoric_sum = slice(b.deviatoric_sum, window);
@@ -219,6 +223,29 @@ void window_interface_bonds(const Model<D>& m, const Numbering& window, Model<D>
 }  // namespace
 
 template <int D>
+std::vector<IndexRange> with_whole_runs(const Model<D>& m, const std::vector<IndexRange>& owned, std::vector<IndexRange> window) {
+  auto any_owned = [&](std::size_t first, std::size_t last) {
+    const auto r = std::upper_bound(owned.begin(), owned.end(), first, [](std::size_t x, const IndexRange& a) { return x < a.last; });
+    return r != owned.end() && r->first < last;
+  };
+  for (const BodyInfo& body : m.bodies)
+    for (const BondRun& run : body.runs) {
+      const auto i = static_cast<std::size_t>(run.i), j = static_cast<std::size_t>(run.j);
+      if (!any_owned(i, i + run.length) && !any_owned(j, j + run.length)) continue;
+      window.push_back({i, i + run.length}), window.push_back({j, j + run.length});
+    }
+  // ascending and apart
+  std::sort(window.begin(), window.end(), [](const IndexRange& a, const IndexRange& b) { return a.first < b.first; });
+  std::vector<IndexRange> joined;
+  for (const IndexRange& r : window) {
+    if (r.last <= r.first) continue;
+    if (!joined.empty() && r.first <= joined.back().last) joined.back().last = std::max(joined.back().last, r.last);
+    else joined.push_back(r);
+  }
+  return joined;
+}
+
+template <int D>
 Model<D> window_of(const Model<D>& m, const Partition& p, int rank) {
   const auto r = static_cast<std::size_t>(rank);
   const Numbering window(p.window[r]);
@@ -276,17 +303,17 @@ Model<D> window_of(const Model<D>& m, const Partition& p, int rank) {
     }
     c.factor_row[a] = row->second;
   });
-  // the bodies: the part of each inside the window, numbered from the whole body's first particle
-  // (its slabs, runs and VES history blocks are the whole body's: BodyInfo::origin, one range)
-  if (window.ranges().size() > 1)
-    throw std::logic_error("window_of: a window of more than one range of the numbering (the bond runs and VES history take one)");
-  const std::size_t w0 = window.ranges().empty() ? 0 : window.ranges()[0].whole;
+  // the bodies: the part of each inside the window, its slabs the whole body's (BodyInfo::whole_first)
+  // and its runs and VES history blocks counted from the whole body's first particle
+  // (BodyInfo::origin: the window's ranges of several start at whole blocks, Partition)
   for (const BodyInfo& body : m.bodies) {
     BodyInfo part = body;
-    part.first = std::clamp(body.first, w0, w0 + n) - w0;
-    part.last = std::clamp(body.last, w0, w0 + n) - w0;
-    part.origin = static_cast<std::int64_t>(body.first) - static_cast<std::int64_t>(w0);
-    make_bond_runs(c, part);
+    part.first = window.first_from(body.first);
+    part.last = window.first_from(body.last);
+    part.whole_first = body.whole_first;
+    const std::size_t first_whole = part.first < part.last ? window.whole(part.first) : body.first;
+    part.origin = static_cast<std::int64_t>(part.first) - static_cast<std::int64_t>(first_whole - body.first);
+    make_bond_runs(c, part, window);
     drop_runs_of_ghosts(part, w.owned_ranges);
     w.bodies.push_back(std::move(part));
   }
@@ -306,7 +333,8 @@ Model<D> window_of(const Model<D>& m, const Partition& p, int rank) {
 
 #define RIFT_INSTANTIATE(D)                                                      \
   template Partition partition_by_bonds<D>(const Model<D>&, int, std::size_t, std::size_t); \
-  template Model<D> window_of<D>(const Model<D>&, const Partition&, int);
+  template Model<D> window_of<D>(const Model<D>&, const Partition&, int);                  \
+  template std::vector<IndexRange> with_whole_runs<D>(const Model<D>&, const std::vector<IndexRange>&, std::vector<IndexRange>);
 RIFT_INSTANTIATE(2)
 RIFT_INSTANTIATE(3)
 #undef RIFT_INSTANTIATE

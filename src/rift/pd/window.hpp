@@ -53,6 +53,14 @@ bool fluid_reads_far(const Model<D>& m) {
   return false;
 }
 
+/// `window` (ranges of the whole numbering, holding every neighbour of the `owned` particles) grown
+/// to hold both ends of every pair of each of the whole model's bond runs (bond_runs.hpp) with an
+/// owned end: a run cut by the window would add a particle's two terms of one run (it is the lower
+/// end of one pair, the upper end of another) in another order, in the vector form or the pair by
+/// pair one. The window's runs with an owned end are then the whole run's, in its order.
+template <int D>
+std::vector<IndexRange> with_whole_runs(const Model<D>& m, const std::vector<IndexRange>& owned, std::vector<IndexRange> window);
+
 /// Rank r's window of the whole model: its fields, the rows of its particles (ghosts' rows cut to
 /// the window), its bodies' runs made again over the window with the whole bodies' slabs.
 template <int D>
