@@ -53,6 +53,12 @@ std::vector<T> slice(const std::vector<T>& v, const Numbering& window, std::size
   return out;
 }
 
+/// Whether [first, last) meets one of the ranges (ascending and apart).
+bool meets_any(const std::vector<IndexRange>& ranges, std::size_t first, std::size_t last) {
+  const auto r = std::upper_bound(ranges.begin(), ranges.end(), first, [](std::size_t x, const IndexRange& a) { return x < a.last; });
+  return r != ranges.end() && r->first < last;
+}
+
 /// f(a, i) for each particle of the window: a its number here, i the whole run's.
 template <class F>
 void for_each_in(const Numbering& window, F&& f) {
@@ -76,9 +82,9 @@ void window_viscous_history(const Bonds& b, const std::vector<BodyInfo>& bodies,
     const auto index = [&](std::size_t i) { return static_cast<std::size_t>(static_cast<std::int64_t>(i) - part.origin); };
     const std::size_t first_block = index(part.first) / block, blocks = index(part.last - 1) / block + 1 - first_block;
     part.history_base = static_cast<std::int64_t>(slots) - static_cast<std::int64_t>(first_block * per_block);
-    for (std::size_t q = 0; q < blocks; ++q) {
-      // the whole body's block that holds block q here: that of its first particle in the window
-      const std::size_t first_here = std::max(part.first, static_cast<std::size_t>(part.origin + static_cast<std::int64_t>((first_block + q) * block)));
+    for (std::size_t k = 0; k < blocks; ++k) {
+      // the whole body's block that holds block k here: that of its first particle in the window
+      const std::size_t first_here = std::max(part.first, static_cast<std::size_t>(part.origin + static_cast<std::int64_t>((first_block + k) * block)));
       const std::size_t whole_block = (window.whole(first_here) - body.first) / block;
       const auto from = static_cast<std::size_t>(body.history_base) + whole_block * per_block;
       c.back_extension.insert(c.back_extension.end(), b.back_extension.begin() + static_cast<std::ptrdiff_t>(from),
@@ -108,10 +114,7 @@ void drop_runs_of_ghosts(BodyInfo& part, const std::vector<IndexRange>& owned) {
     for (std::size_t k = part.slab_runs[q]; k < part.slab_runs[q + 1]; ++k) {
       const BondRun& r = part.runs[k];
       const auto i = static_cast<std::size_t>(r.i), j = static_cast<std::size_t>(r.j);
-      auto any_owned = [&](std::size_t first, std::size_t last) {
-        return std::any_of(owned.begin(), owned.end(), [&](const IndexRange& a) { return first < a.last && last > a.first; });
-      };
-      const bool owned_lower = any_owned(i, i + r.length), owned_upper = any_owned(j, j + r.length);
+      const bool owned_lower = meets_any(owned, i, i + r.length), owned_upper = meets_any(owned, j, j + r.length);
       if (!owned_lower && !owned_upper) continue;
       kept.push_back(r);
       ++slab_runs[q + 1];
@@ -224,14 +227,10 @@ void window_interface_bonds(const Model<D>& m, const Numbering& window, Model<D>
 
 template <int D>
 std::vector<IndexRange> with_whole_runs(const Model<D>& m, const std::vector<IndexRange>& owned, std::vector<IndexRange> window) {
-  auto any_owned = [&](std::size_t first, std::size_t last) {
-    const auto r = std::upper_bound(owned.begin(), owned.end(), first, [](std::size_t x, const IndexRange& a) { return x < a.last; });
-    return r != owned.end() && r->first < last;
-  };
   for (const BodyInfo& body : m.bodies)
     for (const BondRun& run : body.runs) {
       const auto i = static_cast<std::size_t>(run.i), j = static_cast<std::size_t>(run.j);
-      if (!any_owned(i, i + run.length) && !any_owned(j, j + run.length)) continue;
+      if (!meets_any(owned, i, i + run.length) && !meets_any(owned, j, j + run.length)) continue;
       window.push_back({i, i + run.length}), window.push_back({j, j + run.length});
     }
   // ascending and apart
