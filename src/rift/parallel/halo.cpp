@@ -70,7 +70,10 @@ void Halo::refresh(double* field, std::size_t width) const {
     const Peer& r = receive_[k];
     if (r.ranges.size() < 2) continue;
     const double* from = packed[k].data();
-    for (const IndexRange& a : r.ranges) from = std::copy(from, from + a.size() * width, field + a.first * width);
+    for (const IndexRange& a : r.ranges) {
+      std::copy(from, from + a.size() * width, field + a.first * width);
+      from += a.size() * width;
+    }
   }
 }
 
