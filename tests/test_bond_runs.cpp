@@ -19,6 +19,7 @@
 #include <omp.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
@@ -182,6 +183,46 @@ TEST(BondRuns, RowsBySlabsVisitEachRowOfAWindowOnceInTheOneRankOrder) {
   omp_set_num_threads(threads);
 }
 
+// Each window of `p` over the deformed, partly broken model m: its rows by slabs come in the
+// one-rank order, every bond with an owned end is in one run, and its owned particles' PMB forces
+// and bond states after a pass are the whole model's to the bit.
+void expect_windows_give_the_whole_forces(const rift::pd::Model<3>& m, const rift::pd::Partition& p, const char* what) {
+  auto whole = m;
+  rift::pd::compute_forces<3>(whole, nullptr);
+  const int threads = omp_get_max_threads();
+  omp_set_num_threads(1);
+  std::vector<std::size_t> whole_order;
+  rift::pd::for_each_row_by_slabs(m.bodies[0], m.numbering, [&](std::size_t i) { whole_order.push_back(i); });
+  omp_set_num_threads(threads);
+  for (int r = 0; r < static_cast<int>(p.owned.size()); ++r) {
+    auto w = rift::pd::window_of<3>(m, p, r);
+    ASSERT_EQ(w.size(), rift::count_of(p.window[static_cast<std::size_t>(r)]));
+    ASSERT_EQ(w.owned_count(), rift::count_of(p.owned[static_cast<std::size_t>(r)]));
+    // the rows by slabs: the window's particles in the one-rank order
+    omp_set_num_threads(1);
+    std::vector<std::size_t> order, expected;
+    rift::pd::for_each_row_by_slabs(w.bodies[0], w.numbering, [&](std::size_t a) { order.push_back(w.numbering.whole(a)); });
+    omp_set_num_threads(threads);
+    std::copy_if(whole_order.begin(), whole_order.end(), std::back_inserter(expected), [&](std::size_t i) { return w.numbering.holds(i); });
+    EXPECT_EQ(order, expected) << "rank " << r;
+    check_runs_cover_owned_ends(w);
+    rift::pd::compute_forces<3>(w, nullptr);
+    std::size_t compared = 0;
+    for (const rift::IndexRange& owned : w.owned())
+      for (std::size_t a = owned.first; a < owned.last; ++a, ++compared) {
+        const std::size_t i = w.numbering.whole(a);
+        ASSERT_EQ(std::memcmp(w.force[a].data(), whole.force[i].data(), sizeof(w.force[a])), 0)
+            << "rank " << r << ": particle " << i << " force " << w.force[a][0] << " against " << whole.force[i][0];
+        ASSERT_EQ(w.bonds.offset[a + 1] - w.bonds.offset[a], whole.bonds.offset[i + 1] - whole.bonds.offset[i]);
+        for (auto k = w.bonds.offset[a]; k < w.bonds.offset[a + 1]; ++k)
+          ASSERT_EQ(w.bonds.intact[static_cast<std::size_t>(k)], whole.bonds.intact[static_cast<std::size_t>(whole.bonds.offset[i] + (k - w.bonds.offset[a]))]);
+      }
+    EXPECT_GT(compared, 500u);
+    std::printf("rank %d of %s: %zu owned, a window of %zu particles in %zu ranges, forces bitwise the whole model's\n", r, what,
+                compared, w.size(), w.numbering.ranges().size());
+  }
+}
+
 // A window of several ranges of the numbering (a box of a processor grid: the lattice lines of one
 // side of a cut across y, in every layer, with their ghosts and the whole runs of its owned
 // particles, window.hpp with_whole_runs): its owned particles' PMB forces and bond states after a
@@ -212,40 +253,44 @@ TEST(BondRuns, AWindowOfManyRangesGivesItsOwnedParticlesTheWholeRunsForces) {
   for (std::size_t r = 0; r < 2; ++r) p.window[r] = rift::pd::with_whole_runs<3>(m, p.owned[r], p.window[r]);
   ASSERT_GT(p.window[0].size(), 5u);  // a range a layer or so: jumps in the numbering
   ASSERT_GT(p.window[1].size(), 5u);
-  auto whole = m;
-  rift::pd::compute_forces<3>(whole, nullptr);
-  const int threads = omp_get_max_threads();
-  omp_set_num_threads(1);
-  std::vector<std::size_t> whole_order;
-  rift::pd::for_each_row_by_slabs(m.bodies[0], m.numbering, [&](std::size_t i) { whole_order.push_back(i); });
-  omp_set_num_threads(threads);
-  for (int r = 0; r < 2; ++r) {
-    auto w = rift::pd::window_of<3>(m, p, r);
-    ASSERT_EQ(w.size(), rift::count_of(p.window[static_cast<std::size_t>(r)]));
-    ASSERT_EQ(w.owned_count(), rift::count_of(p.owned[static_cast<std::size_t>(r)]));
-    // the rows by slabs: the window's particles in the one-rank order
-    omp_set_num_threads(1);
-    std::vector<std::size_t> order, expected;
-    rift::pd::for_each_row_by_slabs(w.bodies[0], w.numbering, [&](std::size_t a) { order.push_back(w.numbering.whole(a)); });
-    omp_set_num_threads(threads);
-    std::copy_if(whole_order.begin(), whole_order.end(), std::back_inserter(expected), [&](std::size_t i) { return w.numbering.holds(i); });
-    EXPECT_EQ(order, expected) << "rank " << r;
-    check_runs_cover_owned_ends(w);
-    rift::pd::compute_forces<3>(w, nullptr);
-    std::size_t compared = 0;
-    for (const rift::IndexRange& owned : w.owned())
-      for (std::size_t a = owned.first; a < owned.last; ++a, ++compared) {
-        const std::size_t i = w.numbering.whole(a);
-        ASSERT_EQ(std::memcmp(w.force[a].data(), whole.force[i].data(), sizeof(w.force[a])), 0)
-            << "rank " << r << ": particle " << i << " force " << w.force[a][0] << " against " << whole.force[i][0];
-        ASSERT_EQ(w.bonds.offset[a + 1] - w.bonds.offset[a], whole.bonds.offset[i + 1] - whole.bonds.offset[i]);
-        for (auto k = w.bonds.offset[a]; k < w.bonds.offset[a + 1]; ++k)
-          ASSERT_EQ(w.bonds.intact[static_cast<std::size_t>(k)], whole.bonds.intact[static_cast<std::size_t>(whole.bonds.offset[i] + (k - w.bonds.offset[a]))]);
+  expect_windows_give_the_whole_forces(m, p, "a cut across y");
+}
+
+// The pencils of a 1 x 2 x 2 processor grid (window.hpp partition_into_pencils) of the same plate:
+// the owned particles of the 4 ranks are every particle once, about a quarter each (balanced by
+// bonds), one range per layer of a box; every neighbour of an owned particle is in the window; and
+// each window's owned particles get the whole model's PMB forces and bond states to the bit.
+TEST(BondRuns, PencilsOfAOneByTwoByTwoGridGiveTheWholeRunsForces) {
+  std::string scene = block_scene(3, false);
+  auto set = [&](const std::string& from, const std::string& to) { scene.replace(scene.find(from), from.size(), to); };
+  set("max = [0.014, 0.011, 0.009]", "max = [0.060, 0.040, 0.006]");
+  set("center = [0.007, 0.0055, -0.005]", "center = [0.020, 0.012, -0.005]");
+  auto m = rift::pd::discretize<3>(rift::scene::parse_string(scene, "plate.toml"));
+  deform_and_break(m);
+  const auto p = rift::pd::partition_into_pencils<3>(m, 2, 2);
+  ASSERT_EQ(p.owned.size(), 4u);
+  std::vector<int> owner(m.size(), -1);
+  for (std::size_t r = 0; r < 4; ++r) {
+    for (const auto& range : p.owned[r])
+      for (std::size_t i = range.first; i < range.last; ++i) {
+        ASSERT_EQ(owner[i], -1) << "particle " << i << " owned twice";
+        owner[i] = static_cast<int>(r);
       }
-    EXPECT_GT(compared, 500u);
-    std::printf("rank %d of a cut across y: %zu owned, a window of %zu particles in %zu ranges, forces bitwise the whole model's\n", r,
-                compared, w.size(), w.numbering.ranges().size());
+    // a quarter of the particles, to the lines and layers the cuts fall between (41 lines, 7 layers)
+    EXPECT_NEAR(static_cast<double>(rift::count_of(p.owned[r])), m.size() / 4.0, 0.12 * m.size()) << "rank " << r;
+    const rift::pd::Numbering window(p.window[r]);
+    for (const auto& range : p.owned[r])
+      for (std::size_t i = range.first; i < range.last; ++i)
+        for (auto k = m.bonds.offset[i]; k < m.bonds.offset[i + 1]; ++k)
+          ASSERT_TRUE(window.holds(static_cast<std::size_t>(m.bonds.neighbor[static_cast<std::size_t>(k)]))) << "rank " << r << " particle " << i;
   }
+  EXPECT_EQ(std::count(owner.begin(), owner.end(), -1), 0);
+  expect_windows_give_the_whole_forces(m, p, "a 1 x 2 x 2 grid");
+  // the grid a run chooses for this plate, 7 layers thick: cuts across y (about 2 (h + 256 / n_x)
+  // n_x n_z = 6,200 ghosts a rank, against 2 h n_x n_y = 15,100 for slabs across z)
+  EXPECT_EQ((rift::pd::choose_pencils<3>(m, 4)), (std::array<int, 2>{4, 1}));
+  EXPECT_EQ((rift::pd::choose_pencils<3>(m, 2)), (std::array<int, 2>{2, 1}));
+  EXPECT_EQ((rift::pd::choose_pencils<2>(block<2>(false), 4)), (std::array<int, 2>{1, 4}));
 }
 
 // The pass against Silling and Askari's formulas row by row.

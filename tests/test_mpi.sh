@@ -165,6 +165,31 @@ for scene in plate bar ves_bar ns_plate; do
   same_on_ranks "$scene" 1 2 3
   echo "ok: $scene on 1, 2 and 3 ranks: the same bytes in every output as one rank"
 done
+# pencils (pd/window.hpp partition_into_pencils): the 3D bars cut across y and z (1 x 2 x 2, on 4
+# ranks) and across y alone (1 x 2 x 1), each lattice line along x whole: a box owns one range of the
+# numbering per layer and its window holds many; the halo sends a peer's several ranges in one
+# message and the sums over the owned particles are exact (parallel/exact_sum.hpp). A checkpoint of
+# the 4 pencils (rank 0 gathers the ranges in the whole run's order) continues on 3 slabs and on 1.
+for scene in bar ves_bar; do
+  for grid in 1x2x2 1x2x1; do
+    IFS=x read -r _ py pz <<< "$grid"
+    out="$tmp/$scene-$grid"
+    "${mpirun[@]}" -np $((py * pz)) "$rift" run "$tmp/$scene.toml" -o "$out" -q --processor-grid "$grid" > "$out.log" 2>&1 ||
+      { cat "$out.log"; fail "$scene: --processor-grid $grid"; }
+    same_outputs "$tmp/$scene-serial" "$out" "$scene on a $grid grid"
+  done
+done
+printf '[checkpoint]\nevery_steps = 20\nfile = "ckpt_*.rift"\n' | cat "$tmp/ves_bar.toml" - > "$tmp/ves_bar-pencils.toml"
+"${mpirun[@]}" -np 4 "$rift" run "$tmp/ves_bar-pencils.toml" -o "$tmp/ves_bar-pencils" -q --processor-grid 1x2x2 > /dev/null 2>&1 ||
+  fail "ves_bar: checkpointed run on a 1x2x2 grid"
+for np in 3 1; do
+  out="$tmp/ves_bar-pencils-restart-np$np"
+  cp -r "$tmp/ves_bar-pencils" "$out"
+  "${mpirun[@]}" -np "$np" "$rift" run "$tmp/ves_bar-pencils.toml" -o "$out" -q --restart "$out/ckpt_20.rift" > "$out.log" 2>&1 ||
+    { cat "$out.log"; fail "ves_bar: restart on $np ranks from the pencils' checkpoint"; }
+  same_outputs "$tmp/ves_bar-serial" "$out" "ves_bar restarted on $np ranks from a 1x2x2 grid's checkpoint"
+done
+echo "ok: bar and ves_bar on 1 x 2 x 2 and 1 x 2 x 1 pencils, and ves_bar from a checkpoint of 1 x 2 x 2 continued on 3 and 1 rank: the same bytes as one rank"
 # the plates' cracks must have grown (else the test shows nothing about breaking on the cut)
 for scene in plate ns_plate; do
   awk -F, 'NR > 1 { b = $6 } END { exit !(b > 1000) }' "$tmp/$scene-serial/history.csv" || fail "$scene: fewer than 1000 bonds broke"
@@ -645,9 +670,15 @@ refused "$tmp/coarse_disks.toml" "a rank needs 4 of them" 3
 # --cut-along: a peridynamic run is cut across its slowest axis alone; a 2D grid has no z
 refused "$tmp/bar.toml" "cut across its lattice's slowest axis" 2 --cut-along x
 refused "$tmp/mpm_disks.toml" "has no z axis" 2 --cut-along z
-# --processor-grid: its product is the ranks' number; a peridynamic run takes 1 x N alone
+# --processor-grid: its product is the ranks' number; a peridynamic run takes 1 x N (2D) or 1 x P x Q
+# (3D) alone, each of whose boxes holds particles
 refused "$tmp/mpm_disks.toml" "its numbers' product must be the ranks' number" 4 --processor-grid 3x3
 refused "$tmp/impact.toml" "takes the grid 1x2 alone" 2 --processor-grid 2x1
+refused "$tmp/bar.toml" "takes a grid 1x1x2 or 1xPxQ with P Q = 2" 2 --processor-grid 2x1x1
+# a bar one lattice line wide across y: a grid that cuts y leaves a rank without particles
+sed -e 's/max = \[0.006, 0.006, 0.012\]/max = [0.006, 0.0005, 0.012]/' -e 's/0.006, 0.006, 0.001\]/0.006, 0.0005, 0.001]/' \
+  "$tmp/bar.toml" > "$tmp/thin_bar.toml"
+refused "$tmp/thin_bar.toml" "leaves rank 1 without particles" 2 --processor-grid 1x2x1
 echo "ok: what a distributed run cannot take is refused with exit status 2"
 
 exit 0

@@ -1,11 +1,14 @@
 #include "rift/load/boundary.hpp"
 
+#include "rift/parallel/exact_sum.hpp"
+
 #include <algorithm>
 
 #include "rift/core/phase_times.hpp"
 #include "rift/geometry/region.hpp"
 #include "rift/load/time_function.hpp"
 #include "rift/load/traction_layer.hpp"
+#include "rift/parallel/exact_sum.hpp"
 #include "rift/pd/crack_pressure.hpp"
 #include "rift/pd/network_load.hpp"
 #include "rift/pd/viscous_fluid.hpp"
@@ -195,14 +198,16 @@ void Boundaries<D>::prescribe_position(pd::Model<D>& m, double t) const {
 }
 
 template <int D>
-std::vector<Vec<D>> Boundaries<D>::reactions(const pd::Model<D>& m) const {
-  std::vector<Vec<D>> out;
-  for (const auto& parts : reaction_particles_) {
-    Vec<D> r{};
-    for (auto i : parts)
-      for (int k = 0; k < D; ++k) r[k] -= m.force[i][k] * m.volume[i];
-    out.push_back(r);
-  }
+std::vector<Vec<D>> Boundaries<D>::reactions(const pd::Model<D>& m, const parallel::Communicator& comm) const {
+  // added exactly (parallel/exact_sum.hpp): the one-rank run's bits however the ranks share a region
+  std::vector<parallel::ExactSum> sums(reaction_particles_.size() * D);
+  for (std::size_t q = 0; q < reaction_particles_.size(); ++q)
+    for (auto i : reaction_particles_[q])
+      for (int k = 0; k < D; ++k) sums[q * D + static_cast<std::size_t>(k)].add(-m.force[i][k] * m.volume[i]);
+  const std::vector<double> total = parallel::rounded_over_ranks(comm, std::move(sums));
+  std::vector<Vec<D>> out(reaction_particles_.size());
+  for (std::size_t q = 0; q < out.size(); ++q)
+    for (int k = 0; k < D; ++k) out[q][k] = total[q * D + static_cast<std::size_t>(k)];
   return out;
 }
 

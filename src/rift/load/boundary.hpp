@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "rift/parallel/communicator.hpp"
 #include "rift/pd/model.hpp"
 #include "rift/scene/scene.hpp"
 
@@ -23,8 +24,9 @@ class Boundaries {
   void prescribe_velocity(pd::Model<D>& m, double t, double dt) const;
   /// Exact positions of displacement-controlled components at time t.
   void prescribe_position(pd::Model<D>& m, double t) const;
-  /// Reaction force of each tagged region: minus the internal force its particles carry.
-  std::vector<Vec<D>> reactions(const pd::Model<D>& m) const;
+  /// Reaction force of each tagged region: minus the internal force its particles carry, over the
+  /// owned particles of every rank of `comm` (a distributed run's), summed exactly.
+  std::vector<Vec<D>> reactions(const pd::Model<D>& m, const parallel::Communicator& comm = parallel::Communicator::one()) const;
   const std::vector<std::string>& reaction_names() const { return reaction_names_; }
   /// A distributed run (pd/window.hpp): the loads of the window's particles, numbered as the
   /// window numbers them; the reactions of the owned ones (`owned`, ranges of the whole numbering)

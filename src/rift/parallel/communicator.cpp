@@ -71,6 +71,12 @@ void Communicator::sum(double* values, std::size_t count) const {
   MPI_Allreduce(MPI_IN_PLACE, values, static_cast<int>(count), MPI_DOUBLE, MPI_SUM, MPI_COMM_WORLD);
 }
 
+void Communicator::sum(std::int64_t* values, std::size_t count) const {
+  if (!started || size_ < 2) return;
+  MpiClock clock;
+  MPI_Allreduce(MPI_IN_PLACE, values, static_cast<int>(count), MPI_INT64_T, MPI_SUM, MPI_COMM_WORLD);
+}
+
 void Communicator::max(double* values, std::size_t count) const {
   if (!started || size_ < 2) return;
   MpiClock clock;

@@ -53,6 +53,7 @@ class Communicator {
   /// In place, over every rank: the sums, the maxima.
   void sum(double* values, std::size_t count) const;
   void max(double* values, std::size_t count) const;
+  void sum(std::int64_t* values, std::size_t count) const;  // exact (integers)
   double sum(double value) const { sum(&value, 1); return value; }
   double max(double value) const { max(&value, 1); return value; }
   double min(double value) const { value = -value; max(&value, 1); return -value; }

@@ -1,14 +1,16 @@
-// Reductions that give the same bits for any thread count: the range is cut into fixed blocks
-// (independent of the number of threads), each block is summed in order, and the block sums are
-// added in order. OpenMP's reduction clause does not promise an order for floating point.
+// Reductions that give the same bits for any thread count: ordered_sums cuts the range into fixed
+// blocks (independent of the number of threads), each block summed in order and the block sums
+// added in order; exact_sums adds exactly (exact_sum.hpp), the same bits for any cut of the terms
+// among threads and ranks. OpenMP's reduction clause does not promise an order for floating point.
 #pragma once
 #include <algorithm>
 #include <array>
+#include <utility>
 #include <cstddef>
 #include <vector>
 
 #include "rift/core/index_range.hpp"
-#include "rift/parallel/communicator.hpp"
+#include "rift/parallel/exact_sum.hpp"
 
 namespace rift::parallel {
 
@@ -45,27 +47,32 @@ std::array<double, K> ordered_sums(std::size_t n, F&& f) {
   return add_in_order<K>(block_sums<K>(0, n, f));
 }
 
-/// The same sums over a distributed run whose ranks own [first, first + n) each (pd/window.hpp),
-/// cut at whole blocks of the whole numbering (Partition's granularity): every rank adds every
-/// rank's block sums in rank order, which is the one-rank run's order, so the sums are its bits.
+/// Sums of K quantities over the particles of `owned` (ranges) on every rank of `comm`: each
+/// particle's terms summed in its order, then added exactly (exact_sum.hpp), the blocks of each
+/// thread's share and the ranks' sums alike, and rounded once. The bits do not depend on how the
+/// particles are cut among threads and ranks: any partition of a distributed peridynamic run
+/// (pd/window.hpp: slabs, pencils) gives the one-rank run's.
 template <std::size_t K, class F>
-std::array<double, K> ordered_sums(const Communicator& comm, std::size_t first, std::size_t n, F&& f) {
-  auto partial = block_sums<K>(first, n, f);
-  if (comm.distributed()) partial = comm.all_gather(partial);
-  return add_in_order<K>(partial);
-}
-
-/// The same over ranks that own a few ranges each (ascending), each range cut at whole blocks of
-/// the whole numbering: a rank's block sums range after range, then every rank's in rank order.
-template <std::size_t K, class F>
-std::array<double, K> ordered_sums(const Communicator& comm, const std::vector<IndexRange>& owned, F&& f) {
-  std::vector<std::array<double, K>> partial;
-  for (const IndexRange& r : owned) {
-    const auto sums = block_sums<K>(r.first, r.size(), f);
-    partial.insert(partial.end(), sums.begin(), sums.end());
+std::array<double, K> exact_sums(const Communicator& comm, const std::vector<IndexRange>& owned, F&& f) {
+  constexpr std::size_t block = ordered_sum_block;
+  std::vector<std::pair<std::size_t, std::size_t>> blocks;  // [first, last) of each
+  for (const IndexRange& r : owned)
+    for (std::size_t i = r.first; i < r.last; i += block) blocks.emplace_back(i, std::min(r.last, i + block));
+  std::array<ExactSum, K> total;
+#pragma omp parallel if(blocks.size() > 1)
+  {
+    std::array<ExactSum, K> mine;
+#pragma omp for schedule(static) nowait
+    for (std::size_t b = 0; b < blocks.size(); ++b)
+      for (std::size_t i = blocks[b].first; i < blocks[b].second; ++i) {
+        std::array<double, K> terms{};
+        f(i, terms);
+        for (std::size_t k = 0; k < K; ++k) mine[k].add(terms[k]);
+      }
+#pragma omp critical(rift_exact_sums)
+    for (std::size_t k = 0; k < K; ++k) total[k].add(mine[k]);
   }
-  if (comm.distributed()) partial = comm.all_gather(partial);
-  return add_in_order<K>(partial);
+  return rounded_over_ranks<K>(comm, total);
 }
 
 }  // namespace rift::parallel

@@ -75,7 +75,7 @@ double DynamicRelaxation<D>::measure_fictitious_density(Model<D>& m, const load:
     for (std::size_t i = 0; i < n; ++i) m.position[i] = start[i] + probe * v[i];
     const std::vector<Vec<D>> moved = total_force();
     // w = K v / bound (K v = -(F(x + probe v) - F(x)) / probe); Rayleigh's quotient in the bound's metric
-    const auto sums = parallel::ordered_sums<2>(comm, owned, [&](std::size_t i, std::array<double, 2>& acc) {
+    const auto sums = parallel::exact_sums<2>(comm, owned, [&](std::size_t i, std::array<double, 2>& acc) {
       for (int q = 0; q < D; ++q) {
         const double kv = m.constrained[i] >> q & 1 ? 0.0 : -(moved[i][q] - at_start[i][q]) / probe;
         acc[0] += m.volume[i] * v[i][q] * kv;
@@ -129,12 +129,12 @@ RelaxationResult DynamicRelaxation<D>::relax(Model<D>& m, const load::Boundaries
   for (auto& v : m.velocity) v = Vec<D>{};
   std::vector<Vec<D>> previous(n);  // F^{n-1} / lambda
   RelaxationResult result;
-  // sums over the owned particles; a distributed run's ranks add each other's block sums in the
-  // one-rank order (ordered_sum.hpp), so the damping and the residual are its bits
+  // sums over the owned particles of every rank, exact (parallel/exact_sum.hpp), so the damping and
+  // the residual are the one-rank run's bits on any cut
   const auto& comm = ranks_of<D>(m);
   const bool distributed = comm.distributed();
   const std::vector<IndexRange> owned = m.owned();
-  auto sum_over = [&](auto&& f) { return parallel::ordered_sums<4>(comm, owned, f); };
+  auto sum_over = [&](auto&& f) { return parallel::exact_sums<4>(comm, owned, f); };
   auto squared_load = [&] {  // ||external force||^2
     return sum_over([&](std::size_t i, std::array<double, 4>& acc) { acc[0] += dot<D>(m.body_force[i], m.body_force[i]) * m.volume[i] * m.volume[i]; })[0];
   };

@@ -389,10 +389,13 @@ void label_as_one_rank(Model<D>& m, std::vector<std::size_t>& queue) {
   std::unordered_map<std::int64_t, std::size_t> row_at;  // a particle's number: where its row starts
   for (std::size_t p = 0; p < all_rows.size(); p += 2 + static_cast<std::size_t>(all_rows[p + 1])) row_at.emplace(all_rows[p], p);
   std::unordered_map<std::int64_t, int> label;
-  std::vector<std::int64_t> reached;  // one rank's queue
-  for (std::size_t p = 0; p < all_seeds.size(); p += 2) {
-    label.emplace(all_seeds[p], static_cast<int>(all_seeds[p + 1]));
-    reached.push_back(all_seeds[p]);
+  std::vector<std::int64_t> reached;  // one rank's queue: the seeds ascending (any cut among the ranks)
+  std::vector<std::pair<std::int64_t, int>> seed;
+  for (std::size_t p = 0; p < all_seeds.size(); p += 2) seed.emplace_back(all_seeds[p], static_cast<int>(all_seeds[p + 1]));
+  std::sort(seed.begin(), seed.end());
+  for (const auto& [g, s] : seed) {
+    label.emplace(g, s);
+    reached.push_back(g);
   }
   const std::size_t next_to_source = reached.size();
   auto mark_in_crack = [&](std::int64_t g) {
@@ -692,7 +695,7 @@ double cavity_volume_change(const Model<D>& m, int s, bool wall_only = false) {
   const std::vector<double>* network = static_cast<std::size_t>(s) < loads.size() && !loads[static_cast<std::size_t>(s)].empty()
                                            ? &loads[static_cast<std::size_t>(s)] : nullptr;
   // over the owned particles, in the one-rank run's order on any number of ranks (ordered_sum.hpp)
-  const auto sums = parallel::ordered_sums<1>(ranks_of<D>(m), m.owned(), [&](std::size_t i, std::array<double, 1>& acc) {
+  const auto sums = parallel::exact_sums<1>(ranks_of<D>(m), m.owned(), [&](std::size_t i, std::array<double, 1>& acc) {
     for (auto k = w.offset[i]; k < w.offset[i + 1]; ++k) {
       if (pressure_bond_source<D>(m, k, i) != s || (wall_only && w.neighbor[k] >= 0)) continue;
       const auto& x = w.xi[k];

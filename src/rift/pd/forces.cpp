@@ -8,6 +8,7 @@
 #include "rift/pd/bond_runs.hpp"
 #include "rift/parallel/ordered_sum.hpp"
 #include "rift/pd/energy_runs.hpp"
+#include "rift/pd/ghost_fields.hpp"
 #include "rift/pd/interface_contact.hpp"
 #include "rift/pd/interface_law.hpp"
 #include "rift/pd/lps.hpp"
@@ -120,8 +121,9 @@ EnergySummary summarize_rows(const Model<D>& m, bool strain_energy, double* dama
   densities.resize(strain_energy ? m.size() : 0);
   double* const density = densities.data();
   if (strain_energy) strain_energy_densities<D>(m, density);
-  const std::vector<IndexRange> owned = m.owned();  // a distributed run's ranks sum their own
-  auto sums = parallel::ordered_sums<3>(parallel::Communicator::one(), owned, [&](std::size_t i, std::array<double, 3>& acc) {
+  // over the owned particles of every rank, exact (the one-rank run's bits on any cut)
+  const std::vector<IndexRange> owned = m.owned();
+  auto sums = parallel::exact_sums<3>(ranks_of<D>(m), owned, [&](std::size_t i, std::array<double, 3>& acc) {
     const double rho = m.constants_of(i).density;
     acc[0] += 0.5 * rho * dot<D>(m.velocity[i], m.velocity[i]) * m.volume[i];
     if (strain_energy) {
@@ -142,6 +144,7 @@ EnergySummary summarize_rows(const Model<D>& m, bool strain_energy, double* dama
   s.failed_directed = sums[2];
   s.directed = 0.0;
   for (const IndexRange& r : owned) s.directed += static_cast<double>(m.bonds.offset[r.last] - m.bonds.offset[r.first]);
+  s.directed = ranks_of<D>(m).sum(s.directed);  // whole numbers: exact in any order
   s.broken_bonds = static_cast<std::int64_t>(s.failed_directed) / 2;
   s.broken_fraction = s.directed > 0.0 ? s.failed_directed / s.directed : 0.0;
   return s;

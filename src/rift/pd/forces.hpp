@@ -43,7 +43,8 @@ struct EnergySummary {
   // summed (a distributed run's ranks add theirs, run/distributed.hpp)
   double failed_directed = 0.0, directed = 0.0;
 };
-/// Kinetic and strain energy and the broken bonds, of the owned particles (Model::owned). The strain energy visits every pair of bonds
+/// Kinetic and strain energy and the broken bonds of the owned particles (Model::owned) of every
+/// rank, summed exactly (parallel/exact_sum.hpp: the one-rank run's bits). The strain energy visits every pair of bonds
 /// again (strain_energy_densities); with `strain_energy` false it is left 0 unless a position is
 /// not finite, which it then carries as NaN (runner's check_finite), and the sum costs one pass
 /// over the particles and their bond states.

@@ -20,6 +20,7 @@
 
 #include "rift/core/vec.hpp"
 #include "rift/parallel/communicator.hpp"
+#include "rift/parallel/exact_sum.hpp"
 
 namespace rift::pd {
 
@@ -28,30 +29,17 @@ struct Platen {
   std::vector<std::size_t> particles;  // the face's outermost row, ascending (a window's: those in it)
 };
 
-/// Sums of K quantities over a platen's particles, values(i) particle i's, added in the list's
-/// order: one rank's bits on any number of ranks. The list ascends and a distributed run's ranks
-/// own consecutive ranges of the numbering (window.hpp), so every rank's owned values, gathered in
-/// rank order, come in the list's order.
+/// Sums of K quantities over a platen's particles, values(i) particle i's, added exactly
+/// (parallel/exact_sum.hpp): one rank's bits on any number of ranks, however they own the face.
 template <std::size_t K, class Model, class Values>
 std::array<double, K> platen_sums(const Model& m, const Platen& p, Values&& values) {
-  std::array<double, K> total{};
-  auto add = [&](const std::array<double, K>& v) {
-    for (std::size_t q = 0; q < K; ++q) total[q] += v[q];
-  };
-  if (m.ghosts == nullptr) {
-    for (const auto i : p.particles) add(values(i));
-    return total;
-  }
-  std::vector<double> owned;  // K values per owned particle
+  std::array<parallel::ExactSum, K> total;
   for (const auto i : p.particles)
-    if (m.owns(i)) {
+    if (m.ghosts == nullptr || m.owns(i)) {
       const std::array<double, K> v = values(i);
-      owned.insert(owned.end(), v.begin(), v.end());
+      for (std::size_t q = 0; q < K; ++q) total[q].add(v[q]);
     }
-  const std::vector<double> all = parallel::Communicator::world().all_gather(owned);
-  for (std::size_t at = 0; at + K <= all.size(); at += K)
-    for (std::size_t q = 0; q < K; ++q) total[q] += all[at + q];
-  return total;
+  return parallel::rounded_over_ranks<K>(m.ghosts ? parallel::Communicator::world() : parallel::Communicator::one(), total);
 }
 
 /// Moves each platen's particles together along its axis: their velocity and displacement

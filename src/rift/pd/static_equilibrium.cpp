@@ -29,14 +29,14 @@ RelaxationResult solve_static_equilibrium(Model<D>& m, const load::Boundaries<D>
   result.converged = false;
   double shortest = std::numeric_limits<double>::max();
   for (const auto& f : m.bonds.families) shortest = std::min(shortest, f.length);
-  // Sums over the owned particles: a distributed run's (pd/window.hpp) add every rank's block sums
-  // in the one-rank order (parallel/ordered_sum.hpp), and its ghosts' iterates come from their
-  // owners, so its iterations are the one-rank run's bits (a rank that owns none goes along).
+  // Sums over the owned particles of every rank (pd/window.hpp), exact (parallel/exact_sum.hpp),
+  // and the ghosts' iterates come from their owners, so the iterations are the one-rank run's bits
+  // (a rank that owns none goes along).
   const auto& comm = ranks_of<D>(m);
   const std::vector<IndexRange> owned = m.owned();
   const double particles = comm.sum(static_cast<double>(count_of(owned)));  // the whole run's
   if (particles == 0.0 || !(shortest < std::numeric_limits<double>::max())) return result;
-  auto sum_over = [&](auto&& f) { return parallel::ordered_sums<2>(comm, owned, f); };
+  auto sum_over = [&](auto&& f) { return parallel::exact_sums<2>(comm, owned, f); };
   const bool held_here = std::any_of(m.constrained.begin(), m.constrained.end(), [](std::uint8_t c) { return c != 0; });
   const bool free_body = !comm.any(held_here);
   const std::vector<std::uint8_t> on_platen = platen_components(m);

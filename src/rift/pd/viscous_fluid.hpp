@@ -32,7 +32,7 @@
 // network's load reaches but the fluid does not (LPS coupling) takes the mean of the wet particles
 // of its family.
 // On N ranks (window.hpp) every rank solves the whole network: the flow bonds of its owned rows
-// and its owned nodes, gathered in the one-rank order, give every rank the one-rank system and its
+// and its owned nodes, gathered and put in the one-rank order, give every rank the one-rank system and its
 // bits; each keeps its owned particles' pressures and the ghosts take their owners'.
 #pragma once
 #include <algorithm>
@@ -96,8 +96,8 @@ double viscous_fluid_pressure(Model<D>& m, std::size_t s, double t, double injec
   if (f.local_pressure.size() != n) f.local_pressure.assign(n, 0.0);
 
   // the nodes: 0 the borehole with its wall and its notches, then every other particle the fluid
-  // reaches, ascending. On N ranks each rank numbers its owned particles' nodes after the lower
-  // ranks' (the one-rank numbering), and the ghosts take their owners' numbers.
+  // reaches, ascending by whole-run number (the one-rank numbering on any number of ranks), the
+  // ghosts with their owners' numbers.
   const auto& ranks = ranks_of<D>(m);
   const CrackBonds& w = m.crack_bonds;
   std::vector<std::size_t> wet;
@@ -125,22 +125,37 @@ double viscous_fluid_pressure(Model<D>& m, std::size_t s, double t, double injec
     if (in_borehole) node[i] = 0;
     else owned_nodes.push_back(i);
   }
-  const auto node_counts = ranks.all_gather(std::vector<std::uint64_t>{owned_nodes.size()});
-  std::size_t nodes = 1, first_node = 1;
-  for (std::size_t q = 0; q < node_counts.size(); ++q) {
-    if (q == static_cast<std::size_t>(ranks.rank())) first_node = nodes;
-    nodes += node_counts[q];
-  }
-  for (std::size_t a = 0; a < owned_nodes.size(); ++a) node[owned_nodes[a]] = static_cast<std::int64_t>(first_node + a);
+  // every rank's nodes by their particles' whole-run numbers, in rank order; a node's number is 1 +
+  // its particle's place among them all, ascending (any cut of the particles among the ranks)
+  std::vector<std::uint64_t> mine;
+  for (const std::size_t i : owned_nodes) mine.push_back(m.numbering.whole(i));
+  const std::vector<std::uint64_t> all_nodes = ranks.all_gather(mine);
+  std::vector<std::uint64_t> ascending = all_nodes;
+  std::sort(ascending.begin(), ascending.end());
+  const std::size_t nodes = 1 + ascending.size();
+  const auto node_of = [&](std::uint64_t whole) {
+    return static_cast<std::int64_t>(1 + (std::lower_bound(ascending.begin(), ascending.end(), whole) - ascending.begin()));
+  };
+  for (const std::size_t i : owned_nodes) node[i] = node_of(m.numbering.whole(i));
   refresh_ghost_values<D>(m, node);
   // the flow bonds, each at its lower end's row (an owned row), between nodes: the whole network's
-  // on every rank, in the one-rank order
-  const auto bonds = ranks.all_gather(nodes_joined(
-      node, flow_bonds<D>(
-                m, v.viscosity, wet, [&](std::size_t i, std::int64_t k, std::size_t j) { return node[j] >= 0 && carries_fluid<D>(m, k, i, j); },
-                [&](std::size_t, std::int64_t k, std::size_t j) {
-                  return node[j] >= 0 && f.dry[w.source[static_cast<std::size_t>(k)]] && f.enters_dry_cracks(static_cast<int>(s));
-                })));
+  // on every rank, in the one-rank order (by row, each row's as listed)
+  std::vector<FlowBond> bonds;
+  {
+    std::vector<FlowBond> found = flow_bonds<D>(
+        m, v.viscosity, wet, [&](std::size_t i, std::int64_t k, std::size_t j) { return node[j] >= 0 && carries_fluid<D>(m, k, i, j); },
+        [&](std::size_t, std::int64_t k, std::size_t j) {
+          return node[j] >= 0 && f.dry[w.source[static_cast<std::size_t>(k)]] && f.enters_dry_cracks(static_cast<int>(s));
+        });
+    std::vector<std::uint64_t> rows;
+    for (const FlowBond& b : found) rows.push_back(m.numbering.whole(b.i));
+    const std::vector<std::uint64_t> all_rows = ranks.all_gather(rows);
+    const std::vector<FlowBond> all_bonds = ranks.all_gather(nodes_joined(node, std::move(found)));
+    std::vector<std::size_t> order(all_bonds.size());
+    for (std::size_t q = 0; q < order.size(); ++q) order[q] = q;
+    std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t c) { return all_rows[a] < all_rows[c]; });
+    for (const std::size_t q : order) bonds.push_back(all_bonds[q]);
+  }
   std::vector<double> volume(nodes, 0.0);
   const double borehole_change = cavity_volume_change<D>(m, static_cast<int>(s), true);
   volume[0] = f.reference_volume[s] + system_volume + borehole_change;
@@ -167,8 +182,11 @@ double viscous_fluid_pressure(Model<D>& m, std::size_t s, double t, double injec
     }
     const auto all_held = ranks.all_gather(owned_held);
     const auto all_outer = ranks.all_gather(owned_outer);
-    held.insert(held.end(), all_held.begin(), all_held.end());
-    outer.insert(outer.end(), all_outer.begin(), all_outer.end());
+    held.resize(nodes), outer.resize(nodes);
+    for (std::size_t e = 0; e < all_nodes.size(); ++e) {
+      const auto a = static_cast<std::size_t>(node_of(all_nodes[e]));
+      held[a] = all_held[e], outer[a] = all_outer[e];
+    }
   }
   // held at zero pressure: the nodes on the outer surface once the fluid breaks through
   std::vector<std::uint8_t> fixed(nodes, 0);
@@ -207,7 +225,7 @@ double viscous_fluid_pressure(Model<D>& m, std::size_t s, double t, double injec
   // take their owners')
   v.trial_inlet = holds(0);
   std::fill(v.trial.begin(), v.trial.end(), 0.0);
-  for (std::size_t a = 0; a < owned_nodes.size(); ++a) v.trial[owned_nodes[a]] = holds(first_node + a);
+  for (const std::size_t i : owned_nodes) v.trial[i] = holds(static_cast<std::size_t>(node[i]));
   for (const std::size_t i : wet) f.local_pressure[i] = p[static_cast<std::size_t>(node[i])];
   // a particle the network loads that the fluid does not reach: the mean of its family's wet particles
   if (s < f.network_load.size() && !f.network_load[s].empty()) {

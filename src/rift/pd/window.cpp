@@ -1,7 +1,9 @@
 #include "rift/pd/window.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cstdint>
+#include <limits>
 #include <map>
 #include <utility>
 
@@ -13,7 +15,7 @@
 namespace rift::pd {
 
 template <int D>
-Partition partition_by_bonds(const Model<D>& m, int ranks, std::size_t granularity, std::size_t reaches) {
+Partition partition_by_bonds(const Model<D>& m, int ranks, std::size_t reaches) {
   Partition p;
   const std::size_t n = m.size();
   const auto& offset = m.bonds.offset;
@@ -24,8 +26,7 @@ Partition partition_by_bonds(const Model<D>& m, int ranks, std::size_t granulari
   for (int r = 1; r < ranks; ++r) {
     const double share = total * r / ranks;
     while (i < n && static_cast<double>(offset[i]) + static_cast<double>(i) < share) ++i;
-    const std::size_t cut = std::min(n, (i + granularity / 2) / granularity * granularity);
-    cuts[static_cast<std::size_t>(r)] = std::max(cut, cuts[static_cast<std::size_t>(r) - 1]);
+    cuts[static_cast<std::size_t>(r)] = std::max(i, cuts[static_cast<std::size_t>(r) - 1]);
   }
   for (std::size_t a = 0; a < n; ++a)
     for (auto k = offset[a]; k < offset[a + 1]; ++k) {
@@ -57,6 +58,42 @@ std::vector<T> slice(const std::vector<T>& v, const Numbering& window, std::size
 bool meets_any(const std::vector<IndexRange>& ranges, std::size_t first, std::size_t last) {
   const auto r = std::upper_bound(ranges.begin(), ranges.end(), first, [](std::size_t x, const IndexRange& a) { return x < a.last; });
   return r != ranges.end() && r->first < last;
+}
+
+/// The ranges' union as ranges ascending and apart.
+std::vector<IndexRange> joined(std::vector<IndexRange> ranges) {
+  std::sort(ranges.begin(), ranges.end(), [](const IndexRange& a, const IndexRange& b) { return a.first < b.first; });
+  std::vector<IndexRange> out;
+  for (const IndexRange& r : ranges) {
+    if (r.last <= r.first) continue;
+    if (!out.empty() && r.first <= out.back().last) out.back().last = std::max(out.back().last, r.last);
+    else out.push_back(r);
+  }
+  return out;
+}
+
+/// Cuts of `parts` parts of about equal weight along one axis: the values (a lattice coordinate)
+/// with their weights, cut between distinct values; part p holds the values in [cut[p], cut[p + 1])
+/// (cut[0] = -inf, cut[parts] = +inf). Fewer distinct values than parts leave parts empty.
+std::vector<double> cuts_by_weight(std::vector<std::pair<double, double>> value_weight, int parts) {
+  std::sort(value_weight.begin(), value_weight.end());
+  double total = 0.0;
+  for (const auto& [value, weight] : value_weight) total += weight;
+  std::vector<double> cut(static_cast<std::size_t>(parts) + 1, std::numeric_limits<double>::infinity());
+  cut[0] = -std::numeric_limits<double>::infinity();
+  double before = 0.0;  // the weight of the values before the one at k
+  int p = 1;
+  for (std::size_t k = 0; k < value_weight.size() && p < parts; ++k) {
+    const bool distinct = k == 0 || value_weight[k].first > value_weight[k - 1].first;
+    if (distinct && k > 0 && before >= total * p / parts) cut[static_cast<std::size_t>(p++)] = value_weight[k].first;
+    before += value_weight[k].second;
+  }
+  return cut;
+}
+
+/// The part of `cut` (cuts_by_weight) that holds `value`.
+std::size_t part_of(const std::vector<double>& cut, double value) {
+  return static_cast<std::size_t>(std::upper_bound(cut.begin() + 1, cut.end() - 1, value) - (cut.begin() + 1));
 }
 
 /// f(a, i) for each particle of the window: a its number here, i the whole run's.
@@ -233,15 +270,114 @@ std::vector<IndexRange> with_whole_runs(const Model<D>& m, const std::vector<Ind
       if (!meets_any(owned, i, i + run.length) && !meets_any(owned, j, j + run.length)) continue;
       window.push_back({i, i + run.length}), window.push_back({j, j + run.length});
     }
-  // ascending and apart
-  std::sort(window.begin(), window.end(), [](const IndexRange& a, const IndexRange& b) { return a.first < b.first; });
-  std::vector<IndexRange> joined;
-  for (const IndexRange& r : window) {
-    if (r.last <= r.first) continue;
-    if (!joined.empty() && r.first <= joined.back().last) joined.back().last = std::max(joined.back().last, r.last);
-    else joined.push_back(r);
+  return joined(std::move(window));
+}
+
+template <int D>
+Partition partition_into_pencils(const Model<D>& m, int across_y, int across_z, std::size_t reaches) {
+  if constexpr (D == 2) {
+    return partition_by_bonds<D>(m, across_y * across_z, reaches);
+  } else {
+    const std::size_t n = m.size();
+    const auto& x = m.reference_position;
+    const auto weight = [&](std::size_t i) { return static_cast<double>(m.bonds.offset[i + 1] - m.bonds.offset[i]) + 1.0; };
+    // z first, then y within each layer of boxes (a particle's fields weigh as one bond)
+    std::vector<std::pair<double, double>> along;
+    for (std::size_t i = 0; i < n; ++i) along.emplace_back(x[i][2], weight(i));
+    const std::vector<double> z_cut = cuts_by_weight(along, across_z);
+    std::vector<std::vector<std::pair<double, double>>> along_y(static_cast<std::size_t>(across_z));
+    for (std::size_t i = 0; i < n; ++i) along_y[part_of(z_cut, x[i][2])].emplace_back(x[i][1], weight(i));
+    std::vector<std::vector<double>> y_cut;
+    for (auto& v : along_y) y_cut.push_back(cuts_by_weight(std::move(v), across_y));
+    const auto ranks = static_cast<std::size_t>(across_y * across_z);
+    Partition p;
+    p.owned.resize(ranks);
+    // each rank's owned particles: one range per layer of each body (x is the fastest of the
+    // numbering, y the next)
+    std::vector<Vec<D>> low(ranks, Vec<D>{}), high(ranks, Vec<D>{});
+    std::vector<std::uint8_t> owns_any(ranks, 0);
+    for (std::size_t i = 0; i < n; ++i) {
+      const std::size_t z = part_of(z_cut, x[i][2]);
+      const std::size_t r = z * static_cast<std::size_t>(across_y) + part_of(y_cut[z], x[i][1]);
+      auto& owned = p.owned[r];
+      if (!owned.empty() && owned.back().last == i) ++owned.back().last;
+      else owned.push_back({i, i + 1});
+      if (!owns_any[r]) low[r] = high[r] = x[i], owns_any[r] = 1;
+      for (int k = 0; k < D; ++k) low[r][k] = std::min(low[r][k], x[i][k]), high[r][k] = std::max(high[r][k], x[i][k]);
+    }
+    for (std::size_t a = 0; a < n; ++a)
+      for (auto k = m.bonds.offset[a]; k < m.bonds.offset[a + 1]; ++k) {
+        const auto j = static_cast<std::size_t>(m.bonds.neighbor[static_cast<std::size_t>(k)]);
+        p.reach = std::max(p.reach, j > a ? j - a : a - j);
+      }
+    // each window: the particles within `reaches` of the longest bond of its owned box across y and
+    // z (every neighbour of an owned particle among them), grown to hold whole runs
+    double longest = 0.0;
+    for (const auto& f : m.bonds.families) longest = std::max(longest, f.length);
+    const double margin = static_cast<double>(reaches) * longest * (1.0 + 1e-12);
+    const bool ves = std::any_of(m.bodies.begin(), m.bodies.end(), [](const BodyInfo& b) { return b.constants.model == scene::ModelKind::ves; });
+    for (std::size_t r = 0; r < ranks; ++r) {
+      std::vector<IndexRange> window;
+      if (owns_any[r])
+        for (std::size_t i = 0; i < n; ++i) {
+          if (x[i][1] < low[r][1] - margin || x[i][1] > high[r][1] + margin || x[i][2] < low[r][2] - margin || x[i][2] > high[r][2] + margin)
+            continue;
+          if (!window.empty() && window.back().last == i) ++window.back().last;
+          else window.push_back({i, i + 1});
+        }
+      window = with_whole_runs<D>(m, p.owned[r], std::move(window));
+      // a VES window's ranges at whole blocks of each body's history (window_viscous_history)
+      if (ves) {
+        std::vector<IndexRange> blocks;
+        for (const IndexRange& w : window)
+          for (const BodyInfo& body : m.bodies) {
+            const std::size_t first = std::max(w.first, body.first), last = std::min(w.last, body.last);
+            if (first >= last) continue;
+            constexpr std::size_t block = Bonds::history_block;
+            blocks.push_back({body.first + (first - body.first) / block * block,
+                              std::min(body.last, body.first + (last - body.first + block - 1) / block * block)});
+          }
+        window = joined(std::move(blocks));
+      }
+      p.window.push_back(std::move(window));
+    }
+    return p;
   }
-  return joined;
+}
+
+template <int D>
+std::array<int, 2> choose_pencils(const Model<D>& m, int ranks) {
+  std::array<int, 2> best{1, ranks};  // slabs
+  if constexpr (D == 3) {
+    const std::size_t n = m.size();
+    if (n == 0) return best;
+    // the lattice's lines across y, layers across z and sites along x, and the horizon in spacings
+    auto distinct = [&](int axis) {
+      std::vector<double> v(n);
+      for (std::size_t i = 0; i < n; ++i) v[i] = m.reference_position[i][axis];
+      std::sort(v.begin(), v.end());
+      v.erase(std::unique(v.begin(), v.end()), v.end());
+      return v;
+    };
+    const std::vector<double> y = distinct(1), z = distinct(2);
+    double spacing = std::numeric_limits<double>::max(), longest = 0.0;
+    for (std::size_t k = 1; k < z.size(); ++k) spacing = std::min(spacing, z[k] - z[k - 1]);
+    for (std::size_t k = 1; k < y.size(); ++k) spacing = std::min(spacing, y[k] - y[k - 1]);
+    for (const auto& f : m.bonds.families) longest = std::max(longest, f.length);
+    if (!(spacing < std::numeric_limits<double>::max())) return best;
+    const double ny = static_cast<double>(y.size()), nz = static_cast<double>(z.size()), nx = static_cast<double>(n) / (ny * nz);
+    const double h = longest / spacing;
+    // a rank's ghosts: a cut across y adds two faces of (h + the lines a run of Bonds' pairs spans)
+    // lines, one across z two faces of h layers (bond_runs.hpp: a run holds up to 256 pairs)
+    auto ghosts = [&](int p, int q) {
+      return (p > 1 ? 2.0 * (h + 256.0 / nx) * nx * nz / q : 0.0) + (q > 1 ? 2.0 * h * nx * ny / p : 0.0);
+    };
+    for (int p = 2; p <= ranks; ++p) {
+      if (ranks % p != 0 || static_cast<double>(p) > ny || static_cast<double>(ranks / p) > nz) continue;
+      if (ghosts(p, ranks / p) < ghosts(best[0], best[1])) best = {p, ranks / p};
+    }
+  }
+  return best;
 }
 
 template <int D>
@@ -331,7 +467,9 @@ Model<D> window_of(const Model<D>& m, const Partition& p, int rank) {
 }
 
 #define RIFT_INSTANTIATE(D)                                                      \
-  template Partition partition_by_bonds<D>(const Model<D>&, int, std::size_t, std::size_t); \
+  template Partition partition_by_bonds<D>(const Model<D>&, int, std::size_t); \
+  template Partition partition_into_pencils<D>(const Model<D>&, int, int, std::size_t); \
+  template std::array<int, 2> choose_pencils<D>(const Model<D>&, int); \
   template Model<D> window_of<D>(const Model<D>&, const Partition&, int);                  \
   template std::vector<IndexRange> with_whole_runs<D>(const Model<D>&, const std::vector<IndexRange>&, std::vector<IndexRange>);
 RIFT_INSTANTIATE(2)

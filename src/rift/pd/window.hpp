@@ -1,11 +1,12 @@
 // A rank's share of a distributed peridynamic run. The particles are numbered body after body, each
 // body's lattice x fastest, so a contiguous range of the numbering is a stack of lattice layers: the
 // ranks own consecutive ranges (a processor grid of 1 x 1 x P along the lattice's slowest axis),
-// balanced by bonds. A rank holds its owned range and, around it, every particle within the bonds'
+// balanced by bonds, or boxes of a 1 x P x Q grid (pencils along x), one range per layer each. A rank holds its owned range and, around it, every particle within the bonds'
 // reach of it (ghosts): the window. Its bond passes take the whole run's runs and slabs cut to the
 // window (BodyInfo::origin), so every sum of an owned particle is made in the same order as on one
 // rank, and the run is bitwise the same on any number of ranks.
 #pragma once
+#include <array>
 #include <cstddef>
 #include <vector>
 
@@ -21,14 +22,28 @@ struct Partition {
   std::size_t reach = 0;  // the farthest bond in the numbering, max |i - j|
 };
 
-/// Cuts the model's particles into `ranks` consecutive ranges of about equal bond counts, at
-/// multiples of `granularity` (a rank may own none where there are more ranks than particles).
-/// Dynamic relaxation cuts at whole blocks of its sums (parallel::ordered_sum_block), whose damping
-/// and residual are then the one-rank run's bits. Each window reaches `reaches` times the bonds'
-/// reach past its owned range: one for the bond passes; a fluid whose cracks grow reads further
-/// (fluid_ghost_reaches).
+/// Cuts the model's particles into `ranks` consecutive ranges of about equal bond counts (a rank
+/// may own none where there are more ranks than particles). Each window reaches `reaches` times the
+/// bonds' reach past its owned range: one for the bond passes; a fluid whose cracks grow reads
+/// further (fluid_ghost_reaches).
 template <int D>
-Partition partition_by_bonds(const Model<D>& m, int ranks, std::size_t granularity = 1, std::size_t reaches = 1);
+Partition partition_by_bonds(const Model<D>& m, int ranks, std::size_t reaches = 1);
+
+/// Cuts the particles of a 3D model into a processor grid of 1 x `across_y` x `across_z` boxes,
+/// pencils along x: across z by the lattice's layers into parts of about equal bond counts, then
+/// each part across y by its lattice lines the same way (rank = z part * across_y + y part). A
+/// rank's owned particles are one range of the numbering per layer of each body (x is its fastest
+/// axis). Its window: the particles within `reaches` longest bonds of its owned box across y and z,
+/// grown to hold whole bond runs (with_whole_runs) and, in a VES body, whole blocks of its history
+/// (Bonds::history_block). A 2D model's 1 x P grid is partition_by_bonds' slabs.
+template <int D>
+Partition partition_into_pencils(const Model<D>& m, int across_y, int across_z, std::size_t reaches = 1);
+
+/// The processor grid 1 x P x Q (P Q = ranks) whose ranks hold the fewest ghosts, estimated from
+/// the lattice's lines across y, layers across z and the bonds' reach: {1, ranks} (slabs) unless a
+/// cut across y holds fewer (a flat plate, many ranks on a cube). A 2D model's is {1, ranks}.
+template <int D>
+std::array<int, 2> choose_pencils(const Model<D>& m, int ranks);
 
 /// How many bonds' reaches a window holds past its owned range where a fluid fills cracks that
 /// grow (fluid_network.hpp) or flows (fluid_reads_far): the network load of an owned particle reads the network ends among its

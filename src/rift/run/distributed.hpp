@@ -1,6 +1,6 @@
-// What a distributed peridynamic run (pd/window.hpp) reduces to one answer: the history's sums over
-// the ranks' owned particles, and the fields gathered to rank 0 in the whole run's numbering (the
-// ranks own consecutive ranges of it, in rank order), which writes them as one rank would.
+// What a distributed peridynamic run (pd/window.hpp) gathers to one answer: the fields and states
+// of the ranks' owned particles on rank 0 in the whole run's numbering (each rank owns ranges of it,
+// in any order: slabs, pencils), which writes them as one rank would.
 #pragma once
 #include <algorithm>
 #include <array>
@@ -17,28 +17,45 @@
 
 namespace rift::run {
 
-/// The whole run's energies and broken bonds from each rank's (pd::summarize).
-inline pd::EnergySummary reduce(const parallel::Communicator& comm, pd::EnergySummary e) {
-  if (!comm.distributed()) return e;
-  double sums[4] = {e.kinetic, e.strain, e.failed_directed, e.directed};
-  comm.sum(sums, 4);
-  e.kinetic = sums[0], e.strain = sums[1], e.failed_directed = sums[2], e.directed = sums[3];
-  e.broken_bonds = static_cast<std::int64_t>(e.failed_directed) / 2;
-  e.broken_fraction = e.directed > 0.0 ? e.failed_directed / e.directed : 0.0;
-  return e;
+/// What each owned range holds (`entries_of(range, out)` appends a range's), gathered on rank 0 in
+/// the whole run's order: each rank's blocks, one per range, placed by the whole-run number of the
+/// range's first particle. Empty on the other ranks; a one-rank run's own.
+template <int D, class T, class Entries>
+std::vector<T> gather_in_whole_order(const parallel::Communicator& comm, const pd::Model<D>& m, Entries&& entries_of) {
+  std::vector<std::uint64_t> heads;  // per range: its first particle's whole-run number, its entries
+  std::vector<T> mine;
+  for (const IndexRange& r : m.owned()) {
+    if (r.first >= r.last) continue;
+    const std::size_t before = mine.size();
+    entries_of(r, mine);
+    heads.push_back(m.numbering.whole(r.first)), heads.push_back(mine.size() - before);
+  }
+  if (!comm.distributed()) return mine;
+  const auto all_heads = comm.gather(heads);
+  const auto all = comm.gather(mine);
+  if (!comm.root()) return {};
+  std::vector<std::array<std::uint64_t, 3>> blocks;  // whole-run number, first entry, entries
+  std::uint64_t at = 0;
+  for (std::size_t q = 0; q + 1 < all_heads.size(); q += 2) blocks.push_back({all_heads[q], at, all_heads[q + 1]}), at += all_heads[q + 1];
+  std::sort(blocks.begin(), blocks.end());
+  std::vector<T> out;
+  out.reserve(all.size());
+  for (const auto& [whole, first, count] : blocks)
+    out.insert(out.end(), all.begin() + static_cast<std::ptrdiff_t>(first), all.begin() + static_cast<std::ptrdiff_t>(first + count));
+  return out;
 }
 
-/// The entries of the owned particles' rows, range after range: `width` per particle, or with
-/// `offset` (a CSR's, one more than the particles) the entries [offset[i], offset[i + 1]) of row i.
+/// The entries of the owned particles' rows in the whole run's order on rank 0: `width` per
+/// particle, or with `offset` (a CSR's, one more than the particles) the entries [offset[i],
+/// offset[i + 1]) of row i.
 template <int D, class T>
-std::vector<T> owned_entries(const pd::Model<D>& m, const std::vector<T>& v, std::size_t width = 1, const std::vector<std::int64_t>* offset = nullptr) {
-  std::vector<T> out;
-  for (const IndexRange& r : m.owned()) {
+std::vector<T> gather_rows(const parallel::Communicator& comm, const pd::Model<D>& m, const std::vector<T>& v, std::size_t width = 1,
+                           const std::vector<std::int64_t>* offset = nullptr) {
+  return gather_in_whole_order<D, T>(comm, m, [&](const IndexRange& r, std::vector<T>& out) {
     const auto first = offset ? static_cast<std::size_t>((*offset)[r.first]) : r.first * width;
     const auto last = offset ? static_cast<std::size_t>((*offset)[r.last]) : r.last * width;
     out.insert(out.end(), v.begin() + static_cast<std::ptrdiff_t>(first), v.begin() + static_cast<std::ptrdiff_t>(last));
-  }
-  return out;
+  });
 }
 
 /// A per-particle field (`width` values each) of the owned particles, the whole run's on rank 0.
@@ -46,7 +63,7 @@ template <int D>
 std::vector<double> gather_owned(const parallel::Communicator& comm, const pd::Model<D>& m, const std::vector<double>& field,
                                  std::size_t width) {
   if (!comm.distributed()) return field;
-  return comm.gather(owned_entries<D>(m, field, width));
+  return gather_rows<D>(comm, m, field, width);
 }
 
 /// The owned particles' share of a per-particle array (`width` entries each), the whole run's on
@@ -55,7 +72,7 @@ template <int D, class T>
 void gather_into(const parallel::Communicator& comm, const pd::Model<D>& m, const std::vector<T>& local, std::vector<T>* whole,
                  std::size_t width = 1) {
   if (local.empty()) return;
-  auto all = comm.gather(owned_entries<D>(m, local, width));
+  auto all = gather_rows<D>(comm, m, local, width);
   if (whole) *whole = std::move(all);
 }
 
@@ -139,7 +156,7 @@ void gather_interfaces(const parallel::Communicator& comm, const pd::Model<D>& m
   pd::InterfaceBonds* g = whole ? &whole->interface_bonds : nullptr;
   if (ib.offset.empty()) return;
   auto entries = [&](const auto& v, auto* into) {
-    auto all = comm.gather(owned_entries<D>(m, v, 1, &ib.offset));
+    auto all = gather_rows<D>(comm, m, v, 1, &ib.offset);
     if (into) *into = std::move(all);
   };
   entries(ib.slip, g ? &g->slip : nullptr);
@@ -150,9 +167,9 @@ void gather_interfaces(const parallel::Communicator& comm, const pd::Model<D>& m
     return std::lower_bound(rows.begin(), rows.end(), static_cast<std::int32_t>(i)) - rows.begin();
   };
   if (comm.any(ib.strain.size() == rows.size() && !rows.empty())) {
-    std::vector<std::array<double, 9>> strain;
-    for (const IndexRange& r : m.owned()) strain.insert(strain.end(), ib.strain.begin() + first_row_at(r.first), ib.strain.begin() + first_row_at(r.last));
-    auto all = comm.gather(strain);
+    auto all = gather_in_whole_order<D, std::array<double, 9>>(comm, m, [&](const IndexRange& r, std::vector<std::array<double, 9>>& out) {
+      out.insert(out.end(), ib.strain.begin() + first_row_at(r.first), ib.strain.begin() + first_row_at(r.last));
+    });
     if (g) g->strain = std::move(all);
   }
 }
@@ -177,7 +194,7 @@ void gather_model(const parallel::Communicator& comm, const pd::Model<D>& m, pd:
   const pd::Bonds& b = m.bonds;
   pd::Bonds* w = whole ? &whole->bonds : nullptr;
   {
-    auto all = comm.gather(owned_entries<D>(m, b.intact, 1, &b.offset));
+    auto all = gather_rows<D>(comm, m, b.intact, 1, &b.offset);
     if (w) w->intact = std::move(all);
   }
   if (!b.back_extension.empty()) {
@@ -195,12 +212,11 @@ void gather_model(const parallel::Communicator& comm, const pd::Model<D>& m, pd:
           slot(pd::history_index(body, i, f, 0));
       }
     };
-    std::vector<float> mine;
-    for (const IndexRange& r : m.owned())
+    const auto all = gather_in_whole_order<D, float>(comm, m, [&](const IndexRange& r, std::vector<float>& mine) {
       each_slot(m, r.first, r.last, [&](std::size_t h) {
         mine.insert(mine.end(), {b.back_extension[h], b.back_extension[pd::mirror_history_slot(h)], b.last_extension[pd::pair_slot(h)]});
       });
-    const auto all = comm.gather(mine);
+    });
     if (w) {
       std::size_t at = 0;
       each_slot(*whole, 0, whole->size(), [&](std::size_t h) {

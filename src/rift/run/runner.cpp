@@ -3,6 +3,7 @@
 #include <omp.h>
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include <algorithm>
 #include <chrono>
@@ -216,14 +217,16 @@ void check_finite(const pd::Model<D>& m, long step, const pd::EnergySummary& e) 
   throw PhysicsError("step " + std::to_string(step) + ": energy is not finite");
 }
 
-/// A distributed run's load balance: each rank's owned particles, ghosts, step-loop time and the
+/// A distributed run's load balance: its processor grid, each rank's owned particles, ghosts, step-loop time and the
 /// part of it spent in MPI calls (waiting for the others included: the loop time less it is the
 /// rank's own work).
 template <int D>
-std::string load_balance(const parallel::Communicator& comm, const pd::Model<D>& m, double loop_seconds, double in_mpi, std::size_t ghosts) {
+std::string load_balance(const parallel::Communicator& comm, const pd::Model<D>& m, double loop_seconds, double in_mpi, std::size_t ghosts,
+                         const std::vector<int>& grid) {
   constexpr std::size_t k = 5;
   const auto all = comm.gather(std::vector<double>{double(m.owned_count()), double(ghosts), double(m.owned_bonds()), loop_seconds, in_mpi});
-  std::string out = fmt::format("load balance over {} ranks (owned particles, ghosts, directed bonds, loop time, of it in MPI calls):", comm.size());
+  std::string out = fmt::format("load balance over {} ranks, {} of a {} grid (owned particles, ghosts, directed bonds, loop time, of it in MPI calls):",
+                                comm.size(), grid.size() == 3 && grid[1] > 1 ? "pencils along x" : "slabs", fmt::join(grid, " x "));
   for (std::size_t r = 0; k * r < all.size(); ++r)
     out += fmt::format("{} rank {}: {:.0f}, {:.0f}, {:.0f}, {:.3g} s, {:.3g} s", r ? ";" : "", r, all[k * r], all[k * r + 1], all[k * r + 2],
                        all[k * r + 3], all[k * r + 4]);
@@ -318,7 +321,7 @@ Result run_dim(const scene::Scene& s, const Options& o) {
   const bool strain_column = std::any_of(s.output.history.begin(), s.output.history.end(),
                                          [](const std::string& q) { return q == "strain_energy" || q == "total_energy"; });
   auto history_row = [&](long step, std::vector<double> extra) {
-    auto e = reduce(comm, pd::summarize_and_update_damage<D>(m, strain_column));
+    auto e = pd::summarize_and_update_damage<D>(m, strain_column);
     check_finite<D>(m, step, e);
     const double dmax = max_damage<D>(comm, m);
     std::vector<double> row{m.time, double(step)};
@@ -340,10 +343,7 @@ Result run_dim(const scene::Scene& s, const Options& o) {
     for (const auto& o : outcomes) row.insert(row.end(), {double(o.crossed), double(o.dilated), o.crossing_distance, o.opened_length});
     if (vent_time < 0.0) outcomes_at_breakthrough = outcomes;
     if (vented && vent_time < 0.0) vent_time = m.time;
-    std::vector<double> reactions;  // the owned particles' on each rank
-    for (const auto& r : p.loads.reactions(m)) reactions.insert(reactions.end(), r.begin(), r.end());
-    comm.sum(reactions.data(), reactions.size());
-    row.insert(row.end(), reactions.begin(), reactions.end());
+    for (const auto& r : p.loads.reactions(m, comm)) row.insert(row.end(), r.begin(), r.end());
     row.insert(row.end(), extra.begin(), extra.end());
     if (history) history->row(row);
     return e;
@@ -461,10 +461,10 @@ Result run_dim(const scene::Scene& s, const Options& o) {
   res.loop_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - loop_start).count();
   const double in_mpi = parallel::seconds_in_mpi() - mpi_at_start;
   res.phases = phase_summary(PhaseTimes::run(), res.loop_seconds);
-  res.final_energy = reduce(comm, pd::summarize<D>(m));
+  res.final_energy = pd::summarize<D>(m);
   pd::update_damage<D>(m);
   res.max_damage = max_damage<D>(comm, m);
-  if (comm.distributed()) res.notes.push_back(load_balance(comm, m, res.loop_seconds, in_mpi, p.halo->ghosts()));
+  if (comm.distributed()) res.notes.push_back(load_balance(comm, m, res.loop_seconds, in_mpi, p.halo->ghosts(), p.processor_grid()));
   res.time = m.time;
   if (res.stopped) return res;  // the final state's reports belong to the run that ends
   res.steps = p.steps;

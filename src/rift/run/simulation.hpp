@@ -49,26 +49,47 @@ struct Simulation {
   }
   pd::Contact<D>* contact_ptr() { return contact.enabled() ? &contact : nullptr; }
   /// `mpirun -np N`: keeps this rank's window of the model (pd/window.hpp) and of the loads, its
-  /// ghosts refreshed by a halo exchange. Raises a SceneError (before anything is written) for a
-  /// cut along another axis than the lattice's slowest (--cut-along, or a --processor-grid other
-  /// than 1 x .. x N).
-  /// cut_axis: Options::cut_axis (-1, or the lattice's slowest axis: the layers are contiguous in
-  /// the particles' numbering, which keeps the run bitwise the one-rank run's).
+  /// ghosts refreshed by a halo exchange. The processor grid (Options::processor_grid) is 1 x P in
+  /// 2D and 1 x P x Q in 3D, each lattice line along x kept whole: 1 x 1 x N cuts slabs across the
+  /// lattice's slowest axis, P > 1 pencils; chosen (pd::choose_pencils) where not given. Raises a SceneError (before anything
+  /// is written) for another grid, a grid that leaves a rank without particles, or a cut along
+  /// another axis than the slowest (--cut-along).
   void distribute(const scene::Scene& s, const parallel::Communicator& comm, int cut_axis = -1, const std::vector<int>& processor_grid = {}) {
+    const int ranks = comm.size();
     if (cut_axis >= 0 && cut_axis != D - 1)
       throw SceneError({s.file, 0, 0}, "--cut-along", std::string("a peridynamic run is cut across its lattice's slowest axis, ") +
-                                                          (D == 3 ? "z" : "y") + ", alone (its layers of particles are ranges of their numbering)");
-    std::vector<int> slabs(D, 1);
-    slabs.back() = comm.size();
-    if (!processor_grid.empty() && processor_grid != slabs)
+                                                          (D == 3 ? "z, alone (or y and z: --processor-grid 1xPxQ)" : "y, alone") +
+                                                          ": each lattice line along x stays whole, a range of the numbering");
+    std::vector<int> grid = processor_grid;
+    if (grid.empty()) {  // slabs, or pencils where their ranks hold fewer ghosts; across z alone with --cut-along z
+      grid.assign(D, 1), grid.back() = ranks;
+      if (D == 3 && cut_axis < 0) {
+        const auto [across_y, across_z] = pd::choose_pencils<D>(model, ranks);
+        grid[1] = across_y, grid[D - 1] = across_z;
+      }
+    }
+    const std::string n = std::to_string(ranks);
+    const std::string as = D == 3 ? "1x1x" + n + " or 1xPxQ with P Q = " + n : "the grid 1x" + n + " alone";
+    int product = 1;
+    for (const int g : grid) product *= g;
+    if (static_cast<int>(grid.size()) != D || grid[0] != 1 || product != ranks)
       throw SceneError({s.file, 0, 0}, "--processor-grid",
-                       "a peridynamic run on " + std::to_string(comm.size()) + " ranks takes the grid " + (D == 3 ? "1x1x" : "1x") +
-                           std::to_string(comm.size()) + " alone (slabs across its lattice's slowest axis, whose layers are ranges of their numbering)");
-    // dynamic relaxation, the in-situ stage and a fluid's cavity volume sum over the owned
-    // particles in blocks (parallel/ordered_sum.hpp): the ranks' ranges start at whole blocks
-    const bool block_sums = s.solver.kind != scene::SolverKind::explicit_dynamics || s.in_situ.enabled || !model.crack_bonds.neighbor.empty();
-    partition = pd::partition_by_bonds<D>(model, comm.size(), block_sums ? parallel::ordered_sum_block : 1,
-                                          pd::fluid_reads_far<D>(model) ? pd::fluid_ghost_reaches : 1);
+                       "a peridynamic run on " + n + " ranks takes " + (D == 3 ? "a grid " : "") + as +
+                           " (slabs or pencils: each lattice line along x stays whole, a range of the particles' numbering)");
+    const std::size_t reaches = pd::fluid_reads_far<D>(model) ? pd::fluid_ghost_reaches : 1;
+    if (D == 3 && grid[1] > 1) {
+      partition = pd::partition_into_pencils<D>(model, grid[1], grid[D - 1], reaches);
+      for (std::size_t r = 0; r < partition.owned.size() && grid[1] > 1; ++r) {
+        if (count_of(partition.owned[r]) > 0) continue;
+        if (processor_grid.empty()) grid[1] = 1, grid[D - 1] = ranks;  // chosen: slabs instead
+        else
+          throw SceneError({s.file, 0, 0}, "--processor-grid",
+                           fmt::format("the grid 1x{}x{} leaves rank {} without particles: its lattice has too few lines across y or layers across z",
+                                       grid[1], grid[D - 1], r));
+      }
+    }
+    if (D == 2 || grid[1] == 1) partition = pd::partition_by_bonds<D>(model, ranks, reaches);
+    processor_grid_ = grid;
     const auto r = static_cast<std::size_t>(comm.rank());
     loads.restrict_to(pd::Numbering(partition.window[r]), partition.owned[r]);
     model = pd::window_of<D>(model, partition, comm.rank());
@@ -77,6 +98,8 @@ struct Simulation {
     contact = pd::Contact<D>(s.contact, model);  // its pairs among the window's particles and those beyond it within reach
   }
   pd::Partition partition;  // a distributed run's (empty on one rank)
+  /// A distributed run's processor grid, 1 x .. (distribute).
+  const std::vector<int>& processor_grid() const { return processor_grid_; }
   std::unique_ptr<parallel::Halo> halo;
   /// The in-situ stage ([in_situ_stress]): static equilibrium under the far-field stresses and
   /// every other load at t = 0, with no bond allowed to break; the run starts from it at rest.
@@ -130,6 +153,7 @@ struct Simulation {
 
  private:
   std::size_t cracks_ = 0, interfaces_ = 0;  // the scene's pre-cracks and interfaces
+  std::vector<int> processor_grid_;
 };
 
 }  // namespace rift::run
