@@ -81,26 +81,36 @@ TEST(ExactSum, NonFiniteTermsGiveWhatADoubleSumGives) {
   EXPECT_TRUE(std::isnan(exact_sum_of({std::nan(""), 1.0})));
 }
 
-// exact_sums over ranges of particles: the same bits for any cut of them into ranges (one rank's
-// share of a pencil is one range per layer) and any thread count.
-TEST(ExactSum, SumsOverRangesOfParticlesDoNotDependOnTheCut) {
+// exact_sums over ranges of particles in units of 10 (a model's lattice lines): the same bits for
+// any cut of the units into ranges (one rank's share of a pencil is one range per layer) and any
+// thread count, and the units' sums added exactly.
+TEST(ExactSum, SumsOverRangesOfUnitsDoNotDependOnTheCut) {
   const std::size_t n = 20000;
   std::vector<double> x(n);
   std::mt19937_64 random(7);
   std::uniform_real_distribution<double> u(-1.0, 1.0);
   for (auto& v : x) v = u(random) * std::exp(20.0 * u(random));
+  const auto continues = [](std::size_t i) { return i % 10 != 0; };
   auto sums = [&](const std::vector<rift::IndexRange>& ranges) {
-    return rift::parallel::exact_sums<2>(rift::parallel::Communicator::one(), ranges, [&](std::size_t i, std::array<double, 2>& acc) {
+    return rift::parallel::exact_sums<2>(rift::parallel::Communicator::one(), ranges, continues, [&](std::size_t i, std::array<double, 2>& acc) {
       acc[0] += x[i];
       acc[1] += x[i] * x[i];
     });
   };
   const auto whole = sums({{0, n}});
-  for (const auto& cut : std::vector<std::vector<rift::IndexRange>>{{{0, 1}, {1, n}}, {{0, 4095}, {4095, 9000}, {9000, n}}, {{0, 7}, {7, 13}, {13, 19999}, {19999, n}}}) {
+  for (const auto& cut : std::vector<std::vector<rift::IndexRange>>{{{0, 10}, {10, n}}, {{0, 4090}, {4090, 9000}, {9000, n}}, {{0, 70}, {70, 130}, {130, 19990}, {19990, n}}}) {
     const auto parts = sums(cut);
     EXPECT_EQ(parts[0], whole[0]);
     EXPECT_EQ(parts[1], whole[1]);
   }
+  // the units' double sums, added exactly
+  rift::parallel::ExactSum expected;
+  for (std::size_t unit = 0; unit < n; unit += 10) {
+    double s = 0.0;
+    for (std::size_t i = unit; i < unit + 10; ++i) s += x[i];
+    expected.add(s);
+  }
+  EXPECT_EQ(whole[0], expected.value());
 }
 
 }  // namespace

@@ -122,7 +122,7 @@ double fresh_residual(rift::run::Simulation<D>& sim) {
   };
   const rift::pd::DynamicRelaxation<D> dr(m);  // its bound, as the weight of the rigid part
   const auto rigid = rift::pd::rigid_acceleration<D>(
-      m.position, [&](std::size_t i) { return dr.fictitious_density()[i] * m.volume[i]; }, total);
+      m.position, [&](std::size_t i) { return dr.fictitious_density()[i] * m.volume[i]; }, total, rift::pd::line_of(m));
   std::vector<std::uint8_t> on_platen(n, 0);
   for (const auto& p : m.platens)
     for (const auto i : p.particles) on_platen[i] |= std::uint8_t(1u << p.axis);

@@ -35,15 +35,27 @@ class ExactSum {
     }
     if (mantissa == 0 && biased == 0) return;  // a zero
     if (biased != 0) mantissa |= std::uint64_t{1} << 52;
-    // x = mantissa 2^(position - 1074)
+    // x = mantissa 2^(position - 1074); a negative x's parts are negated as (v ^ sign) - sign
     const int position = biased == 0 ? 0 : biased - 1;
+    const auto sign = -static_cast<std::int64_t>(u >> 63);
+    // most terms of a sum lie within a few decades of each other: into one 128-bit integer of
+    // weight 2^(window_ - 1074), exactly, as long as they fit
+    if (window_ < 0 || position >= window_ + window_span) {
+      flush_window();
+      window_ = std::max(0, position - window_below);
+    }
+    if (position >= window_) {
+      const __int128 v = static_cast<__int128>(mantissa) << (position - window_);
+      window_sum_ += (v ^ static_cast<__int128>(sign)) - static_cast<__int128>(sign);
+      if (++window_terms_ == window_limit) flush_window();
+      return;
+    }
     const auto k = static_cast<std::size_t>(position / limb_bits);
     const unsigned __int128 shifted = static_cast<unsigned __int128>(mantissa) << (position % limb_bits);
     const auto low = static_cast<std::int64_t>(shifted & 0xffffffffu), middle = static_cast<std::int64_t>((shifted >> 32) & 0xffffffffu),
                high = static_cast<std::int64_t>(shifted >> 64);
-    if (u >> 63) limb_[k] -= low, limb_[k + 1] -= middle, limb_[k + 2] -= high;
-    else limb_[k] += low, limb_[k + 1] += middle, limb_[k + 2] += high;
-    if (++pending_ == carry_every) normalize();
+    limb_[k] += (low ^ sign) - sign, limb_[k + 1] += (middle ^ sign) - sign, limb_[k + 2] += (high ^ sign) - sign;
+    if (++pending_ >= carry_every) normalize();
   }
   /// Adds another sum (a thread's, a rank's).
   void add(const ExactSum& other) {
@@ -96,7 +108,29 @@ class ExactSum {
  private:
   // each add puts less than 2^32 into a limb: an int64 takes 2^31 of them before its carries move up
   static constexpr std::uint32_t carry_every = 1u << 30;
+  // the window: terms from 2^(window_ - 1074) to 2^(window_ + window_span - 1074) in magnitude, a
+  // mantissa of 53 bits shifted by up to 62, 2^12 of them under 2^127
+  static constexpr int window_span = 62, window_below = 40;
+  static constexpr std::uint32_t window_limit = 1u << 12;
+  /// The window's sum into the limbs (its 127 bits, shifted, meet 5 limbs of 32 bits).
+  void flush_window() {
+    if (window_terms_ == 0) return;
+    const bool negative = window_sum_ < 0;
+    unsigned __int128 magnitude = negative ? -static_cast<unsigned __int128>(window_sum_) : static_cast<unsigned __int128>(window_sum_);
+    const auto k = static_cast<std::size_t>(window_ / limb_bits);
+    const int shift = window_ % limb_bits;
+    const std::int64_t sign = negative ? -1 : 0;
+    for (std::size_t j = 0; j < 4; ++j, magnitude >>= 32) {
+      const std::uint64_t part = static_cast<std::uint64_t>(magnitude & 0xffffffffu) << shift;  // under 2^63
+      const auto low = static_cast<std::int64_t>(part & 0xffffffffu), high = static_cast<std::int64_t>(part >> 32);
+      limb_[k + j] += (low ^ sign) - sign, limb_[k + j + 1] += (high ^ sign) - sign;
+    }
+    window_sum_ = 0, window_terms_ = 0;
+    pending_ += 2;  // a limb took two parts at most
+    if (pending_ >= carry_every) normalize();
+  }
   void normalize() {
+    flush_window();
     for (std::size_t k = 0; k + 1 < limbs; ++k) {
       const std::int64_t carry = limb_[k] >> limb_bits;  // floor: the limb is left in [0, 2^32)
       limb_[k] -= carry * (std::int64_t{1} << limb_bits);
@@ -107,6 +141,9 @@ class ExactSum {
   std::array<std::int64_t, limbs> limb_{};
   double non_finite_ = 0.0;
   std::uint32_t pending_ = 0;
+  __int128 window_sum_ = 0;  // the window's terms, in units of 2^(window_ - 1074)
+  int window_ = -1;          // none yet
+  std::uint32_t window_terms_ = 0;
 };
 
 /// Each sum added over every rank of `comm` (exactly: its limbs are integers), rounded.

@@ -47,28 +47,40 @@ std::array<double, K> ordered_sums(std::size_t n, F&& f) {
   return add_in_order<K>(block_sums<K>(0, n, f));
 }
 
-/// Sums of K quantities over the particles of `owned` (ranges) on every rank of `comm`: each
-/// particle's terms summed in its order, then added exactly (exact_sum.hpp), the blocks of each
-/// thread's share and the ranks' sums alike, and rounded once. The bits do not depend on how the
-/// particles are cut among threads and ranks: any partition of a distributed peridynamic run
-/// (pd/window.hpp: slabs, pencils) gives the one-rank run's.
-template <std::size_t K, class F>
-std::array<double, K> exact_sums(const Communicator& comm, const std::vector<IndexRange>& owned, F&& f) {
+/// Sums of K quantities over the particles of `owned` (ranges) on every rank of `comm`, in units
+/// that no rank cuts: continues(i) says whether particle i belongs to the unit of particle i - 1 (a
+/// peridynamic run's lattice lines along x, pd/model.hpp continues_line; each range starts one).
+/// Each unit's terms are summed in order in doubles, f(i, acc) adding particle i's into acc, and
+/// the units' sums are added exactly (exact_sum.hpp), the threads' and the ranks' alike, and rounded
+/// once. The bits do not depend on how the units are cut among threads and ranks: any partition of
+/// a distributed peridynamic run (pd/window.hpp: slabs, pencils) gives the one-rank run's.
+template <std::size_t K, class Continues, class F>
+std::array<double, K> exact_sums(const Communicator& comm, const std::vector<IndexRange>& owned, Continues&& continues, F&& f) {
   constexpr std::size_t block = ordered_sum_block;
-  std::vector<std::pair<std::size_t, std::size_t>> blocks;  // [first, last) of each
+  std::vector<std::pair<std::size_t, std::size_t>> blocks;  // [first, last) of each: about `block` particles, whole units
   for (const IndexRange& r : owned)
-    for (std::size_t i = r.first; i < r.last; i += block) blocks.emplace_back(i, std::min(r.last, i + block));
+    for (std::size_t i = r.first; i < r.last;) {
+      std::size_t j = std::min(r.last, i + block);
+      while (j < r.last && continues(j)) ++j;
+      blocks.emplace_back(i, j);
+      i = j;
+    }
   std::array<ExactSum, K> total;
 #pragma omp parallel if(blocks.size() > 1)
   {
     std::array<ExactSum, K> mine;
 #pragma omp for schedule(static) nowait
-    for (std::size_t b = 0; b < blocks.size(); ++b)
+    for (std::size_t b = 0; b < blocks.size(); ++b) {
+      std::array<double, K> unit{};
       for (std::size_t i = blocks[b].first; i < blocks[b].second; ++i) {
-        std::array<double, K> terms{};
-        f(i, terms);
-        for (std::size_t k = 0; k < K; ++k) mine[k].add(terms[k]);
+        if (i > blocks[b].first && !continues(i)) {
+          for (std::size_t k = 0; k < K; ++k) mine[k].add(unit[k]);
+          unit.fill(0.0);
+        }
+        f(i, unit);
       }
+      for (std::size_t k = 0; k < K; ++k) mine[k].add(unit[k]);
+    }
 #pragma omp critical(rift_exact_sums)
     for (std::size_t k = 0; k < K; ++k) total[k].add(mine[k]);
   }

@@ -75,7 +75,7 @@ double DynamicRelaxation<D>::measure_fictitious_density(Model<D>& m, const load:
     for (std::size_t i = 0; i < n; ++i) m.position[i] = start[i] + probe * v[i];
     const std::vector<Vec<D>> moved = total_force();
     // w = K v / bound (K v = -(F(x + probe v) - F(x)) / probe); Rayleigh's quotient in the bound's metric
-    const auto sums = parallel::exact_sums<2>(comm, owned, [&](std::size_t i, std::array<double, 2>& acc) {
+    const auto sums = parallel::exact_sums<2>(comm, owned, line_of(m), [&](std::size_t i, std::array<double, 2>& acc) {
       for (int q = 0; q < D; ++q) {
         const double kv = m.constrained[i] >> q & 1 ? 0.0 : -(moved[i][q] - at_start[i][q]) / probe;
         acc[0] += m.volume[i] * v[i][q] * kv;
@@ -116,7 +116,7 @@ RigidAcceleration<D> rigid_acceleration(const Model<D>& m, const std::vector<dou
         for (int k = 0; k < D; ++k) f[k] = (m.force[i][k] + m.body_force[i][k]) * m.volume[i];
         return f;
       },
-      &comm, m.owned());
+      line_of(m), &comm, m.owned());
 }
 
 template <int D>
@@ -134,7 +134,7 @@ RelaxationResult DynamicRelaxation<D>::relax(Model<D>& m, const load::Boundaries
   const auto& comm = ranks_of<D>(m);
   const bool distributed = comm.distributed();
   const std::vector<IndexRange> owned = m.owned();
-  auto sum_over = [&](auto&& f) { return parallel::exact_sums<4>(comm, owned, f); };
+  auto sum_over = [&](auto&& f) { return parallel::exact_sums<4>(comm, owned, line_of(m), f); };
   auto squared_load = [&] {  // ||external force||^2
     return sum_over([&](std::size_t i, std::array<double, 4>& acc) { acc[0] += dot<D>(m.body_force[i], m.body_force[i]) * m.volume[i] * m.volume[i]; })[0];
   };

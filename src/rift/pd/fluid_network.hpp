@@ -695,7 +695,7 @@ double cavity_volume_change(const Model<D>& m, int s, bool wall_only = false) {
   const std::vector<double>* network = static_cast<std::size_t>(s) < loads.size() && !loads[static_cast<std::size_t>(s)].empty()
                                            ? &loads[static_cast<std::size_t>(s)] : nullptr;
   // over the owned particles, in the one-rank run's order on any number of ranks (ordered_sum.hpp)
-  const auto sums = parallel::exact_sums<1>(ranks_of<D>(m), m.owned(), [&](std::size_t i, std::array<double, 1>& acc) {
+  const auto sums = parallel::exact_sums<1>(ranks_of<D>(m), m.owned(), line_of(m), [&](std::size_t i, std::array<double, 1>& acc) {
     for (auto k = w.offset[i]; k < w.offset[i + 1]; ++k) {
       if (pressure_bond_source<D>(m, k, i) != s || (wall_only && w.neighbor[k] >= 0)) continue;
       const auto& x = w.xi[k];

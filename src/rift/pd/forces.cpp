@@ -123,7 +123,7 @@ EnergySummary summarize_rows(const Model<D>& m, bool strain_energy, double* dama
   if (strain_energy) strain_energy_densities<D>(m, density);
   // over the owned particles of every rank, exact (the one-rank run's bits on any cut)
   const std::vector<IndexRange> owned = m.owned();
-  auto sums = parallel::exact_sums<3>(ranks_of<D>(m), owned, [&](std::size_t i, std::array<double, 3>& acc) {
+  auto sums = parallel::exact_sums<3>(ranks_of<D>(m), owned, line_of(m), [&](std::size_t i, std::array<double, 3>& acc) {
     const double rho = m.constants_of(i).density;
     acc[0] += 0.5 * rho * dot<D>(m.velocity[i], m.velocity[i]) * m.volume[i];
     if (strain_energy) {

@@ -118,6 +118,15 @@ struct Model {
   }
   const MaterialConstants& constants_of(std::size_t i) const { return bodies[body[i]].constants; }
   Vec<D> displacement(std::size_t i) const { return position[i] - reference_position[i]; }
+  /// Whether particle i continues the lattice line along x of particle i - 1: the same body, and
+  /// the same y (and z) in the reference. The lines are the units of the exact sums over the owned
+  /// particles (parallel/ordered_sum.hpp exact_sums), which every partition keeps whole (window.hpp).
+  bool continues_line(std::size_t i) const {
+    if (i == 0 || body[i] != body[i - 1]) return false;
+    for (int k = 1; k < D; ++k)
+      if (reference_position[i][k] != reference_position[i - 1][k]) return false;
+    return true;
+  }
   /// The lowest and highest reference coordinate on each axis (the block's faces).
   std::array<Vec<D>, 2> reference_bounds() const {
     std::array<Vec<D>, 2> b;
@@ -130,5 +139,11 @@ struct Model {
     return sizeof(Vec<D>) * 5 + sizeof(double) * 7 + sizeof(std::uint32_t) + sizeof(std::uint8_t);  // the fields above
   }
 };
+
+/// Model::continues_line as a callable: the units of exact sums over the owned particles.
+template <int D>
+auto line_of(const Model<D>& m) {
+  return [&m](std::size_t i) { return m.continues_line(i); };
+}
 
 }  // namespace rift::pd

@@ -34,14 +34,15 @@ struct RigidAcceleration {
 /// where the particles are. Sums in a fixed order (the same bits for any thread count) over the
 /// `owned` ranges of `position`'s particles: with `comm`, a distributed run's owned ones
 /// (pd/window.hpp), every rank's, exactly (parallel/exact_sum.hpp: the same bits as one rank);
-/// without, every particle of `position`.
-template <int D, class Mass, class Force>
-RigidAcceleration<D> rigid_acceleration(const std::vector<Vec<D>>& position, Mass&& mass, Force&& force,
+/// without, every particle of `position`. continues(i): whether particle i is in the unit of the
+/// sums of particle i - 1 (parallel/ordered_sum.hpp exact_sums; a model's lattice lines, line_of).
+template <int D, class Mass, class Force, class Continues>
+RigidAcceleration<D> rigid_acceleration(const std::vector<Vec<D>>& position, Mass&& mass, Force&& force, Continues&& continues,
                                         const parallel::Communicator* comm = nullptr, const std::vector<IndexRange>& owned = {}) {
   const std::vector<IndexRange> ranges = comm ? owned : std::vector<IndexRange>{{0, position.size()}};
   const auto& sums_over = comm ? *comm : parallel::Communicator::one();
   RigidAcceleration<D> out;
-  auto first = parallel::exact_sums<1 + 2 * D>(sums_over, ranges, [&](std::size_t i, std::array<double, 1 + 2 * D>& acc) {
+  auto first = parallel::exact_sums<1 + 2 * D>(sums_over, ranges, continues, [&](std::size_t i, std::array<double, 1 + 2 * D>& acc) {
     const Vec<D> f = force(i);
     const double w = mass(i);
     acc[0] += w;
@@ -50,7 +51,7 @@ RigidAcceleration<D> rigid_acceleration(const std::vector<Vec<D>>& position, Mas
   if (!(first[0] > 0.0)) return out;
   for (int k = 0; k < D; ++k) out.centre[k] = first[1 + k] / first[0], out.linear[k] = first[1 + D + k] / first[0];
   // torque of f (3) and inertia tensor (6) of the masses about the centre
-  auto second = parallel::exact_sums<9>(sums_over, ranges, [&](std::size_t i, std::array<double, 9>& acc) {
+  auto second = parallel::exact_sums<9>(sums_over, ranges, continues, [&](std::size_t i, std::array<double, 9>& acc) {
     Eigen::Vector3d r = Eigen::Vector3d::Zero(), f = r;
     const Vec<D> fi = force(i);
     for (int k = 0; k < D; ++k) r[k] = position[i][k] - out.centre[k], f[k] = fi[k];

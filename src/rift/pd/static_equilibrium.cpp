@@ -36,7 +36,7 @@ RelaxationResult solve_static_equilibrium(Model<D>& m, const load::Boundaries<D>
   const std::vector<IndexRange> owned = m.owned();
   const double particles = comm.sum(static_cast<double>(count_of(owned)));  // the whole run's
   if (particles == 0.0 || !(shortest < std::numeric_limits<double>::max())) return result;
-  auto sum_over = [&](auto&& f) { return parallel::exact_sums<2>(comm, owned, f); };
+  auto sum_over = [&](auto&& f) { return parallel::exact_sums<2>(comm, owned, line_of(m), f); };
   const bool held_here = std::any_of(m.constrained.begin(), m.constrained.end(), [](std::uint8_t c) { return c != 0; });
   const bool free_body = !comm.any(held_here);
   const std::vector<std::uint8_t> on_platen = platen_components(m);
@@ -95,7 +95,7 @@ RelaxationResult solve_static_equilibrium(Model<D>& m, const load::Boundaries<D>
   std::vector<double> platen_force(m.platens.size());
   CoarseSpace<D> coarse;
   auto prepare = [&] {
-    if (free_body) rigid = rigid_acceleration<D>(base, weight, [&](std::size_t i) { return r[i]; }, &comm, owned);
+    if (free_body) rigid = rigid_acceleration<D>(base, weight, [&](std::size_t i) { return r[i]; }, line_of(m), &comm, owned);
     for (std::size_t a = 0; a < m.platens.size(); ++a) {
       const int k = m.platens[a].axis;
       platen_force[a] = platen_sums<1>(m, m.platens[a], [&](std::size_t i) { return std::array<double, 1>{r[i][k]}; })[0];
@@ -109,7 +109,7 @@ RelaxationResult solve_static_equilibrium(Model<D>& m, const load::Boundaries<D>
       return y;
     });
     if (free_body)
-      coarse_rigid = rigid_acceleration<D>(base, weight, [&](std::size_t i) { return weight(i) * coarse.at(i); }, &comm, owned);
+      coarse_rigid = rigid_acceleration<D>(base, weight, [&](std::size_t i) { return weight(i) * coarse.at(i); }, line_of(m), &comm, owned);
   };
   auto preconditioned = [&](std::size_t i) {
     Vec<D> z{};

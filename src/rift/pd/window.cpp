@@ -26,6 +26,7 @@ Partition partition_by_bonds(const Model<D>& m, int ranks, std::size_t reaches) 
   for (int r = 1; r < ranks; ++r) {
     const double share = total * r / ranks;
     while (i < n && static_cast<double>(offset[i]) + static_cast<double>(i) < share) ++i;
+    while (i < n && m.continues_line(i)) ++i;  // at a lattice line's start: the exact sums' units stay whole
     cuts[static_cast<std::size_t>(r)] = std::max(i, cuts[static_cast<std::size_t>(r) - 1]);
   }
   for (std::size_t a = 0; a < n; ++a)

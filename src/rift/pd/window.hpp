@@ -22,8 +22,9 @@ struct Partition {
   std::size_t reach = 0;  // the farthest bond in the numbering, max |i - j|
 };
 
-/// Cuts the model's particles into `ranks` consecutive ranges of about equal bond counts (a rank
-/// may own none where there are more ranks than particles). Each window reaches `reaches` times the
+/// Cuts the model's particles into `ranks` consecutive ranges of about equal bond counts, each cut
+/// at a lattice line's start (Model::continues_line; a rank may own none where there are more
+/// ranks than lines). Each window reaches `reaches` times the
 /// bonds' reach past its owned range: one for the bond passes; a fluid whose cracks grow reads
 /// further (fluid_ghost_reaches).
 template <int D>
