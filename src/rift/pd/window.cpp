@@ -306,11 +306,6 @@ Partition partition_into_pencils(const Model<D>& m, int across_y, int across_z, 
       if (!owns_any[r]) low[r] = high[r] = x[i], owns_any[r] = 1;
       for (int k = 0; k < D; ++k) low[r][k] = std::min(low[r][k], x[i][k]), high[r][k] = std::max(high[r][k], x[i][k]);
     }
-    for (std::size_t a = 0; a < n; ++a)
-      for (auto k = m.bonds.offset[a]; k < m.bonds.offset[a + 1]; ++k) {
-        const auto j = static_cast<std::size_t>(m.bonds.neighbor[static_cast<std::size_t>(k)]);
-        p.reach = std::max(p.reach, j > a ? j - a : a - j);
-      }
     // each window: the particles within `reaches` of the longest bond of its owned box across y and
     // z (every neighbour of an owned particle among them), grown to hold whole runs
     double longest = 0.0;

@@ -19,7 +19,7 @@ struct Partition {
   // each rank's owned particles and its window, as ranges of the whole run's numbering (ascending;
   // a slab's one each)
   std::vector<std::vector<IndexRange>> owned, window;
-  std::size_t reach = 0;  // the farthest bond in the numbering, max |i - j|
+  std::size_t reach = 0;  // slabs: the farthest bond in the numbering, max |i - j|
 };
 
 /// Cuts the model's particles into `ranks` consecutive ranges of about equal bond counts, each cut

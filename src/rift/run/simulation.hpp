@@ -51,9 +51,9 @@ struct Simulation {
   /// `mpirun -np N`: keeps this rank's window of the model (pd/window.hpp) and of the loads, its
   /// ghosts refreshed by a halo exchange. The processor grid (Options::processor_grid) is 1 x P in
   /// 2D and 1 x P x Q in 3D, each lattice line along x kept whole: 1 x 1 x N cuts slabs across the
-  /// lattice's slowest axis, P > 1 pencils; chosen (pd::choose_pencils) where not given. Raises a SceneError (before anything
-  /// is written) for another grid, a grid that leaves a rank without particles, or a cut along
-  /// another axis than the slowest (--cut-along).
+  /// lattice's slowest axis, P > 1 pencils; chosen (pd::choose_pencils) where not given. Raises a
+  /// SceneError (before anything is written) for another grid, a given grid that leaves a rank
+  /// without particles, or a cut along another axis than the slowest (--cut-along).
   void distribute(const scene::Scene& s, const parallel::Communicator& comm, int cut_axis = -1, const std::vector<int>& processor_grid = {}) {
     const int ranks = comm.size();
     if (cut_axis >= 0 && cut_axis != D - 1)
