@@ -223,19 +223,25 @@ void expect_windows_give_the_whole_forces(const rift::pd::Model<3>& m, const rif
   }
 }
 
-// A window of several ranges of the numbering (a box of a processor grid: the lattice lines of one
-// side of a cut across y, in every layer, with their ghosts and the whole runs of its owned
-// particles, window.hpp with_whole_runs): its owned particles' PMB forces and bond states after a
-// pass are the whole model's to the bit (the runs made over the window with an owned end are the
-// whole run's, and its slabs the whole body's), and its rows by slabs come in the one-rank order.
-TEST(BondRuns, AWindowOfManyRangesGivesItsOwnedParticlesTheWholeRunsForces) {
-  // a plate 61 x 41 sites and 7 layers thick (a run, at most 256 pairs, spans a few lattice lines)
+// A plate 61 x 41 sites and 7 layers thick (a run, at most 256 pairs, spans a few lattice lines),
+// deformed and partly broken: the windows of several ranges below cut it.
+rift::pd::Model<3> deformed_plate() {
   std::string scene = block_scene(3, false);
   auto set = [&](const std::string& from, const std::string& to) { scene.replace(scene.find(from), from.size(), to); };
   set("max = [0.014, 0.011, 0.009]", "max = [0.060, 0.040, 0.006]");
   set("center = [0.007, 0.0055, -0.005]", "center = [0.020, 0.012, -0.005]");
   auto m = rift::pd::discretize<3>(rift::scene::parse_string(scene, "plate.toml"));
   deform_and_break(m);
+  return m;
+}
+
+// A window of several ranges of the numbering (a box of a processor grid: the lattice lines of one
+// side of a cut across y, in every layer, with their ghosts and the whole runs of its owned
+// particles, window.hpp with_whole_runs): its owned particles' PMB forces and bond states after a
+// pass are the whole model's to the bit (the runs made over the window with an owned end are the
+// whole run's, and its slabs the whole body's), and its rows by slabs come in the one-rank order.
+TEST(BondRuns, AWindowOfManyRangesGivesItsOwnedParticlesTheWholeRunsForces) {
+  const auto m = deformed_plate();
   const double cut = 0.020, reach = 0.003015 + 1e-9;
   // the particles below the cut, and within the bonds' reach of it, as ranges of the numbering
   auto ranges_where = [&](auto&& keep) {
@@ -261,12 +267,7 @@ TEST(BondRuns, AWindowOfManyRangesGivesItsOwnedParticlesTheWholeRunsForces) {
 // bonds), one range per layer of a box; every neighbour of an owned particle is in the window; and
 // each window's owned particles get the whole model's PMB forces and bond states to the bit.
 TEST(BondRuns, PencilsOfAOneByTwoByTwoGridGiveTheWholeRunsForces) {
-  std::string scene = block_scene(3, false);
-  auto set = [&](const std::string& from, const std::string& to) { scene.replace(scene.find(from), from.size(), to); };
-  set("max = [0.014, 0.011, 0.009]", "max = [0.060, 0.040, 0.006]");
-  set("center = [0.007, 0.0055, -0.005]", "center = [0.020, 0.012, -0.005]");
-  auto m = rift::pd::discretize<3>(rift::scene::parse_string(scene, "plate.toml"));
-  deform_and_break(m);
+  const auto m = deformed_plate();
   const auto p = rift::pd::partition_into_pencils<3>(m, 2, 2);
   ASSERT_EQ(p.owned.size(), 4u);
   std::vector<int> owner(m.size(), -1);

@@ -1,7 +1,5 @@
 #include "rift/load/boundary.hpp"
 
-#include "rift/parallel/exact_sum.hpp"
-
 #include <algorithm>
 
 #include "rift/core/phase_times.hpp"

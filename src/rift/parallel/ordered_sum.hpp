@@ -5,8 +5,8 @@
 #pragma once
 #include <algorithm>
 #include <array>
-#include <utility>
 #include <cstddef>
+#include <utility>
 #include <vector>
 
 #include "rift/core/index_range.hpp"

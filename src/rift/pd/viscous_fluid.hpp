@@ -32,8 +32,8 @@
 // network's load reaches but the fluid does not (LPS coupling) takes the mean of the wet particles
 // of its family.
 // On N ranks (window.hpp) every rank solves the whole network: the flow bonds of its owned rows
-// and its owned nodes, gathered and put in the one-rank order, give every rank the one-rank system and its
-// bits; each keeps its owned particles' pressures and the ghosts take their owners'.
+// and its owned nodes, gathered and put in the one-rank order, give every rank the one-rank system
+// and its bits; each keeps its owned particles' pressures and the ghosts take their owners'.
 #pragma once
 #include <algorithm>
 #include <cstdint>
