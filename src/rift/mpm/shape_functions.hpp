@@ -19,7 +19,7 @@ struct Stencil1 {
 
 /// Weights of the particle at coordinate x (grid origin 0, cell size h) along one axis.
 /// `half_width` is the uGIMP particle half-width l (< h/2).
-inline Stencil1 stencil_1d(ShapeKind kind, double x, double h, double half_width) {
+[[gnu::always_inline]] inline Stencil1 stencil_1d(ShapeKind kind, double x, double h, double half_width) {
   Stencil1 s;
   const double u = x / h;  // position in cells
   switch (kind) {

@@ -386,7 +386,7 @@ void Solver<D>::grid_velocities(Model<D>& m, double t, bool record_start, bool c
   const std::size_t fields = static_cast<std::size_t>(g.fields);
   const auto amplitude = condition_amplitudes(t);
   if (fields > 1 && contact) touching_.resize(g.size());
-#pragma omp parallel for if(rift::parallel::worth_a_team(g.slots())) schedule(dynamic, 256)
+#pragma omp parallel for if(rift::parallel::worth_a_team(g.slots())) schedule(static)
   for (std::size_t node = 0; node < g.size(); ++node) {
     node_velocities(m, node, tiny, record_start, contact, amplitude);
     if (restore_stage && touching_[node])
@@ -406,7 +406,7 @@ void Solver<D>::grid_update(Model<D>& m, double t, double dt) {
   if (fields > 1) touching_.resize(g.size());
   const bool keep_stage = fields > 1 && settings_.scheme == scene::Mpm::Scheme::musl;
   if (keep_stage) stage_velocity_.resize(g.slots());
-#pragma omp parallel for if(rift::parallel::worth_a_team(g.slots())) schedule(dynamic, 256)
+#pragma omp parallel for if(rift::parallel::worth_a_team(g.slots())) schedule(static)
   for (std::size_t node = 0; node < g.size(); ++node) {
     node_velocities(m, node, tiny, true, true, amplitude_start);
     for (std::size_t n = node * fields; n < (node + 1) * fields; ++n)
@@ -454,7 +454,7 @@ void Solver<D>::step(Model<D>& m, double dt) {
       acceleration_.resize(ps.size());
       velocity_gradient_.resize(ps.size());
       const double reach = 2.0 * g.cell_size;
-#pragma omp parallel for if(rift::parallel::worth_a_team(ps.size())) schedule(dynamic, 256)
+#pragma omp parallel for if(rift::parallel::worth_a_team(ps.size())) schedule(static)
       for (std::size_t p = 0; p < ps.size(); ++p) {
         near_crack_[p] = cracks_.near(ps.position[p], reach);
         if (!near_crack_[p]) continue;

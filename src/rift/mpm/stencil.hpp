@@ -35,35 +35,53 @@ struct LostParticle {
   }
 };
 
-/// Tensor-product shape functions of the particle at x: nodes, weights S_ip, gradients grad S_ip.
-/// Returns false (count 0) when the particle's stencil reaches past the grid.
+/// Tensor-product shape functions of the particle at x, written to node[q], weight[q] and
+/// gradient[q] (room for Stencil<D>::capacity): nodes, weights S_ip, gradients grad S_ip. Returns
+/// the number of nodes, or 0 when the particle's stencil reaches past the grid. The 1D factors stay
+/// in registers and each product is stored once where it is read from: a copy through a
+/// temporary (scalar stores read back as vectors) cost two threads sharing a core more than the
+/// products themselves (bench/README.md, session of 2026-11-29).
+template <int D>
+int make_stencil(const Model<D>& m, const Vec<D>& x, std::size_t* node, double* weight, Vec<D>* gradient) {
+  const auto& g = m.grid;
+  // The whole grid's node numbers to this rank's part of it (mpm/domain.hpp). Each axis' factors
+  // are built in place (an array of Stencil1 is zero-filled first, a rep stos as slow as the rest).
+  auto along = [&](int a) __attribute__((always_inline)) {
+    Stencil1 s1 = stencil_1d(m.shape, x[a] - g.origin[a], g.cell_size, m.particle_half_width);
+    s1.first -= g.offset[a];
+    return s1;
+  };
+  auto inside = [&](const Stencil1& s1, int a) { return s1.first >= 0 && s1.first + s1.count <= g.nodes[a] && std::isfinite(x[a]); };
+  const Stencil1 sx = along(0), sy = along(1);
+  if (!inside(sx, 0) || !inside(sy, 1)) return 0;
+  Stencil1 sz;
+  sz.count = 1, sz.weight[0] = 1.0;
+  if constexpr (D == 3) {
+    sz = along(2);
+    if (!inside(sz, 2)) return 0;
+  }
+  // The grid's numbering in registers: the stores below may alias m, so g.index would read it again.
+  const long row = g.nodes[0], layer = g.nodes[0] * g.nodes[1];
+  int count = 0;
+  for (int k = 0; k < sz.count; ++k)
+    for (int j = 0; j < sy.count; ++j)
+      for (int i = 0; i < sx.count; ++i, ++count) {
+        const auto q = static_cast<std::size_t>(count);
+        const double wx = sx.weight[i], wy = sy.weight[j], wz = sz.weight[k];
+        node[q] = static_cast<std::size_t>((sz.first + k) * layer + (sy.first + j) * row + sx.first + i);  // Grid::index
+        weight[q] = wx * wy * wz;
+        gradient[q][0] = sx.gradient[i] * wy * wz;
+        gradient[q][1] = wx * sy.gradient[j] * wz;
+        if constexpr (D == 3) gradient[q][2] = wx * wy * sz.gradient[k];
+      }
+  return count;
+}
+
+/// The same into a Stencil<D>; false (count 0) when the particle's stencil reaches past the grid.
 template <int D>
 bool make_stencil(const Model<D>& m, const Vec<D>& x, Stencil<D>& st) {
-  const auto& g = m.grid;
-  std::array<Stencil1, 3> s;
-  st.count = 0;
-  for (int a = 0; a < 3; ++a) {
-    if (a < D) {
-      s[a] = stencil_1d(m.shape, x[a] - g.origin[a], g.cell_size, m.particle_half_width);
-      s[a].first -= g.offset[a];  // the whole grid's node numbers to this rank's part of it (mpm/domain.hpp)
-      if (s[a].first < 0 || s[a].first + s[a].count > g.nodes[a] || !std::isfinite(x[a])) return false;
-    } else {
-      s[a].first = 0, s[a].count = 1, s[a].weight = {1, 0, 0, 0}, s[a].gradient = {0, 0, 0, 0};
-    }
-  }
-  st.count = 0;
-  for (int k = 0; k < s[2].count; ++k)
-    for (int j = 0; j < s[1].count; ++j)
-      for (int i = 0; i < s[0].count; ++i) {
-        const std::size_t q = static_cast<std::size_t>(st.count++);
-        st.node[q] = g.index(s[0].first + i, s[1].first + j, s[2].first + k);
-        const double wx = s[0].weight[i], wy = s[1].weight[j], wz = s[2].weight[k];
-        st.weight[q] = wx * wy * wz;
-        st.gradient[q][0] = s[0].gradient[i] * wy * wz;
-        if constexpr (D >= 2) st.gradient[q][1] = wx * s[1].gradient[j] * wz;
-        if constexpr (D == 3) st.gradient[q][2] = wx * wy * s[2].gradient[k];
-      }
-  return true;
+  st.count = make_stencil<D>(m, x, st.node.data(), st.weight.data(), st.gradient.data());
+  return st.count > 0;
 }
 
 }  // namespace rift::mpm

@@ -39,26 +39,13 @@ class StencilCache {
     gradient_.resize(n * stride_);
     if (taken_at) taken_at->resize(n);
     LostParticle lost;
-#pragma omp parallel if(rift::parallel::worth_a_team(n))
-    {
-      Stencil<D> st;
-#pragma omp for schedule(dynamic, 256)
-      for (std::size_t p = 0; p < n; ++p) {
-        count_[p] = 0;
-        if (taken_at) (*taken_at)[p] = positions[p];
-        if (!make_stencil<D>(m, positions[p], st)) {
-          lost.record(p);
-          continue;
-        }
-        const std::size_t base = p * stride_;
-        count_[p] = static_cast<std::uint8_t>(st.count);
-        for (int q = 0; q < st.count; ++q) {
-          const auto k = static_cast<std::size_t>(q);
-          node_[base + k] = st.node[k];
-          weight_[base + k] = st.weight[k];
-          gradient_[base + k] = st.gradient[k];
-        }
-      }
+#pragma omp parallel for if(rift::parallel::worth_a_team(n)) schedule(static)
+    for (std::size_t p = 0; p < n; ++p) {
+      if (taken_at) (*taken_at)[p] = positions[p];
+      const std::size_t base = p * stride_;
+      const int count = make_stencil<D>(m, positions[p], node_.data() + base, weight_.data() + base, gradient_.data() + base);
+      count_[p] = static_cast<std::uint8_t>(count);
+      if (count == 0) lost.record(p);
     }
     lost.raise(m.time);
   }
@@ -78,12 +65,15 @@ class StencilCache {
 };
 
 /// Runs body(p, stencil) for every point of the cache in parallel, or on the calling thread alone
-/// for a few points (parallel/team.hpp). The schedule is dynamic, so body must compute each point
-/// alone (a sum over points across calls would depend on which thread took which block).
+/// for a few points (parallel/team.hpp). body must compute each point alone. The schedule is
+/// static: every pass over the points in a step gives each thread the same block (the scatter's,
+/// solver.cpp, near enough), so a point's data stays in the cache of the core that used it last. A
+/// dynamic schedule moved the blocks between cores from pass to pass, and two threads ran the 2D
+/// beam no faster than one (bench/README.md, session of 2026-11-29).
 template <int D, class Body>
 void for_each_cached_stencil(const StencilCache<D>& cache, Body body) {
   const std::size_t n = cache.size();
-#pragma omp parallel for if(rift::parallel::worth_a_team(n)) schedule(dynamic, 256)
+#pragma omp parallel for if(rift::parallel::worth_a_team(n)) schedule(static)
   for (std::size_t p = 0; p < n; ++p) body(p, cache[p]);
 }
 
