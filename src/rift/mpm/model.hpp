@@ -46,7 +46,12 @@ struct Grid {
 
   std::size_t size() const { return static_cast<std::size_t>(nodes[0] * nodes[1] * nodes[2]); }
   std::size_t slots() const { return size() * static_cast<std::size_t>(fields); }
-  std::size_t index(long i, long j, long k) const { return static_cast<std::size_t>((k * nodes[1] + j) * nodes[0] + i); }
+  std::size_t index(long i, long j, long k) const { return index(nodes, i, j, k); }
+  /// The same for a copy of `nodes` (a loop that stores through pointers that may alias the grid
+  /// keeps its copy in registers, mpm/stencil.hpp).
+  static std::size_t index(const std::array<long, 3>& nodes, long i, long j, long k) {
+    return static_cast<std::size_t>((k * nodes[1] + j) * nodes[0] + i);
+  }
   Vec<D> node_position(std::size_t n) const {
     Vec<D> x;
     long rest = static_cast<long>(n);

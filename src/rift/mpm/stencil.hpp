@@ -60,15 +60,16 @@ int make_stencil(const Model<D>& m, const Vec<D>& x, std::size_t* node, double* 
     sz = along(2);
     if (!inside(sz, 2)) return 0;
   }
-  // The grid's numbering in registers: the stores below may alias m, so g.index would read it again.
-  const long row = g.nodes[0], layer = g.nodes[0] * g.nodes[1];
+  // The numbering in registers: the stores below may alias m, so g.index would read it again each
+  // time (3-5% of the 2D beam's step, 2026-11-29).
+  const std::array<long, 3> nodes = g.nodes;
   int count = 0;
   for (int k = 0; k < sz.count; ++k)
     for (int j = 0; j < sy.count; ++j)
       for (int i = 0; i < sx.count; ++i, ++count) {
         const auto q = static_cast<std::size_t>(count);
         const double wx = sx.weight[i], wy = sy.weight[j], wz = sz.weight[k];
-        node[q] = static_cast<std::size_t>((sz.first + k) * layer + (sy.first + j) * row + sx.first + i);  // Grid::index
+        node[q] = Grid<D>::index(nodes, sx.first + i, sy.first + j, sz.first + k);
         weight[q] = wx * wy * wz;
         gradient[q][0] = sx.gradient[i] * wy * wz;
         gradient[q][1] = wx * sy.gradient[j] * wz;
