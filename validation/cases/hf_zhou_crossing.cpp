@@ -120,6 +120,13 @@
 // horizon, 9 mm, reaches across the plane) and, wet and under sigma_h = 5 MPa only, takes the fluid
 // the interface (sigma_n = 7.25 MPa) gives up as the pressure falls. What might: a finer horizon at
 // the junction, or the interface's fluid taken as the tip's (blunting) load.
+// Tried on 2026-11-29 (3 mm, platens, one thread a row; not kept): the interface law reading the
+// bond's own stretch for the strain along the bond, as the rock's bonds do (normal_stress_failure.hpp):
+// the traction on the plane from the mean strain of the ends with its component along the bond
+// replaced by the bond's stretch, so that the law sees the arriving tip's opening as sharply as the
+// far side's rock bonds do. 2-8 crossed still (20.4 mm past at t = 3.9 s, its interface never
+// failed; 8.0 mm at t = 3 s), and 2-4 crossed only just (18.2 mm at t = 4 s, where crossing counts
+// from 18.1 mm; 13 mm at t = 3.7 s). So it slowed both crossings alike and did not tell them apart.
 // With traction faces instead (the same scenes, faces = "tractions"): 7 of 9. 2-6 arrested (13.7 mm
 // past the plane at t = 4 s; both wings turned toward +y some 80 mm out, as in 2-4, under the 13 /
 // 3 MPa that should keep them straight: the free faces let the block bend), 2-8 crossed (22.3 mm);
