@@ -296,6 +296,20 @@ TEST(Cramp, CrackOpensAndGridLineCrackIsRefused) {
   EXPECT_THROW(rift::mpm::Solver<2>(bad, mb), rift::SceneError);
 }
 
+// The stencil cache numbers grid nodes in 32 bits (stencil_cache.hpp): a grid of 2^32 nodes or
+// more is refused before anything is allocated, with the key to change.
+TEST(MpmGrid, MoreNodesThanThirtyTwoBitsIsRefused) {
+  auto s = rift::scene::parse_string(driven_cracked_beam("0.001", "-0.0035", "0.0115"), "grid.toml");
+  s.mpm.cell_size = 1e-7;  // 260,000 x 150,000 cells: each axis under the million-cell limit
+  try {
+    (void)rift::mpm::discretize<2>(s);
+    ADD_FAILURE() << "a grid of 3.9e10 nodes was accepted";
+  } catch (const rift::SceneError& e) {
+    EXPECT_NE(std::string(e.what()).find("2^32 grid nodes"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("mpm.cell_size"), std::string::npos) << e.what();
+  }
+}
+
 // The particle-to-grid transfer sums one buffer per thread, each over the band of slots its block
 // of points reaches (solver.cpp, scatter). A cracked beam of 2,560 points (enough for a team, with
 // crack fields, contact normals and a driven opening) stepped on one thread and on two: the same

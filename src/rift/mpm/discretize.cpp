@@ -58,6 +58,10 @@ Model<D> discretize(const scene::Scene& s) {
     if (cells > 1e6) throw SceneError({s.file, 0, 0}, "mpm.cell_size", "more than a million cells along one axis");
     m.grid.nodes[a] = static_cast<long>(cells) + 1;
   }
+  // the stencil cache numbers nodes in 32 bits (stencil_cache.hpp); such a grid would not fit in
+  // memory anyway (about 100 bytes a node)
+  if (double(m.grid.nodes[0]) * double(m.grid.nodes[1]) * double(m.grid.nodes[2]) >= 4294967296.0)
+    throw SceneError({s.file, 0, 0}, "mpm.cell_size", "more than 2^32 grid nodes; make the cells larger or the grid smaller");
   // velocity fields per node: 3 with explicit cracks (CRAMP: same side, above, below), one per body
   // with multi-material contact, else 1
   m.grid.fields = !s.cracks.empty() ? 3

@@ -35,14 +35,15 @@ struct LostParticle {
   }
 };
 
-/// Tensor-product shape functions of the particle at x, written to node[q], weight[q] and
+/// Tensor-product shape functions of the particle at x, written to node[q] (any unsigned type that
+/// holds the grid's node numbers: the cache's are 32-bit), weight[q] and
 /// gradient[q] (room for Stencil<D>::capacity): nodes, weights S_ip, gradients grad S_ip. Returns
 /// the number of nodes, or 0 when the particle's stencil reaches past the grid. The 1D factors stay
 /// in registers and each product is stored once where it is read from: a copy through a
 /// temporary (scalar stores read back as vectors) cost two threads sharing a core more than the
 /// products themselves (bench/README.md, session of 2026-11-29).
-template <int D>
-int make_stencil(const Model<D>& m, const Vec<D>& x, std::size_t* node, double* weight, Vec<D>* gradient) {
+template <int D, class NodeIndex>
+int make_stencil(const Model<D>& m, const Vec<D>& x, NodeIndex* node, double* weight, Vec<D>* gradient) {
   const auto& g = m.grid;
   // The whole grid's node numbers to this rank's part of it (mpm/domain.hpp). Each axis' factors
   // are built in place (an array of Stencil1 is zero-filled first, a rep stos as slow as the rest).
@@ -69,7 +70,7 @@ int make_stencil(const Model<D>& m, const Vec<D>& x, std::size_t* node, double* 
       for (int i = 0; i < sx.count; ++i, ++count) {
         const auto q = static_cast<std::size_t>(count);
         const double wx = sx.weight[i], wy = sy.weight[j], wz = sz.weight[k];
-        node[q] = Grid<D>::index(nodes, sx.first + i, sy.first + j, sz.first + k);
+        node[q] = static_cast<NodeIndex>(Grid<D>::index(nodes, sx.first + i, sy.first + j, sz.first + k));
         weight[q] = wx * wy * wz;
         gradient[q][0] = sx.gradient[i] * wy * wz;
         gradient[q][1] = wx * sy.gradient[j] * wz;

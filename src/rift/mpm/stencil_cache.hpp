@@ -3,7 +3,9 @@
 // uses S_ip and grad S_ip at the point's position at the start of the step, x_p^n (Sulsky et al.
 // 1994), so they are taken once per step (stencil.hpp) and read by each transfer, instead of being
 // taken again by each. Memory: support(shape)^D nodes
-// per point, each its index, weight and gradient (2D quadratic B-splines: 9 x 32 bytes).
+// per point, each its index (32 bits), weight and gradient (2D quadratic B-splines: 9 x 28 bytes).
+// The cache is read four times a step, and two threads share the bandwidth it takes: 64-bit
+// indices ran two threads 5-8% slower (bench/README.md, session of 2026-11-29, eleventh).
 #pragma once
 #include <cstddef>
 #include <cstdint>
@@ -21,7 +23,7 @@ class StencilCache {
   /// One point's stencil, read in place: the members a Stencil<D> has, as pointers into the cache.
   struct View {
     int count = 0;
-    const std::size_t* node = nullptr;
+    const std::uint32_t* node = nullptr;
     const double* weight = nullptr;
     const Vec<D>* gradient = nullptr;
   };
@@ -59,7 +61,7 @@ class StencilCache {
  private:
   std::size_t stride_ = 0;
   std::vector<std::uint8_t> count_;
-  std::vector<std::size_t> node_;
+  std::vector<std::uint32_t> node_;  // 4 bytes a node: a grid of up to 2^32 nodes (fill checks)
   std::vector<double> weight_;
   std::vector<Vec<D>> gradient_;
 };
