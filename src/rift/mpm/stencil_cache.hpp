@@ -61,7 +61,7 @@ class StencilCache {
  private:
   std::size_t stride_ = 0;
   std::vector<std::uint8_t> count_;
-  std::vector<std::uint32_t> node_;  // 4 bytes a node: a grid of up to 2^32 nodes (fill checks)
+  std::vector<std::uint32_t> node_;  // 4 bytes a node: discretize refuses grids of 2^32 nodes or more
   std::vector<double> weight_;
   std::vector<Vec<D>> gradient_;
 };
