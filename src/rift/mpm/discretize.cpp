@@ -4,6 +4,7 @@
 #include <limits>
 
 #include "rift/geometry/region.hpp"
+#include "rift/mpm/stencil_cache.hpp"
 
 namespace rift::mpm {
 
@@ -60,7 +61,8 @@ Model<D> discretize(const scene::Scene& s) {
   }
   // the stencil cache numbers nodes in 32 bits (stencil_cache.hpp); such a grid would not fit in
   // memory anyway (about 100 bytes a node)
-  if (double(m.grid.nodes[0]) * double(m.grid.nodes[1]) * double(m.grid.nodes[2]) >= 4294967296.0)
+  constexpr double numbers = double(std::numeric_limits<typename StencilCache<D>::NodeIndex>::max()) + 1.0;
+  if (double(m.grid.nodes[0]) * double(m.grid.nodes[1]) * double(m.grid.nodes[2]) >= numbers)
     throw SceneError({s.file, 0, 0}, "mpm.cell_size", "more than 2^32 grid nodes; make the cells larger or the grid smaller");
   // velocity fields per node: 3 with explicit cracks (CRAMP: same side, above, below), one per body
   // with multi-material contact, else 1

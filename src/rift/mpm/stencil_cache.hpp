@@ -20,10 +20,13 @@ namespace rift::mpm {
 template <int D>
 class StencilCache {
  public:
+  /// Node numbers are 32-bit: discretize refuses grids with more nodes than this holds.
+  using NodeIndex = std::uint32_t;
+
   /// One point's stencil, read in place: the members a Stencil<D> has, as pointers into the cache.
   struct View {
     int count = 0;
-    const std::uint32_t* node = nullptr;
+    const NodeIndex* node = nullptr;
     const double* weight = nullptr;
     const Vec<D>* gradient = nullptr;
   };
@@ -61,7 +64,7 @@ class StencilCache {
  private:
   std::size_t stride_ = 0;
   std::vector<std::uint8_t> count_;
-  std::vector<std::uint32_t> node_;  // 4 bytes a node: discretize refuses grids of 2^32 nodes or more
+  std::vector<NodeIndex> node_;
   std::vector<double> weight_;
   std::vector<Vec<D>> gradient_;
 };
