@@ -127,6 +127,18 @@
 // far side's rock bonds do. 2-8 crossed still (20.4 mm past at t = 3.9 s, its interface never
 // failed; 8.0 mm at t = 3 s), and 2-4 crossed only just (18.2 mm at t = 4 s, where crossing counts
 // from 18.1 mm; 13 mm at t = 3.7 s). So it slowed both crossings alike and did not tell them apart.
+// Tried on 2026-11-29 (twelfth session; 3 mm, platens, one thread; not kept): the strengths from
+// the linear-elastic field on the fracture's line ahead of its tip, where sigma_xx and sigma_yy
+// rise alike (Westergaard's solution for any load on the faces): the far side's rock breaks once
+// the rise reaches sigma_h + T, the interface opens once it reaches sigma_n + T_i, so the interface
+// answers first where (sigma_H - sigma_h) sin^2(theta) < T - T_i: 2.25 MPa for 2-8, 5.25 for 2-4,
+// 5 for 2-1, more for 2-2, 2-6 and S-1; T - T_i between 2.25 and 5 would give the table. With this
+// scene's T = 3, T_i = 1 (T - T_i = 2) 2-8 sits just outside. 2-8 with T = 5 MPa, T_i = 0: the
+// interface never opened (0 mm) and the far side broke from t = 2.7 s (p = 6.96 MPa; 16.9 mm past
+// at t = 4 s, read arrested under the 18.1 mm threshold); with T = 6, T_i = 1: crossed (22.5 mm,
+// p = 6.64 MPa at t = 4 s), its interface never open either. So this model's interface does not see
+// the tip's rise in sigma_xx that the far side's rock sees in sigma_yy (its normal stress stays
+// 7.1-8.0 MPa of compression as the tip arrives, above), and no pair of strengths reaches it.
 // With traction faces instead (the same scenes, faces = "tractions"): 7 of 9. 2-6 arrested (13.7 mm
 // past the plane at t = 4 s; both wings turned toward +y some 80 mm out, as in 2-4, under the 13 /
 // 3 MPa that should keep them straight: the free faces let the block bend), 2-8 crossed (22.3 mm);
