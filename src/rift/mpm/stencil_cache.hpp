@@ -4,8 +4,9 @@
 // 1994), so they are taken once per step (stencil.hpp) and read by each transfer, instead of being
 // taken again by each. Memory: support(shape)^D nodes
 // per point, each its index (32 bits), weight and gradient (2D quadratic B-splines: 9 x 28 bytes).
-// The cache is read four times a step, and two threads share the bandwidth it takes: 64-bit
-// indices ran two threads 5-8% slower (bench/README.md, session of 2026-11-29, eleventh).
+// The cache is read four times a step: 64-bit indices ran two threads 5-8% slower. Storing each
+// axis' 1D factors instead (70-101 bytes a 2D point) and forming the products in the transfers ran
+// 14-16% slower on one thread and two alike (bench/README.md, sessions of 2026-11-29).
 #pragma once
 #include <cstddef>
 #include <cstdint>
