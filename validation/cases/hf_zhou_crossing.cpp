@@ -147,6 +147,19 @@
 // interface does not see the tip's rise in sigma_xx that the far side's rock sees in sigma_yy, and no
 // pair of strengths reaches it. A measure of the interface's stress that reads the tip's field as
 // the rock's bonds do, and keeps the 90-degree rows whole, is what 2-8 still asks for.
+// Traced on 2026-11-29 (thirteenth session; the interface law's state within 12 mm of the junction
+// printed every 300 force evaluations, not kept): that measure is not what lets 2-8 cross. In 2-8 the
+// law slips its bonds at the junction (|tau| / (mu sigma_n) 1.03 at (73.5, 0) mm) with the tip at 66
+// mm, and parts them (2.9 MPa of tension against T_i = 1) with the tip at 69 mm, while the far side's
+// rock bonds read -0.5 MPa (compression) at the first slip and 2.5 MPa at the parting, against T = 3;
+// 2-4 slips at its junction likewise (1.04, tip at 63 mm; far side 0.4 MPa). The failed patch stays a few spacings long (the slip ratio 0.58-0.65 at
+// 4.5 mm along the plane), and once the tip is at the plane the far side's rock 1.5 mm past it reads
+// 4.2 MPa (2-8) and 3.1 (2-4) and breaks: the bonds across the plane outside the patch, up to a
+// horizon long, carry the near side's opening over to the far side. So both rows blunt first and
+// cross anyway, where Renshaw and Pollard's slip stops the crossing. The law on either end's stress
+// alone (a bond failing where the rock on one face exceeds it, rather than on the mean of both):
+// 2-4 arrested (15.4 mm past at t = 4 s, under its 18.1 mm threshold; the far side broke more slowly)
+// and 2-8 still crossing (10 mm past at t = 3.0 s and growing).
 // With traction faces instead (the same scenes, faces = "tractions"): 7 of 9. 2-6 arrested (13.7 mm
 // past the plane at t = 4 s; both wings turned toward +y some 80 mm out, as in 2-4, under the 13 /
 // 3 MPa that should keep them straight: the free faces let the block bend), 2-8 crossed (22.3 mm);
