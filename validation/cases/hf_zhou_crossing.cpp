@@ -159,7 +159,10 @@
 // cross anyway, where Renshaw and Pollard's slip stops the crossing. The law on either end's stress
 // alone (a bond failing where the rock on one face exceeds it, rather than on the mean of both):
 // 2-4 arrested (15.4 mm past at t = 4 s, under its 18.1 mm threshold; the far side broke more slowly)
-// and 2-8 still crossing (10 mm past at t = 3.0 s and growing).
+// and 2-8 still crossing (10 mm past at t = 3.0 s and growing). The law at sites of the plane (each
+// bond read the stress of the two interface particles nearest its crossing point, one each side, so
+// that every bond crossing the plane at a failed spot fails, long bonds too): 2-8 crossed still
+// (17.1 mm past at t = 3.5 s and growing) and 2-4 crossed further (29.4 mm at t = 3.7 s).
 // With traction faces instead (the same scenes, faces = "tractions"): 7 of 9. 2-6 arrested (13.7 mm
 // past the plane at t = 4 s; both wings turned toward +y some 80 mm out, as in 2-4, under the 13 /
 // 3 MPa that should keep them straight: the free faces let the block bend), 2-8 crossed (22.3 mm);
