@@ -163,6 +163,15 @@
 // bond read the stress of the two interface particles nearest its crossing point, one each side, so
 // that every bond crossing the plane at a failed spot fails, long bonds too): 2-8 crossed still
 // (17.1 mm past at t = 3.5 s and growing) and 2-4 crossed further (29.4 mm at t = 3.7 s).
+// What the failed bonds at 2-8's junction do (same trace, bonds with an end within 6 mm of it, t =
+// 2.2-2.4 s): 175 have failed; 45-55 have their faces apart and 120-130 are pressed together, of
+// which about 60% are at the Coulomb cap (interface_contact.hpp) and the rest stick; together the
+// pressed ones carry 0.28-0.46 of their normal force in shear, against mu = 0.89. Under dynamic
+// relaxation their slip is held at zero (compute_forces' history_dt is 0), so a failed bond's
+// friction is its elastic tangential force capped at mu times its normal one. So the blunting the
+// slip should bring is partial: most of the failed patch is shut and much of it still sticks. The
+// next trace: the forces on the far side's rock 1.5 mm past the plane (76.5, 1.5) mm, split into the
+// intact bonds across the plane, the failed bonds' contact and the fluid on the faces.
 // With traction faces instead (the same scenes, faces = "tractions"): 7 of 9. 2-6 arrested (13.7 mm
 // past the plane at t = 4 s; both wings turned toward +y some 80 mm out, as in 2-4, under the 13 /
 // 3 MPa that should keep them straight: the free faces let the block bend), 2-8 crossed (22.3 mm);
