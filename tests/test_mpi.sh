@@ -45,6 +45,10 @@ same_outputs() {
     cmp -s "$f" "$2/$name" || fail "$3: $name differs from the one-rank run's"
   done
 }
+# ranks_compared NP...: the rank counts same_on_ranks NP... runs (the last alone with RIFT_MPI_MOST_RANKS_ONLY=1)
+ranks_compared() {
+  if [[ "${RIFT_MPI_MOST_RANKS_ONLY:-0}" == 1 ]]; then echo "${@: -1}"; else echo "$@"; fi
+}
 # same_on_ranks SCENE NP...: SCENE on each NP writes the bytes of its one-rank run in $tmp/SCENE-serial.
 # With RIFT_MPI_MOST_RANKS_ONLY=1 (the sanitizer build, tests/CMakeLists.txt) only on the largest NP:
 # a rank with a neighbour on each side takes every path of the exchanges, and the sanitizers look
@@ -52,20 +56,19 @@ same_outputs() {
 same_on_ranks() {
   local scene="$1" np
   shift
-  local counts=("$@")
-  if [[ "${RIFT_MPI_MOST_RANKS_ONLY:-0}" == 1 ]]; then counts=("${@: -1}"); fi
-  for np in "${counts[@]}"; do
+  for np in $(ranks_compared "$@"); do
     run_on_ranks "$scene" "$np"
     same_outputs "$tmp/$scene-serial" "$tmp/$scene-np$np" "$scene on $np ranks"
   done
 }
-# compared_on NP...: the rank counts same_on_ranks NP... compares, for the ok lines ("2 and 3", or "3"
-# alone with RIFT_MPI_MOST_RANKS_ONLY=1)
+# compared_on NP...: those rank counts in words, for the ok lines ("2 and 3", or "3" alone with
+# RIFT_MPI_MOST_RANKS_ONLY=1)
 compared_on() {
-  if [[ "${RIFT_MPI_MOST_RANKS_ONLY:-0}" == 1 || $# -eq 1 ]]; then echo "${@: -1}"; return; fi
-  local all=("$@") n=$#
-  local head="${all[*]:0:n-1}"
-  echo "${head// /, } and ${all[n-1]}"
+  local counts=($(ranks_compared "$@"))
+  local n=${#counts[@]}
+  if [ "$n" -eq 1 ]; then echo "${counts[0]}"; return; fi
+  local head="${counts[*]:0:n-1}"
+  echo "${head// /, } and ${counts[n-1]}"
 }
 
 cat > "$tmp/plate.toml" <<'SCENE'
