@@ -12,6 +12,7 @@
 #include "rift/load/traction_layer.hpp"
 #include "rift/mpm/energy.hpp"
 #include "rift/mpm/stencil.hpp"
+#include "rift/parallel/shared_blocks.hpp"
 #include "rift/parallel/team.hpp"
 
 namespace rift::mpm {
@@ -161,6 +162,7 @@ void Solver<D>::scatter(Model<D>& m, bool momentum_only, bool internal_force) {
   // of neighbouring blocks overlap only at their edges.
   const int team = rift::parallel::worth_a_team(n_points) ? static_cast<int>(thread_buffers_.size()) : 1;
   int used = 1;
+  slot_blocks_.split(g.slots(), static_cast<std::size_t>(team));
 #pragma omp parallel num_threads(team) if(team > 1)
   {
     const int threads = omp_get_num_threads();
@@ -220,8 +222,7 @@ void Solver<D>::scatter(Model<D>& m, bool momentum_only, bool internal_force) {
     }
 #pragma omp barrier
     // sum the buffers that reach each slot, in thread order
-#pragma omp for schedule(static)
-    for (std::size_t n = 0; n < g.slots(); ++n) {
+    slot_blocks_.take(t, [&](std::size_t n) {
       double mass = 0.0, volume = 0.0;
       Vec<D> mom{}, f{}, grad{}, u{};
       for (std::size_t b = 0; b < static_cast<std::size_t>(used); ++b) {
@@ -240,7 +241,7 @@ void Solver<D>::scatter(Model<D>& m, bool momentum_only, bool internal_force) {
       g.momentum[n] = mom;
       if (!momentum_only) g.force[n] = f;
       if (normals) g.mass_gradient[n] = grad, g.volume[n] = volume, g.displacement[n] = u;
-    }
+    });
   }
   // a distributed run: the neighbours' parts of the sums at the shared nodes (domain.hpp)
   if (domain_) domain_->sum_shared_nodes(g, !momentum_only, normals);
@@ -386,12 +387,11 @@ void Solver<D>::grid_velocities(Model<D>& m, double t, bool record_start, bool c
   const std::size_t fields = static_cast<std::size_t>(g.fields);
   const auto amplitude = condition_amplitudes(t);
   if (fields > 1 && contact) touching_.resize(g.size());
-#pragma omp parallel for if(rift::parallel::worth_a_team(g.slots())) schedule(static)
-  for (std::size_t node = 0; node < g.size(); ++node) {
+  rift::parallel::for_each_in_shared_blocks(g.size(), [&](std::size_t node) {
     node_velocities(m, node, tiny, record_start, contact, amplitude);
     if (restore_stage && touching_[node])
       for (std::size_t n = node * fields; n < (node + 1) * fields; ++n) g.velocity[n] = stage_velocity_[n];
-  }
+  });
 }
 
 template <int D>
@@ -406,8 +406,7 @@ void Solver<D>::grid_update(Model<D>& m, double t, double dt) {
   if (fields > 1) touching_.resize(g.size());
   const bool keep_stage = fields > 1 && settings_.scheme == scene::Mpm::Scheme::musl;
   if (keep_stage) stage_velocity_.resize(g.slots());
-#pragma omp parallel for if(rift::parallel::worth_a_team(g.slots())) schedule(static)
-  for (std::size_t node = 0; node < g.size(); ++node) {
+  rift::parallel::for_each_in_shared_blocks(g.size(), [&](std::size_t node) {
     node_velocities(m, node, tiny, true, true, amplitude_start);
     for (std::size_t n = node * fields; n < (node + 1) * fields; ++n)
       for (int a = 0; a < D; ++a) g.momentum[n][a] += dt * (g.force[n][a] - alpha * g.momentum[n][a]);
@@ -415,7 +414,7 @@ void Solver<D>::grid_update(Model<D>& m, double t, double dt) {
     // MUSL: the velocities the points move with, kept where the fields touch (step())
     if (keep_stage && touching_[node])
       for (std::size_t n = node * fields; n < (node + 1) * fields; ++n) stage_velocity_[n] = g.velocity[n];
-  }
+  });
 }
 
 template <int D>

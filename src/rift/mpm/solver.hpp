@@ -15,6 +15,7 @@
 #include "rift/mpm/domain.hpp"
 #include "rift/mpm/model.hpp"
 #include "rift/mpm/stencil_cache.hpp"
+#include "rift/parallel/shared_blocks.hpp"
 #include "rift/scene/scene.hpp"
 
 namespace rift::mpm {
@@ -132,6 +133,7 @@ class Solver {
     }
   };
   std::vector<ScatterBuffer> thread_buffers_;
+  parallel::SharedBlocks slot_blocks_;  // the scatter's sum over the buffers, slot by slot
   std::vector<Vec<D>> start_position_;
   StencilCache<D> stencils_;  // every point's S_ip and grad S_ip at start_position_
   std::vector<Vec<D>> start_velocity_;

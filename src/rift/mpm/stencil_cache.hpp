@@ -14,7 +14,7 @@
 
 #include "rift/mpm/shape_functions.hpp"
 #include "rift/mpm/stencil.hpp"
-#include "rift/parallel/team.hpp"
+#include "rift/parallel/shared_blocks.hpp"
 
 namespace rift::mpm {
 
@@ -45,14 +45,13 @@ class StencilCache {
     gradient_.resize(n * stride_);
     if (taken_at) taken_at->resize(n);
     LostParticle lost;
-#pragma omp parallel for if(rift::parallel::worth_a_team(n)) schedule(static)
-    for (std::size_t p = 0; p < n; ++p) {
+    rift::parallel::for_each_in_shared_blocks(n, [&](std::size_t p) {
       if (taken_at) (*taken_at)[p] = positions[p];
       const std::size_t base = p * stride_;
       const int count = make_stencil<D>(m, positions[p], node_.data() + base, weight_.data() + base, gradient_.data() + base);
       count_[p] = static_cast<std::uint8_t>(count);
       if (count == 0) lost.record(p);
-    }
+    });
     lost.raise(m.time);
   }
 
@@ -71,16 +70,15 @@ class StencilCache {
 };
 
 /// Runs body(p, stencil) for every point of the cache in parallel, or on the calling thread alone
-/// for a few points (parallel/team.hpp). body must compute each point alone. The schedule is
-/// static: every pass over the points in a step gives each thread the same block (the scatter's,
-/// solver.cpp, near enough), so a point's data stays in the cache of the core that used it last. A
-/// dynamic schedule moved the blocks between cores from pass to pass, and two threads ran the 2D
-/// beam no faster than one (bench/README.md, session of 2026-11-29).
+/// for a few points (parallel/team.hpp). body must compute each point alone. Every pass over the
+/// points in a step gives each thread the same block first (the scatter's, solver.cpp), so a
+/// point's data stays in the cache of the core that used it last; a thread done early takes over
+/// the rest of another's (parallel/shared_blocks.hpp). A dynamic schedule moved the blocks between
+/// cores from pass to pass, and two threads ran the 2D beam no faster than one (bench/README.md,
+/// session of 2026-11-29).
 template <int D, class Body>
 void for_each_cached_stencil(const StencilCache<D>& cache, Body body) {
-  const std::size_t n = cache.size();
-#pragma omp parallel for if(rift::parallel::worth_a_team(n)) schedule(static)
-  for (std::size_t p = 0; p < n; ++p) body(p, cache[p]);
+  rift::parallel::for_each_in_shared_blocks(cache.size(), [&](std::size_t p) { body(p, cache[p]); });
 }
 
 }  // namespace rift::mpm
