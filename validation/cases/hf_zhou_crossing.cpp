@@ -172,6 +172,16 @@
 // slip should bring is partial: most of the failed patch is shut and much of it still sticks. The
 // next trace: the forces on the far side's rock 1.5 mm past the plane (76.5, 1.5) mm, split into the
 // intact bonds across the plane, the failed bonds' contact and the fluid on the faces.
+// Tried on 2026-11-30 (fourteenth session; 3 mm, platens, one thread; not kept): the pore pressure's
+// shift (pd/effective_stretch.hpp) kept to the near side, a bond on the far side of the interface
+// not counted as crossing the near side's crack patches (the wet tip's process zone stopping at the
+// plane; the far side's own patches, once it breaks on the total stress, count as before): 2-8
+// crossed still (0.2 mm past at t = 2.1 s, 24.9 mm at t = 3.9 s) and 2-4 fell under its threshold
+// (18.0 mm at t = 4 s): the far side's first bonds break on the total stress. The failed bonds'
+// contact without friction (the law still failing them at mu = 0.89): 2-8 10.4 mm past at t = 4 s
+// (arrested, p = 6.52 MPa, never over sigma_n) and 2-4 17.0 mm (under 18.1): the failed bonds'
+// friction carries much of the near side's opening to the far side, in both rows alike. Every try
+// so far has slowed the two crossings together.
 // With traction faces instead (the same scenes, faces = "tractions"): 7 of 9. 2-6 arrested (13.7 mm
 // past the plane at t = 4 s; both wings turned toward +y some 80 mm out, as in 2-4, under the 13 /
 // 3 MPa that should keep them straight: the free faces let the block bend), 2-8 crossed (22.3 mm);
