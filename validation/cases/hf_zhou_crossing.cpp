@@ -181,7 +181,10 @@
 // contact without friction (the law still failing them at mu = 0.89): 2-8 10.4 mm past at t = 4 s
 // (arrested, p = 6.52 MPa, never over sigma_n) and 2-4 17.0 mm (under 18.1): the failed bonds'
 // friction carries much of the near side's opening to the far side, in both rows alike. Every try
-// so far has slowed the two crossings together.
+// so far has slowed the two crossings together. The failed bonds' tangential spring on the slip
+// across the plane, (delta - eps xi)_t with eps the ends' mean rock strain (as interface_opening takes
+// the normal opening), instead of the whole tangential jump since the reference: 2-8 crossed (27.5 mm
+// past at t = 4 s) and 2-4 crossed further (34.6 mm): not kept.
 // With traction faces instead (the same scenes, faces = "tractions"): 7 of 9. 2-6 arrested (13.7 mm
 // past the plane at t = 4 s; both wings turned toward +y some 80 mm out, as in 2-4, under the 13 /
 // 3 MPa that should keep them straight: the free faces let the block bend), 2-8 crossed (22.3 mm);
