@@ -185,6 +185,17 @@
 // across the plane, (delta - eps xi)_t with eps the ends' mean rock strain (as interface_opening takes
 // the normal opening), instead of the whole tangential jump since the reference: 2-8 crossed (27.5 mm
 // past at t = 4 s) and 2-4 crossed further (34.6 mm): not kept.
+// Run on past t = 4 s (2026-11-30, fifteenth session; the same scenes to t = 6 s in 60 load steps,
+// the failed bonds' contact frictionless; not kept): 2-8 crossed at t = 4.9 s (18.7 mm past) and
+// ran on to 24.9 mm at t = 5.4 s, its borehole falling from 6.88 to 6.25 MPa and never over sigma_n
+// = 7.25; 2-4 crossed at t = 4.2 s. So the frictionless contact only slows both, and 2-8's
+// pressure, falling as its fracture lengthens, cannot reach sigma_n after the tip arrives. Renshaw
+// and Pollard's test is decided at r_c, within the tip's process zone, by a slip zone that need not
+// be longer than that; here the far side's rock breaks on the stretch of bonds a horizon long (9 mm
+// at 3 mm, 6 mm at 2 mm: both miss 2-8 alike), longer than the slipped patch (a few spacings), so
+// the intact bonds beyond it carry the tip's opening across. A horizon smaller than that patch at
+// the junction (a local refinement, e.g. a dual-horizon model, Ren et al. 2016) is what this reading
+// asks for next.
 // With traction faces instead (the same scenes, faces = "tractions"): 7 of 9. 2-6 arrested (13.7 mm
 // past the plane at t = 4 s; both wings turned toward +y some 80 mm out, as in 2-4, under the 13 /
 // 3 MPa that should keep them straight: the free faces let the block bend), 2-8 crossed (22.3 mm);
