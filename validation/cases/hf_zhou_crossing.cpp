@@ -196,6 +196,14 @@
 // the intact bonds beyond it carry the tip's opening across. A horizon smaller than that patch at
 // the junction (a local refinement, e.g. a dual-horizon model, Ren et al. 2016) is what this reading
 // asks for next.
+// A first check of that reading (2026-11-30, sixteenth session; 3 mm, platens, one thread; not
+// kept): the horizon at 2.015 spacings (6 mm) instead of 3.015, so that the few spacings of slipped
+// patch are longer against it. 2-8 crossed sooner (from t = 2.9 s, 12.6 mm past the plane where
+// crossing then counts from 12.1 mm; 29 mm at t = 4 s, its interface never wet) and 2-4 later (from
+// t = 3.6 s; 16.7 mm at t = 4 s). The shorter horizon held 2-4 back and not 2-8, the order the
+// experiment has the other way round. So a horizon shorter against the spacing does not separate
+// them; if the patch is a few spacings at any spacing, a dual-horizon refinement at fixed ratio may
+// not either, and the reading above stays untested at the junction's own resolution.
 // With traction faces instead (the same scenes, faces = "tractions"): 7 of 9. 2-6 arrested (13.7 mm
 // past the plane at t = 4 s; both wings turned toward +y some 80 mm out, as in 2-4, under the 13 /
 // 3 MPa that should keep them straight: the free faces let the block bend), 2-8 crossed (22.3 mm);

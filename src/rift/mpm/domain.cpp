@@ -102,8 +102,8 @@ double layer_of(const Grid<D>& g, int axis, const Vec<D>& x) {
 
 /// The sums a scatter makes at grid slot n, one double at a time.
 template <int D, class F>
-void each_sum(Grid<D>& g, std::size_t n, bool force, bool contact, F f) {
-  f(g.mass[n]);
+void each_sum(Grid<D>& g, std::size_t n, bool mass, bool force, bool contact, F f) {
+  if (mass) f(g.mass[n]);
   for (int a = 0; a < D; ++a) f(g.momentum[n][a]);
   if (force)
     for (int a = 0; a < D; ++a) f(g.force[n][a]);
@@ -374,12 +374,12 @@ bool Domain<D>::migrate(Model<D>& m) {
 }
 
 template <int D>
-void Domain<D>::sum_shared_nodes(Grid<D>& g, bool force, bool contact) const {
+void Domain<D>::sum_shared_nodes(Grid<D>& g, bool mass, bool force, bool contact) const {
   const int me = comm_.rank();
   const auto mine = boxes_.node_box(me, whole_nodes_);
   std::vector<Parcel> parcels;  // in the order of the ranks (neighbours() ascends)
   std::vector<NodeBox> shared;
-  const std::size_t per_slot = static_cast<std::size_t>(1 + D + (force ? D : 0) + (contact ? 2 * D + 1 : 0));
+  const std::size_t per_slot = static_cast<std::size_t>((mass ? 1 : 0) + D + (force ? D : 0) + (contact ? 2 * D + 1 : 0));
   for (int q : neighbours()) {
     auto& k = parcels.emplace_back(Parcel{q, {}, {}});
     const NodeBox box = shared.emplace_back(common(mine, boxes_.node_box(q, whole_nodes_)));
@@ -388,7 +388,7 @@ void Domain<D>::sum_shared_nodes(Grid<D>& g, bool force, bool contact) const {
     std::size_t slots = static_cast<std::size_t>(g.fields);
     for (std::size_t a = 0; a < 3; ++a) slots *= static_cast<std::size_t>(box[a].second - box[a].first + 1);
     k.send.reserve(slots * per_slot * sizeof(double));
-    each_slot_in_box<D>(g, box, [&](std::size_t n) { each_sum<D>(g, n, force, contact, [&](double& v) { append(k.send, v); }); });
+    each_slot_in_box<D>(g, box, [&](std::size_t n) { each_sum<D>(g, n, mass, force, contact, [&](double& v) { append(k.send, v); }); });
   }
   comm_.exchange(parcels);
   // every holder of a node adds its holders' parts in the order of the ranks, so all hold the same
@@ -416,13 +416,13 @@ void Domain<D>::sum_shared_nodes(Grid<D>& g, bool force, bool contact) const {
   for (const std::size_t n : touched) {
     std::size_t t = 0;
     const double* const sum = &lower[static_cast<std::size_t>(row[n]) * per_slot];
-    each_sum<D>(g, n, force, contact, [&](double& v) { v = sum[t++] + v; });
+    each_sum<D>(g, n, mass, force, contact, [&](double& v) { v = sum[t++] + v; });
     row[n] = -1;
   }
   for (std::size_t p = 0; p < parcels.size(); ++p) {
     if (parcels[p].peer < me || empty(shared[p])) continue;
     std::size_t at = 0;
-    each_slot_in_box<D>(g, shared[p], [&](std::size_t n) { each_sum<D>(g, n, force, contact, [&](double& v) { v += take<double>(parcels[p].receive, at); }); });
+    each_slot_in_box<D>(g, shared[p], [&](std::size_t n) { each_sum<D>(g, n, mass, force, contact, [&](double& v) { v += take<double>(parcels[p].receive, at); }); });
   }
 }
 

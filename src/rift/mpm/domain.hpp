@@ -80,8 +80,9 @@ class Domain {
   /// when this rank's points changed. Every rank calls it at the same step.
   bool migrate(Model<D>& m);
   /// After a scatter: adds the neighbours' parts of the sums at the nodes this rank shares with
-  /// them (mass and momentum; the force; the contact quantities).
-  void sum_shared_nodes(Grid<D>& g, bool force, bool contact) const;
+  /// them (the mass, which MUSL's remap leaves as it was; the momentum; the force; the contact
+  /// quantities).
+  void sum_shared_nodes(Grid<D>& g, bool mass, bool force, bool contact) const;
 
   /// Whether x lies in this rank's box (its cell's owner is this rank).
   bool owns(const Grid<D>& g, const Vec<D>& x) const {

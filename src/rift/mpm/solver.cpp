@@ -146,7 +146,8 @@ double Solver<D>::stable_time_step(const Model<D>& m) const {
 }
 
 template <int D>
-void Solver<D>::scatter(Model<D>& m, bool momentum_only, bool internal_force) {
+template <class TakeStencil, class BeforePoint>
+void Solver<D>::scatter(Model<D>& m, bool momentum_only, bool internal_force, TakeStencil take_stencil, BeforePoint before_point) {
   auto& ps = m.particles;
   auto& g = m.grid;
   const std::size_t fields = static_cast<std::size_t>(g.fields);
@@ -159,7 +160,12 @@ void Solver<D>::scatter(Model<D>& m, bool momentum_only, bool internal_force) {
   // nodes come in increasing order), zeroed by the thread itself. The buffers are then summed slot
   // by slot in thread order, so a run is bit-reproducible for a given thread count. A body's points
   // are laid out row by row (discretize.cpp), so a block reaches a band of grid rows, and the bands
-  // of neighbouring blocks overlap only at their edges.
+  // of neighbouring blocks overlap only at their edges. take_stencil(p) runs on each point of the
+  // thread's block first (the step's first transfer takes the stencils: each is then read by the
+  // thread that wrote it, with no team in between), before_point(p, stencil) just before its shares
+  // are taken (MUSL's grid-to-particle update, step()). momentum_only: MUSL's remap, which sums the
+  // new momenta alone; the masses are the step's first transfer's, the same points, weights and
+  // order giving the same sums bit for bit.
   const int team = rift::parallel::worth_a_team(n_points) ? static_cast<int>(thread_buffers_.size()) : 1;
   int used = 1;
   slot_blocks_.split(g.slots(), static_cast<std::size_t>(team));
@@ -174,6 +180,7 @@ void Solver<D>::scatter(Model<D>& m, bool momentum_only, bool internal_force) {
     const std::size_t p_end = n_points * (t + 1) / static_cast<std::size_t>(threads);
     std::size_t first = g.slots(), last = 0;
     for (std::size_t p = p_begin; p < p_end; ++p) {
+      take_stencil(p);
       const auto st = stencils_[p];
       if (st.count == 0) continue;
       first = std::min(first, st.node[0] * fields);
@@ -182,11 +189,12 @@ void Solver<D>::scatter(Model<D>& m, bool momentum_only, bool internal_force) {
     buffer.first = first, buffer.last = std::max(first, last);
     buffer.resize(g.slots());
     const auto zero = [&](auto& values) { std::fill(values.begin() + first, values.begin() + buffer.last, std::decay_t<decltype(values[0])>{}); };
-    zero(buffer.mass), zero(buffer.momentum);
-    if (!momentum_only) zero(buffer.force);
+    zero(buffer.momentum);
+    if (!momentum_only) zero(buffer.mass), zero(buffer.force);
     if (normals) zero(buffer.mass_gradient), zero(buffer.volume), zero(buffer.displacement);
     for (std::size_t p = p_begin; p < p_end; ++p) {
       const auto st = stencils_[p];
+      before_point(p, st);
       const double mp = ps.mass[p];
       for (int q = 0; q < st.count; ++q) {
         const std::size_t node = st.node[static_cast<std::size_t>(q)];
@@ -199,7 +207,6 @@ void Solver<D>::scatter(Model<D>& m, bool momentum_only, bool internal_force) {
           for (int a = 0; a < D; ++a)
             for (int b = 0; b < D; ++b) v[a] += ps.affine_velocity[p](a, b) * dx[b];
         }
-        buffer.mass[n] += w * mp;
         for (int a = 0; a < D; ++a) buffer.momentum[n][a] += w * mp * v[a];
         if (normals) {
           for (int a = 0; a < D; ++a) buffer.mass_gradient[n][a] += mp * st.gradient[static_cast<std::size_t>(q)][a];
@@ -207,6 +214,7 @@ void Solver<D>::scatter(Model<D>& m, bool momentum_only, bool internal_force) {
           for (int a = 0; a < D; ++a) buffer.displacement[n][a] += w * mp * (start_position_[p][a] - ps.reference_position[p][a]);
         }
         if (momentum_only) continue;
+        buffer.mass[n] += w * mp;
         if (external)
           for (int a = 0; a < D; ++a) buffer.force[n][a] += w * ps.external_force[p][a];
         if (internal_force) {
@@ -228,23 +236,23 @@ void Solver<D>::scatter(Model<D>& m, bool momentum_only, bool internal_force) {
       for (std::size_t b = 0; b < static_cast<std::size_t>(used); ++b) {
         const auto& tb = thread_buffers_[b];
         if (n < tb.first || n >= tb.last) continue;
-        mass += tb.mass[n];
         for (int a = 0; a < D; ++a) mom[a] += tb.momentum[n][a];
-        if (!momentum_only)
+        if (!momentum_only) {
+          mass += tb.mass[n];
           for (int a = 0; a < D; ++a) f[a] += tb.force[n][a];
+        }
         if (normals) {
           for (int a = 0; a < D; ++a) grad[a] += tb.mass_gradient[n][a], u[a] += tb.displacement[n][a];
           volume += tb.volume[n];
         }
       }
-      g.mass[n] = mass;
       g.momentum[n] = mom;
-      if (!momentum_only) g.force[n] = f;
+      if (!momentum_only) g.mass[n] = mass, g.force[n] = f;
       if (normals) g.mass_gradient[n] = grad, g.volume[n] = volume, g.displacement[n] = u;
     });
   }
   // a distributed run: the neighbours' parts of the sums at the shared nodes (domain.hpp)
-  if (domain_) domain_->sum_shared_nodes(g, !momentum_only, normals);
+  if (domain_) domain_->sum_shared_nodes(g, !momentum_only, !momentum_only, normals);
 }
 
 template <int D>
@@ -444,26 +452,32 @@ void Solver<D>::step(Model<D>& m, double dt) {
   auto& g = m.grid;
   const double t = m.time;
   if (domain_ && domain_->migrate(m)) select_loads(domain_->id());
-  stencils_.fill(m, ps.position, &start_position_);  // S_ip(x_p^n) for every transfer of the step, and x_p^n
-  if constexpr (D == 2) {
-    if (!cracks_.empty()) {
-      // points farther than the stencil reach (2 cells) from every crack's box see no crack
-      near_crack_.resize(ps.size());
-      crack_field_.resize(ps.size() * Stencil<D>::capacity);
-      acceleration_.resize(ps.size());
-      velocity_gradient_.resize(ps.size());
-      const double reach = 2.0 * g.cell_size;
-#pragma omp parallel for if(rift::parallel::worth_a_team(ps.size())) schedule(static)
-      for (std::size_t p = 0; p < ps.size(); ++p) {
-        near_crack_[p] = cracks_.near(ps.position[p], reach);
-        if (!near_crack_[p]) continue;
-        const auto st = stencils_[p];
-        for (int q = 0; q < st.count; ++q)
-          crack_field_[p * Stencil<D>::capacity + static_cast<std::size_t>(q)] =
-              static_cast<std::uint8_t>(cracks_.field(ps.position[p], g.node_position(st.node[static_cast<std::size_t>(q)])));
-      }
-    }
+  // S_ip(x_p^n) for every transfer of the step and x_p^n, taken point by point by the first scatter
+  // below; with cracks, the CRAMP field of each of the point's nodes
+  stencils_.prepare(m, ps.size());
+  start_position_.resize(ps.size());
+  const bool cracked = D == 2 && !cracks_.empty();
+  if (cracked) {
+    near_crack_.resize(ps.size());
+    crack_field_.resize(ps.size() * Stencil<D>::capacity);
+    acceleration_.resize(ps.size());
+    velocity_gradient_.resize(ps.size());
   }
+  LostParticle lost;
+  const double reach = 2.0 * g.cell_size;  // points farther than the stencil reach (2 cells) from every crack's box see no crack
+  auto take_stencil = [&](std::size_t p) {
+    start_position_[p] = ps.position[p];
+    if (!stencils_.take(m, p, ps.position[p])) lost.record(p);
+    if constexpr (D == 2) {
+      if (!cracked) return;
+      near_crack_[p] = cracks_.near(ps.position[p], reach);
+      if (!near_crack_[p]) return;
+      const auto st = stencils_[p];
+      for (int q = 0; q < st.count; ++q)
+        crack_field_[p * Stencil<D>::capacity + static_cast<std::size_t>(q)] =
+            static_cast<std::uint8_t>(cracks_.field(ps.position[p], g.node_position(st.node[static_cast<std::size_t>(q)])));
+    }
+  };
   const bool measure = measure_;
   measure_ = false;
   if (measure) {
@@ -482,18 +496,20 @@ void Solver<D>::step(Model<D>& m, double dt) {
   }
   using S = scene::Mpm::Scheme;
   if (settings_.scheme == S::usf) {
-    scatter(m, false, false);
+    scatter(m, false, false, take_stencil);
+    lost.raise(t);
     grid_velocities(m, t, false);
     update_stress(m, dt);
     scatter(m, false, true);  // forces from the updated stress (mass and momentum unchanged)
   } else {
-    scatter(m, false, true);
+    scatter(m, false, true, take_stencil);
+    lost.raise(t);
   }
   grid_update(m, t, dt);
-  // grid to particles
+  // grid to particles, one point at a time
   const bool apic = settings_.transfer == scene::Mpm::Transfer::apic;
   const double flip = settings_.flip_fraction, alpha = settings_.damping;
-  for_each_cached_stencil<D>(stencils_, [&](std::size_t p, const auto& st) {
+  auto grid_to_particle = [&](std::size_t p, const auto& st) {
     const std::size_t fields = static_cast<std::size_t>(g.fields);
     Vec<D> pic{}, increment{}, start{};
     Tensor<D> B = Tensor<D>::Zero(), Dp = Tensor<D>::Zero();
@@ -524,7 +540,15 @@ void Solver<D>::step(Model<D>& m, double dt) {
     }
     for (int a = 0; a < D; ++a) ps.position[p][a] += dt * pic[a];
     if (!acceleration_.empty()) acceleration_[p] = (1.0 / dt) * increment;
-  });
+  };
+  if (settings_.scheme == S::musl) {
+    // MUSL: the new particle momenta back to the grid (Sulsky et al. 1995), each point's as soon as
+    // it is known, in the same pass (its stencil read once). Neither moving the cracks nor the
+    // energy below reads the grid's momenta, which this changes.
+    scatter(m, true, false, NoPointWork{}, grid_to_particle);
+  } else {
+    for_each_cached_stencil<D>(stencils_, grid_to_particle);
+  }
   if constexpr (D == 2) {
     if (!cracks_.empty()) move_cracks(m, dt);
   }
@@ -541,7 +565,6 @@ void Solver<D>::step(Model<D>& m, double dt) {
   if (settings_.scheme == S::usl) {
     update_stress(m, dt);
   } else if (settings_.scheme == S::musl) {
-    scatter(m, true, false);  // the new particle momenta back to the grid (Sulsky et al. 1995)
     // where the fields touch (closed crack faces, bodies in contact) the strain rate comes from
     // the contact-corrected velocities the points moved with (kept by grid_update): remapped ones
     // differ in their normal parts by the FLIP history, and contact, which only removes approach,

@@ -82,7 +82,14 @@ class Solver {
     std::array<double, 3> density{};  // force per unit volume (traction / layer depth, or body force)
     scene::TimeFunction time;
   };
-  void scatter(Model<D>& m, bool momentum_only, bool internal_force);
+  /// A scatter's work on each point besides its shares: none.
+  struct NoPointWork {
+    template <class... Args>
+    void operator()(Args&&...) const {}
+  };
+  /// Particles to grid (the sums over each node's points); see solver.cpp.
+  template <class TakeStencil = NoPointWork, class BeforePoint = NoPointWork>
+  void scatter(Model<D>& m, bool momentum_only, bool internal_force, TakeStencil take_stencil = {}, BeforePoint before_point = {});
   /// node_conditions_ of a grid of `nodes` nodes from conditions_.
   void index_conditions(std::size_t nodes);
   /// The loads' particles among this rank's points, by their whole run's numbers.

@@ -4,7 +4,8 @@
 // 1994), so they are taken once per step (stencil.hpp) and read by each transfer, instead of being
 // taken again by each. Memory: support(shape)^D nodes
 // per point, each its index (32 bits), weight and gradient (2D quadratic B-splines: 9 x 28 bytes).
-// The cache is read four times a step: 64-bit indices ran two threads 5-8% slower. Storing each
+// The cache is read three times a step (MUSL: the forces' scatter, grid to particles with the remap of
+// the new momenta, the stress update): 64-bit indices ran two threads 5-8% slower. Storing each
 // axis' 1D factors instead (70-101 bytes a 2D point) and forming the products in the transfers ran
 // 14-16% slower on one thread and two alike (bench/README.md, sessions of 2026-11-29).
 #pragma once
@@ -32,27 +33,25 @@ class StencilCache {
     const Vec<D>* gradient = nullptr;
   };
 
-  /// Takes every point's stencil at positions[p], and copies the positions to *taken_at when given;
-  /// a point whose stencil reaches past the grid raises a PhysicsError (stencil.hpp) after the loop.
-  void fill(const Model<D>& m, const std::vector<Vec<D>>& positions, std::vector<Vec<D>>* taken_at = nullptr) {
+  /// Room for n points' stencils with the model's shape functions; take() fills them.
+  void prepare(const Model<D>& m, std::size_t n) {
     int nodes = 1;
     for (int a = 0; a < D; ++a) nodes *= support(m.shape);
     stride_ = static_cast<std::size_t>(nodes);
-    const std::size_t n = positions.size();
     count_.resize(n);
     node_.resize(n * stride_);
     weight_.resize(n * stride_);
     gradient_.resize(n * stride_);
-    if (taken_at) taken_at->resize(n);
-    LostParticle lost;
-    rift::parallel::for_each_in_shared_blocks(n, [&](std::size_t p) {
-      if (taken_at) (*taken_at)[p] = positions[p];
-      const std::size_t base = p * stride_;
-      const int count = make_stencil<D>(m, positions[p], node_.data() + base, weight_.data() + base, gradient_.data() + base);
-      count_[p] = static_cast<std::uint8_t>(count);
-      if (count == 0) lost.record(p);
-    });
-    lost.raise(m.time);
+  }
+
+  /// Takes point p's stencil at x (after prepare()); false when it reaches past the grid
+  /// (make_stencil: the point then has no nodes). The solver's first transfer of a step takes
+  /// each point's as it comes to it (solver.cpp).
+  bool take(const Model<D>& m, std::size_t p, const Vec<D>& x) {
+    const std::size_t base = p * stride_;
+    const int count = make_stencil<D>(m, x, node_.data() + base, weight_.data() + base, gradient_.data() + base);
+    count_[p] = static_cast<std::uint8_t>(count);
+    return count > 0;
   }
 
   View operator[](std::size_t p) const {
