@@ -146,8 +146,8 @@ double Solver<D>::stable_time_step(const Model<D>& m) const {
 }
 
 template <int D>
-template <class TakeStencil, class BeforePoint>
-void Solver<D>::scatter(Model<D>& m, bool momentum_only, bool internal_force, TakeStencil take_stencil, BeforePoint before_point) {
+template <class BeforePoint>
+void Solver<D>::scatter(Model<D>& m, bool momentum_only, bool internal_force, BeforePoint before_point) {
   auto& ps = m.particles;
   auto& g = m.grid;
   const std::size_t fields = static_cast<std::size_t>(g.fields);
@@ -160,10 +160,8 @@ void Solver<D>::scatter(Model<D>& m, bool momentum_only, bool internal_force, Ta
   // nodes come in increasing order), zeroed by the thread itself. The buffers are then summed slot
   // by slot in thread order, so a run is bit-reproducible for a given thread count. A body's points
   // are laid out row by row (discretize.cpp), so a block reaches a band of grid rows, and the bands
-  // of neighbouring blocks overlap only at their edges. take_stencil(p) runs on each point of the
-  // thread's block first (the step's first transfer takes the stencils: each is then read by the
-  // thread that wrote it, with no team in between), before_point(p, stencil) just before its shares
-  // are taken (MUSL's grid-to-particle update, step()). momentum_only: MUSL's remap, which sums the
+  // of neighbouring blocks overlap only at their edges. before_point(p, stencil) runs on each point
+  // just before its shares are taken (MUSL's grid-to-particle update, step()). momentum_only: MUSL's remap, which sums the
   // new momenta alone; the masses are the step's first transfer's, the same points, weights and
   // order giving the same sums bit for bit.
   const int team = rift::parallel::worth_a_team(n_points) ? static_cast<int>(thread_buffers_.size()) : 1;
@@ -180,7 +178,6 @@ void Solver<D>::scatter(Model<D>& m, bool momentum_only, bool internal_force, Ta
     const std::size_t p_end = n_points * (t + 1) / static_cast<std::size_t>(threads);
     std::size_t first = g.slots(), last = 0;
     for (std::size_t p = p_begin; p < p_end; ++p) {
-      take_stencil(p);
       const auto st = stencils_[p];
       if (st.count == 0) continue;
       first = std::min(first, st.node[0] * fields);
@@ -452,32 +449,26 @@ void Solver<D>::step(Model<D>& m, double dt) {
   auto& g = m.grid;
   const double t = m.time;
   if (domain_ && domain_->migrate(m)) select_loads(domain_->id());
-  // S_ip(x_p^n) for every transfer of the step and x_p^n, taken point by point by the first scatter
-  // below; with cracks, the CRAMP field of each of the point's nodes
-  stencils_.prepare(m, ps.size());
-  start_position_.resize(ps.size());
-  const bool cracked = D == 2 && !cracks_.empty();
-  if (cracked) {
-    near_crack_.resize(ps.size());
-    crack_field_.resize(ps.size() * Stencil<D>::capacity);
-    acceleration_.resize(ps.size());
-    velocity_gradient_.resize(ps.size());
-  }
-  LostParticle lost;
-  const double reach = 2.0 * g.cell_size;  // points farther than the stencil reach (2 cells) from every crack's box see no crack
-  auto take_stencil = [&](std::size_t p) {
-    start_position_[p] = ps.position[p];
-    if (!stencils_.take(m, p, ps.position[p])) lost.record(p);
-    if constexpr (D == 2) {
-      if (!cracked) return;
-      near_crack_[p] = cracks_.near(ps.position[p], reach);
-      if (!near_crack_[p]) return;
-      const auto st = stencils_[p];
-      for (int q = 0; q < st.count; ++q)
-        crack_field_[p * Stencil<D>::capacity + static_cast<std::size_t>(q)] =
-            static_cast<std::uint8_t>(cracks_.field(ps.position[p], g.node_position(st.node[static_cast<std::size_t>(q)])));
+  stencils_.fill(m, ps.position, &start_position_);  // S_ip(x_p^n) for every transfer of the step, and x_p^n
+  if constexpr (D == 2) {
+    if (!cracks_.empty()) {
+      // points farther than the stencil reach (2 cells) from every crack's box see no crack
+      near_crack_.resize(ps.size());
+      crack_field_.resize(ps.size() * Stencil<D>::capacity);
+      acceleration_.resize(ps.size());
+      velocity_gradient_.resize(ps.size());
+      const double reach = 2.0 * g.cell_size;
+#pragma omp parallel for if(rift::parallel::worth_a_team(ps.size())) schedule(static)
+      for (std::size_t p = 0; p < ps.size(); ++p) {
+        near_crack_[p] = cracks_.near(ps.position[p], reach);
+        if (!near_crack_[p]) continue;
+        const auto st = stencils_[p];
+        for (int q = 0; q < st.count; ++q)
+          crack_field_[p * Stencil<D>::capacity + static_cast<std::size_t>(q)] =
+              static_cast<std::uint8_t>(cracks_.field(ps.position[p], g.node_position(st.node[static_cast<std::size_t>(q)])));
+      }
     }
-  };
+  }
   const bool measure = measure_;
   measure_ = false;
   if (measure) {
@@ -496,14 +487,12 @@ void Solver<D>::step(Model<D>& m, double dt) {
   }
   using S = scene::Mpm::Scheme;
   if (settings_.scheme == S::usf) {
-    scatter(m, false, false, take_stencil);
-    lost.raise(t);
+    scatter(m, false, false);
     grid_velocities(m, t, false);
     update_stress(m, dt);
     scatter(m, false, true);  // forces from the updated stress (mass and momentum unchanged)
   } else {
-    scatter(m, false, true, take_stencil);
-    lost.raise(t);
+    scatter(m, false, true);
   }
   grid_update(m, t, dt);
   // grid to particles, one point at a time
@@ -545,7 +534,7 @@ void Solver<D>::step(Model<D>& m, double dt) {
     // MUSL: the new particle momenta back to the grid (Sulsky et al. 1995), each point's as soon as
     // it is known, in the same pass (its stencil read once). Neither moving the cracks nor the
     // energy below reads the grid's momenta, which this changes.
-    scatter(m, true, false, NoPointWork{}, grid_to_particle);
+    scatter(m, true, false, grid_to_particle);
   } else {
     for_each_cached_stencil<D>(stencils_, grid_to_particle);
   }

@@ -82,14 +82,13 @@ class Solver {
     std::array<double, 3> density{};  // force per unit volume (traction / layer depth, or body force)
     scene::TimeFunction time;
   };
-  /// A scatter's work on each point besides its shares: none.
+  /// A scatter's work on each point before its shares: none.
   struct NoPointWork {
-    template <class... Args>
-    void operator()(Args&&...) const {}
+    void operator()(std::size_t, const typename StencilCache<D>::View&) const {}
   };
   /// Particles to grid (the sums over each node's points); see solver.cpp.
-  template <class TakeStencil = NoPointWork, class BeforePoint = NoPointWork>
-  void scatter(Model<D>& m, bool momentum_only, bool internal_force, TakeStencil take_stencil = {}, BeforePoint before_point = {});
+  template <class BeforePoint = NoPointWork>
+  void scatter(Model<D>& m, bool momentum_only, bool internal_force, BeforePoint before_point = {});
   /// node_conditions_ of a grid of `nodes` nodes from conditions_.
   void index_conditions(std::size_t nodes);
   /// The loads' particles among this rank's points, by their whole run's numbers.

@@ -33,25 +33,27 @@ class StencilCache {
     const Vec<D>* gradient = nullptr;
   };
 
-  /// Room for n points' stencils with the model's shape functions; take() fills them.
-  void prepare(const Model<D>& m, std::size_t n) {
+  /// Takes every point's stencil at positions[p], and copies the positions to *taken_at when given;
+  /// a point whose stencil reaches past the grid raises a PhysicsError (stencil.hpp) after the loop.
+  void fill(const Model<D>& m, const std::vector<Vec<D>>& positions, std::vector<Vec<D>>* taken_at = nullptr) {
     int nodes = 1;
     for (int a = 0; a < D; ++a) nodes *= support(m.shape);
     stride_ = static_cast<std::size_t>(nodes);
+    const std::size_t n = positions.size();
     count_.resize(n);
     node_.resize(n * stride_);
     weight_.resize(n * stride_);
     gradient_.resize(n * stride_);
-  }
-
-  /// Takes point p's stencil at x (after prepare()); false when it reaches past the grid
-  /// (make_stencil: the point then has no nodes). The solver's first transfer of a step takes
-  /// each point's as it comes to it (solver.cpp).
-  bool take(const Model<D>& m, std::size_t p, const Vec<D>& x) {
-    const std::size_t base = p * stride_;
-    const int count = make_stencil<D>(m, x, node_.data() + base, weight_.data() + base, gradient_.data() + base);
-    count_[p] = static_cast<std::uint8_t>(count);
-    return count > 0;
+    if (taken_at) taken_at->resize(n);
+    LostParticle lost;
+    rift::parallel::for_each_in_shared_blocks(n, [&](std::size_t p) {
+      if (taken_at) (*taken_at)[p] = positions[p];
+      const std::size_t base = p * stride_;
+      const int count = make_stencil<D>(m, positions[p], node_.data() + base, weight_.data() + base, gradient_.data() + base);
+      count_[p] = static_cast<std::uint8_t>(count);
+      if (count == 0) lost.record(p);
+    });
+    lost.raise(m.time);
   }
 
   View operator[](std::size_t p) const {
