@@ -161,9 +161,9 @@ void Solver<D>::scatter(Model<D>& m, bool momentum_only, bool internal_force, Be
   // by slot in thread order, so a run is bit-reproducible for a given thread count. A body's points
   // are laid out row by row (discretize.cpp), so a block reaches a band of grid rows, and the bands
   // of neighbouring blocks overlap only at their edges. before_point(p, stencil) runs on each point
-  // just before its shares are taken (MUSL's grid-to-particle update, step()). momentum_only: MUSL's remap, which sums the
-  // new momenta alone; the masses are the step's first transfer's, the same points, weights and
-  // order giving the same sums bit for bit.
+  // just before its shares are taken (MUSL's grid-to-particle update, step()). momentum_only:
+  // MUSL's remap, which sums the new momenta alone; the masses are the step's first transfer's, the
+  // same points, weights and order giving the same sums bit for bit.
   const int team = rift::parallel::worth_a_team(n_points) ? static_cast<int>(thread_buffers_.size()) : 1;
   int used = 1;
   slot_blocks_.split(g.slots(), static_cast<std::size_t>(team));
