@@ -50,7 +50,8 @@ void update_stress(const Constants& c, State<D>& s, const Tensor<D>& L, const Te
   const Tensor<D> R = (I - half_spin).inverse() * (I + half_spin);
   s.stress = R * s.stress * R.transpose();
   s.strain = R * s.strain * R.transpose();
-  s.plastic_strain = R * s.plastic_strain * R.transpose();
+  // only J2 has plastic strain; the other models' stays zero, and R 0 R^T is zero
+  if (c.kind == Kind::j2_plasticity) s.plastic_strain = R * s.plastic_strain * R.transpose();
   const Tensor<D> de = 0.5 * dt * (L + L.transpose());
   s.strain += de;
   Tensor<D> trial = s.stress + c.lambda * de.trace() * I + 2.0 * c.shear_modulus * de;

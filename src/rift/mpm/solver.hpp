@@ -112,6 +112,8 @@ class Solver {
   /// contact) or the single shared field.
   /// (q: the node's place in the point's stencil, for the per-step crack-field cache)
   std::size_t field_of(const Model<D>& m, std::size_t p, int q) const;
+  /// True when every point's field_of is 0: one velocity field (no cracks, one body or no contact).
+  bool one_velocity_field(const Model<D>& m) const;
   void move_cracks(const Model<D>& m, double dt);
   /// Mass-weighted mean at x of a nodal quantity given per slot times its mass (weighted(slot)),
   /// over all fields (probe null) or the field of the material on the crack side of `probe`.

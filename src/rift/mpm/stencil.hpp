@@ -4,6 +4,7 @@
 #include <array>
 #include <cmath>
 #include <string>
+#include <type_traits>
 #include <vector>
 
 #include "rift/core/error.hpp"
@@ -35,20 +36,22 @@ struct LostParticle {
   }
 };
 
-/// Tensor-product shape functions of the particle at x, written to node[q] (any unsigned type that
-/// holds the grid's node numbers: the cache's are 32-bit), weight[q] and
+/// Tensor-product shape functions of kind Shape (m.shape) of the particle at x, written to node[q]
+/// (any unsigned type that holds the grid's node numbers: the cache's are 32-bit), weight[q] and
 /// gradient[q] (room for Stencil<D>::capacity): nodes, weights S_ip, gradients grad S_ip. Returns
 /// the number of nodes, or 0 when the particle's stencil reaches past the grid. The 1D factors stay
 /// in registers and each product is stored once where it is read from: a copy through a
 /// temporary (scalar stores read back as vectors) cost two threads sharing a core more than the
-/// products themselves (bench/README.md, session of 2026-11-29).
-template <int D, class NodeIndex>
+/// products themselves (bench/README.md, session of 2026-11-29). The shape is a template argument
+/// so that its node count is a constant and the loops unroll (the 2D linear beam's stencils took
+/// 241 instructions a point with the kind read at run time; with_shape picks the instance).
+template <ShapeKind Shape, int D, class NodeIndex>
 int make_stencil(const Model<D>& m, const Vec<D>& x, NodeIndex* node, double* weight, Vec<D>* gradient) {
   const auto& g = m.grid;
   // The whole grid's node numbers to this rank's part of it (mpm/domain.hpp). Each axis' factors
   // are built in place (an array of Stencil1 is zero-filled first, a rep stos as slow as the rest).
   auto along = [&](int a) __attribute__((always_inline)) {
-    Stencil1 s1 = stencil_1d(m.shape, x[a] - g.origin[a], g.cell_size, m.particle_half_width);
+    Stencil1 s1 = stencil_1d(Shape, x[a] - g.origin[a], g.cell_size, m.particle_half_width);
     s1.first -= g.offset[a];
     return s1;
   };
@@ -79,10 +82,25 @@ int make_stencil(const Model<D>& m, const Vec<D>& x, NodeIndex* node, double* we
   return count;
 }
 
+/// Calls f(std::integral_constant<ShapeKind, kind>{}): code that takes many stencils picks the
+/// instance of make_stencil for the model's shape once.
+template <class F>
+decltype(auto) with_shape(ShapeKind kind, F&& f) {
+  switch (kind) {
+    case ShapeKind::linear: return f(std::integral_constant<ShapeKind, ShapeKind::linear>{});
+    case ShapeKind::gimp: return f(std::integral_constant<ShapeKind, ShapeKind::gimp>{});
+    case ShapeKind::bspline2: return f(std::integral_constant<ShapeKind, ShapeKind::bspline2>{});
+    case ShapeKind::bspline3: break;
+  }
+  return f(std::integral_constant<ShapeKind, ShapeKind::bspline3>{});
+}
+
 /// The same into a Stencil<D>; false (count 0) when the particle's stencil reaches past the grid.
 template <int D>
 bool make_stencil(const Model<D>& m, const Vec<D>& x, Stencil<D>& st) {
-  st.count = make_stencil<D>(m, x, st.node.data(), st.weight.data(), st.gradient.data());
+  st.count = with_shape(m.shape, [&](auto shape) {
+    return make_stencil<decltype(shape)::value, D>(m, x, st.node.data(), st.weight.data(), st.gradient.data());
+  });
   return st.count > 0;
 }
 

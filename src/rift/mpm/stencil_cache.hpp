@@ -46,12 +46,15 @@ class StencilCache {
     gradient_.resize(n * stride_);
     if (taken_at) taken_at->resize(n);
     LostParticle lost;
-    rift::parallel::for_each_in_shared_blocks(n, [&](std::size_t p) {
-      if (taken_at) (*taken_at)[p] = positions[p];
-      const std::size_t base = p * stride_;
-      const int count = make_stencil<D>(m, positions[p], node_.data() + base, weight_.data() + base, gradient_.data() + base);
-      count_[p] = static_cast<std::uint8_t>(count);
-      if (count == 0) lost.record(p);
+    with_shape(m.shape, [&](auto shape) {
+      rift::parallel::for_each_in_shared_blocks(n, [&](std::size_t p) {
+        if (taken_at) (*taken_at)[p] = positions[p];
+        const std::size_t base = p * stride_;
+        const int count =
+            make_stencil<decltype(shape)::value, D>(m, positions[p], node_.data() + base, weight_.data() + base, gradient_.data() + base);
+        count_[p] = static_cast<std::uint8_t>(count);
+        if (count == 0) lost.record(p);
+      });
     });
     lost.raise(m.time);
   }
