@@ -204,6 +204,29 @@
 // experiment has the other way round. So a horizon shorter against the spacing does not separate
 // them; if the patch is a few spacings at any spacing, a dual-horizon refinement at fixed ratio may
 // not either, and the reading above stays untested at the junction's own resolution.
+// The far side beside the dilated interface (2026-11-30, seventeenth session; the breakdown-pressure
+// scene of 2026-11-26 again, V_s = 1e-5 m^3, its stress field written; not kept). The estimate to
+// check: on the faces of an open interface holding fluid at p the normal stress is -p and the
+// stress along it -(sigma_t + p - sigma_n), so sigma_yy there is about -6.8 MPa at p = 7.92 MPa and
+// a wet flaw on the far side has about 1.1 MPa of net opening, against 2.9 in the far field. At t =
+// 15.3 s (dilated, 2.6 mm of broken rock past the plane) the bond-pair stress (the rock's part,
+// without the fluid's) of the wet far-side particles 2-6 mm past the plane reads sigma_yy = +0.7 to
+// +1.3 MPa, a total of about -6.9: the model reads the estimate there. But the dry rock ahead, 7-10
+// mm past, reads a total sigma_yy of -0.2 to -1.5 MPa, and the ligament 25-30 mm past -3.1 to -3.4,
+// not sigma_h = 5: with 150 mm of the 300 mm section cut by a crack at 7.9 MPa the rest must carry
+// (-5 x 300 + 7.9 x 150) / 150 = -2.1 MPa on average (the platens hold the total force). The far
+// side's first spacing of broken rock, wet, grows into that (K = 1.12 (p + sigma_yy) sqrt(pi a)
+// passes 0.25 MPa m^0.5 at a = 0.7 mm with sigma_yy = -3), and it did (8.3 mm past at t = 15.4 s).
+// A 2D section through the borehole makes the fracture as tall as the block, so the ligament's
+// tension is what a plane-strain section asks for; a penny-shaped fracture of the same radius in the
+// 3D block would cut a fifth of the section, not half (a 2D section about 760 mm wide gives its
+// ligament the same mean stress). But that is not what lets 2-8 cross: the base scene (no
+// breakdown pressure) in a 600 mm block (the interface through (75 mm, 0) as before, extended to the
+// new faces; one thread, to t = 2.5 s) broke its far side as soon: 3.3 mm past the plane at t = 2.3
+// s and 5.4 mm at t = 2.5 s with p = 6.96 MPa, under sigma_n (the 300 mm block: 3.1 and 3.9 mm,
+// 6.81 MPa), its interface never wet, with the ligament 45-75 mm past the plane at -4.4 to -4.6
+// MPa, near sigma_h. The far side breaks in the arriving tip's own field, 9-15 mm past the plane
+// (sigma_yy -2.7 to -3.7 MPa there), before the section's equilibrium matters.
 // With traction faces instead (the same scenes, faces = "tractions"): 7 of 9. 2-6 arrested (13.7 mm
 // past the plane at t = 4 s; both wings turned toward +y some 80 mm out, as in 2-4, under the 13 /
 // 3 MPa that should keep them straight: the free faces let the block bend), 2-8 crossed (22.3 mm);
