@@ -45,40 +45,54 @@ inline void make_bond_runs(const Bonds& b, BodyInfo& body, const Numbering& numb
   // whole body's blocks too (a window's history holds whole blocks, BodyInfo::origin)
   auto block = [&](std::size_t i) { return (numbering.whole(i) - body.whole_first) / max_run_length; };
   body.first_slab = slab(body.first);
-  std::vector<std::int64_t> open(body.family_count, -1);  // per family offset: the run that may grow
-  for (std::size_t i = body.first; i < body.last; ++i)
-    for (auto k = first_forward_bond(b, i); k < b.offset[i + 1]; ++k) {
-      const auto position = static_cast<std::uint32_t>(k - b.offset[i]);
-      const auto family = b.family[static_cast<std::size_t>(k)];
-      const auto j = b.neighbor[static_cast<std::size_t>(k)];
-      auto& o = open[family - body.first_family];
-      if (o >= 0) {
-        BondRun& r = body.runs[static_cast<std::size_t>(o)];
-        if (static_cast<std::size_t>(r.i) + r.length == i && r.j + r.length == j && slab(static_cast<std::size_t>(r.i)) == slab(i) &&
-            block(static_cast<std::size_t>(r.i)) == block(i) && numbering.whole(static_cast<std::size_t>(r.i)) + r.length == numbering.whole(i) &&
-            numbering.whole(static_cast<std::size_t>(r.j)) + r.length == numbering.whole(static_cast<std::size_t>(j))) {
-          if (r.position != position) r.position = BondRun::varies;
-          ++r.length;
-          continue;
-        }
-      }
-      o = static_cast<std::int64_t>(body.runs.size());
-      body.runs.push_back({static_cast<std::int32_t>(i), j, position, family, 1});
-    }
-  // each slab's runs together; inside it block by block, and in a block family by family, in
-  // particle order: a pass then takes the VES history (bonds.hpp, by block and family offset) as one
-  // stream, and a block's particles (a few kB) stay in the cache over its families
-  std::stable_sort(body.runs.begin(), body.runs.end(), [&](const BondRun& a, const BondRun& b) {
-    const auto ia = static_cast<std::size_t>(a.i), ib = static_cast<std::size_t>(b.i);
-    if (slab(ia) != slab(ib)) return slab(ia) < slab(ib);
-    if (block(ia) != block(ib)) return block(ia) < block(ib);
-    if (a.family != b.family) return a.family < b.family;
-    return ia < ib;
-  });
+  // Runs never cross a slab, so the slabs are made apart, in parallel. whole(i) ascends with i
+  // (numbering.hpp), so each slab's particles are one range: [slab_first[q], slab_first[q + 1]).
   const std::size_t slabs = slab(body.last - 1) + 1 - body.first_slab;
+  std::vector<std::size_t> slab_first(slabs + 1, body.last);
+  for (std::size_t i = body.last; i-- > body.first;) slab_first[slab(i) - body.first_slab] = i;
+  for (std::size_t q = slabs; q-- > 0;) slab_first[q] = std::min(slab_first[q], slab_first[q + 1]);
+  std::vector<std::vector<BondRun>> runs_of(slabs);
+#pragma omp parallel for if(rift::parallel::worth_a_team(body.last - body.first)) schedule(dynamic, 1)
+  for (std::size_t q = 0; q < slabs; ++q) {
+    std::vector<BondRun>& runs = runs_of[q];
+    std::vector<std::int64_t> open(body.family_count, -1);  // per family offset: the run that may grow
+    for (std::size_t i = slab_first[q]; i < slab_first[q + 1]; ++i)
+      for (auto k = first_forward_bond(b, i); k < b.offset[i + 1]; ++k) {
+        const auto position = static_cast<std::uint32_t>(k - b.offset[i]);
+        const auto family = b.family[static_cast<std::size_t>(k)];
+        const auto j = b.neighbor[static_cast<std::size_t>(k)];
+        auto& o = open[family - body.first_family];
+        if (o >= 0) {
+          BondRun& r = runs[static_cast<std::size_t>(o)];
+          if (static_cast<std::size_t>(r.i) + r.length == i && r.j + r.length == j && block(static_cast<std::size_t>(r.i)) == block(i) &&
+              numbering.whole(static_cast<std::size_t>(r.i)) + r.length == numbering.whole(i) &&
+              numbering.whole(static_cast<std::size_t>(r.j)) + r.length == numbering.whole(static_cast<std::size_t>(j))) {
+            if (r.position != position) r.position = BondRun::varies;
+            ++r.length;
+            continue;
+          }
+        }
+        o = static_cast<std::int64_t>(runs.size());
+        runs.push_back({static_cast<std::int32_t>(i), j, position, family, 1});
+      }
+    // inside the slab block by block, and in a block family by family, in particle order: a pass
+    // then takes the VES history (bonds.hpp, by block and family offset) as one stream, and a
+    // block's particles (a few kB) stay in the cache over its families. (The slab's runs are made
+    // in the order one pass over the body made them, so the order is that of one sort of all.)
+    std::stable_sort(runs.begin(), runs.end(), [&](const BondRun& a, const BondRun& c) {
+      const auto ia = static_cast<std::size_t>(a.i), ic = static_cast<std::size_t>(c.i);
+      if (block(ia) != block(ic)) return block(ia) < block(ic);
+      if (a.family != c.family) return a.family < c.family;
+      return ia < ic;
+    });
+  }
+  // each slab's runs together, slab after slab
   body.slab_runs.assign(slabs + 1, 0);
-  for (const auto& r : body.runs) ++body.slab_runs[slab(static_cast<std::size_t>(r.i)) - body.first_slab + 1];
-  for (std::size_t q = 0; q < slabs; ++q) body.slab_runs[q + 1] += body.slab_runs[q];
+  for (std::size_t q = 0; q < slabs; ++q) body.slab_runs[q + 1] = body.slab_runs[q] + runs_of[q].size();
+  body.runs.resize(body.slab_runs[slabs]);
+#pragma omp parallel for if(rift::parallel::worth_a_team(body.last - body.first)) schedule(dynamic, 1)
+  for (std::size_t q = 0; q < slabs; ++q)
+    std::copy(runs_of[q].begin(), runs_of[q].end(), body.runs.begin() + static_cast<std::ptrdiff_t>(body.slab_runs[q]));
 }
 
 /// Which bonds of each row are intact, for the runs' masks (mask_run): per particle of the body,

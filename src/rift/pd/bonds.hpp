@@ -11,6 +11,8 @@
 #include <cstdint>
 #include <vector>
 
+#include "rift/core/uninitialized_vector.hpp"
+
 namespace rift::pd {
 
 /// States of a bond (Bonds::intact).
@@ -63,9 +65,10 @@ struct BondView {
 
 struct Bonds {
   std::vector<std::int64_t> offset;    // size n+1; row i is [offset[i], offset[i+1])
-  std::vector<std::int32_t> neighbor;  // j
-  std::vector<std::uint16_t> family;   // the bond's lattice offset, an index into `families`
-  std::vector<std::uint8_t> intact;    // bond_intact, bond_broken (never heals) or bond_interface_failed
+  // the per-bond arrays are first touched by the passes that fill them (core/uninitialized_vector.hpp)
+  uninitialized_vector<std::int32_t> neighbor;  // j
+  uninitialized_vector<std::uint16_t> family;   // the bond's lattice offset, an index into `families`
+  uninitialized_vector<std::uint8_t> intact;    // bond_intact, bond_broken (never heals) or bond_interface_failed
   std::vector<FamilyOffset> families;  // every body's family offsets, body after body
   // The factors of particle i's side of its bonds: factors[factor_row[i] + family[k]]. Particles
   // whose family is whole (no surface, crack or borehole cuts it) have equal factors and share one
@@ -80,13 +83,13 @@ struct Bonds {
   // stretches, and the slots need no index of their own (a slot is kept for an offset whose
   // neighbour is missing: 2% of the slots at the thesis' size, 8% on the 41^3 bench cube).
   static constexpr std::size_t history_block = 256;
-  std::vector<float> back_extension;
+  uninitialized_vector<float> back_extension;
   // VES only: the extension e = |y| - |xi| of every pair when the history last advanced, once per
   // pair (both directions share it; single precision), at pair_slot of its direction-0 slot
   // (bond_slabs.hpp), and every particle's dilatation then: a bond's deviatoric extension then,
   // e_d(n) = e(n) - theta_i(n) |xi| / d, is taken from them (viscous_step.hpp
   // last_deviatoric_extension) without a copy per directed bond.
-  std::vector<float> last_extension;
+  uninitialized_vector<float> last_extension;
   std::vector<double> history_dilatation;
   // VES only, per particle i: over the intact bonds of its row, the sums of g omega |xi| V times
   // e_d(n) and i's back extension, and of g omega |xi|^2 V (g the surface correction), and how many

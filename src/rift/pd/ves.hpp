@@ -41,8 +41,8 @@ void prepare_viscous_history(Model<D>& m) {
     slots += (body.last - body.first + block - 1) / block * (body.family_count / 2) * 2 * block;
   }
   if (slots == 0) return;
-  m.bonds.back_extension.assign(slots, 0.0f);
-  m.bonds.last_extension.assign(slots / 2, 0.0f);
+  parallel_fill(m.bonds.back_extension, slots, 0.0f);
+  parallel_fill(m.bonds.last_extension, slots / 2, 0.0f);
   m.bonds.history_dilatation.assign(m.size(), 0.0);
   m.bonds.deviatoric_sum.assign(m.size(), 0.0);
   m.bonds.back_sum.assign(m.size(), 0.0);

@@ -48,8 +48,8 @@ std::vector<T> gather_in_whole_order(const parallel::Communicator& comm, const p
 /// The entries of the owned particles' rows in the whole run's order on rank 0: `width` per
 /// particle, or with `offset` (a CSR's, one more than the particles) the entries [offset[i],
 /// offset[i + 1]) of row i.
-template <int D, class T>
-std::vector<T> gather_rows(const parallel::Communicator& comm, const pd::Model<D>& m, const std::vector<T>& v, std::size_t width = 1,
+template <int D, class T, class Allocator>
+std::vector<T> gather_rows(const parallel::Communicator& comm, const pd::Model<D>& m, const std::vector<T, Allocator>& v, std::size_t width = 1,
                            const std::vector<std::int64_t>* offset = nullptr) {
   return gather_in_whole_order<D, T>(comm, m, [&](const IndexRange& r, std::vector<T>& out) {
     const auto first = offset ? static_cast<std::size_t>((*offset)[r.first]) : r.first * width;
@@ -194,8 +194,8 @@ void gather_model(const parallel::Communicator& comm, const pd::Model<D>& m, pd:
   const pd::Bonds& b = m.bonds;
   pd::Bonds* w = whole ? &whole->bonds : nullptr;
   {
-    auto all = gather_rows<D>(comm, m, b.intact, 1, &b.offset);
-    if (w) w->intact = std::move(all);
+    const auto all = gather_rows<D>(comm, m, b.intact, 1, &b.offset);
+    if (w) w->intact.assign(all.begin(), all.end());
   }
   if (!b.back_extension.empty()) {
     gather_into<D>(comm, m, b.history_dilatation, w ? &w->history_dilatation : nullptr);
