@@ -200,7 +200,8 @@ void Solver<D>::scatter(Model<D>& m, bool momentum_only, bool internal_force, Be
         before_point(p, st);
         const double mp = ps.mass[p], volume = ps.volume[p];
         const Vec<D> vp = ps.velocity[p];
-        const Tensor<D> sigma = ps.state[p].stress;
+        // read only by the forces' scatter: MUSL's remap does not touch the points' states
+        const Tensor<D> sigma = internal_force ? ps.state[p].stress : Tensor<D>::Zero();
         for (int q = 0; q < st.count; ++q) {
           const std::size_t node = st.node[static_cast<std::size_t>(q)];
           const std::size_t n = plain ? node : node * fields + field_of(m, p, q);
