@@ -103,9 +103,13 @@ inline std::size_t slab_length(const Bonds& b, std::size_t first, std::size_t la
   // the slabs of each parity shared evenly by a team of two or four: their number a multiple of
   // eight where that keeps a slab at least the reach long (27 slabs on two threads left one thread
   // 7 of a parity's 14 and the other 6 to wait: 5% of the thesis proxy's bond passes). Not the
-  // team's size itself: the slabs order the sums, which must not depend on it
-  constexpr std::size_t multiple = 8;
+  // team's size itself: the slabs order the sums, which must not depend on it. Under sixteen slabs
+  // a multiple of four: the bench cube (41^3, horizon 3 spacings: 13 slabs) then has 12, three a
+  // thread and parity on two threads instead of two, and a thread slowed for a while by the rest of
+  // the machine holds the other back for less: its PMB pass on two threads 9% faster, LPS and VES
+  // 4-5% (alternating runs, 2026-11-30). A team of four then gets two slabs or one a parity, not one.
   const std::size_t slabs = (count + length - 1) / length;
+  const std::size_t multiple = slabs >= 16 ? 8 : 4;
   if (slabs >= multiple && slabs % multiple != 0) length = (count + slabs / multiple * multiple - 1) / (slabs / multiple * multiple);
   return length;
 }
