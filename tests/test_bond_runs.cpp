@@ -14,12 +14,17 @@
 //     several ranges of the numbering gives its owned particles the whole model's PMB forces;
 // (6) the strain energy densities in runs (pd/energy_runs.hpp) equal the row forms, and under a
 //     uniform dilatation eps the state-based W of a particle whose family is whole is the continuum's
-//     K (3 eps)^2 / 2.
+//     K (3 eps)^2 / 2;
+// (7) the slabs' schedule (bond_slabs.hpp for_each_slab) on a team: no slab runs beside its
+//     neighbours, each odd slab after its two even ones, and the passes' forces, bond states and VES
+//     histories the same bits on one, two and four threads.
 #include <gtest/gtest.h>
 #include <omp.h>
 
 #include <algorithm>
 #include <array>
+#include <atomic>
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
@@ -225,8 +230,8 @@ void expect_windows_give_the_whole_forces(const rift::pd::Model<3>& m, const rif
 
 // A plate 61 x 41 sites and 7 layers thick (a run, at most 256 pairs, spans a few lattice lines),
 // deformed and partly broken: the windows of several ranges below cut it.
-rift::pd::Model<3> deformed_plate() {
-  std::string scene = block_scene(3, false);
+rift::pd::Model<3> deformed_plate(const char* model = "pmb") {
+  std::string scene = block_scene(3, false, model);
   auto set = [&](const std::string& from, const std::string& to) { scene.replace(scene.find(from), from.size(), to); };
   set("max = [0.014, 0.011, 0.009]", "max = [0.060, 0.040, 0.006]");
   set("center = [0.007, 0.0055, -0.005]", "center = [0.020, 0.012, -0.005]");
@@ -552,6 +557,73 @@ TEST(BondRuns, StrainEnergyDensityOfAUniformDilatationIsTheContinuums) {
     ASSERT_GT(whole, 50u);
     EXPECT_LT(worst, 1e-9) << model;
   }
+}
+
+}  // namespace
+
+namespace {
+
+// (7) for_each_slab on a team of four: slab q writes its own particles and those of q + 1, so it
+// must never run beside q - 1 or q + 1, and an odd slab (whole-body parity) must start after its
+// even neighbours have ended (the order one sweep of the even slabs and then one of the odd ones
+// gives: the sums' order on any thread count). Each slab takes a few microseconds, so that a team
+// that broke the rule would be caught running two neighbours at once.
+TEST(BondRuns, SlabsRunBesideNoNeighbourAndEachOddSlabAfterItsEvenOnes) {
+  const int threads = omp_get_max_threads();
+  omp_set_num_threads(4);
+  for (const std::size_t count : {3u, 4u, 12u, 13u, 40u})
+    for (const std::size_t first_slab : {0u, 1u, 6u, 7u}) {
+      std::vector<std::atomic<int>> running(count), ended(count), visits(count);
+      std::atomic<int> clashes{0}, early{0};
+      rift::pd::for_each_slab(count, first_slab, true, [&](std::size_t q) {
+        const auto neighbours_running = [&] { return (q > 0 && running[q - 1].load()) || (q + 1 < count && running[q + 1].load()); };
+        if ((first_slab + q) % 2 == 1 && ((q > 0 && !ended[q - 1].load()) || (q + 1 < count && !ended[q + 1].load()))) ++early;
+        running[q].store(1);
+        if (neighbours_running()) ++clashes;
+        const auto until = std::chrono::steady_clock::now() + std::chrono::microseconds(20 + 7 * (q % 5));
+        while (std::chrono::steady_clock::now() < until) {
+        }
+        if (neighbours_running()) ++clashes;
+        running[q].store(0);
+        ended[q].store(1);
+        ++visits[q];
+      });
+      for (std::size_t q = 0; q < count; ++q) EXPECT_EQ(visits[q].load(), 1) << count << " slabs from " << first_slab << ": slab " << q;
+      EXPECT_EQ(clashes.load(), 0) << count << " slabs from " << first_slab;
+      EXPECT_EQ(early.load(), 0) << count << " slabs from " << first_slab;
+    }
+  omp_set_num_threads(threads);
+}
+
+// (7) The passes over a deformed, partly broken plate of 17,000 particles (a team's size: the slabs
+// run on the team): PMB, LPS and VES forces, the bonds that break and the VES histories the same
+// bits on one, two and four threads (the slabs and their order depend on the bonds alone).
+TEST(BondRuns, PassesGiveTheSameBitsOnOneTwoAndFourThreads) {
+  const int threads = omp_get_max_threads();
+  for (const char* model : {"pmb", "lps", "ves"}) {
+    const auto deformed = deformed_plate(model);
+    ASSERT_TRUE(rift::parallel::worth_a_team(deformed.size()));
+    auto pass = [&](int team) {
+      omp_set_num_threads(team);
+      auto m = deformed;
+      rift::pd::compute_forces<3>(m, nullptr, 1e-8);
+      return m;
+    };
+    const auto same_bits = [](const auto& a, const auto& b) {
+      return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(a[0])) == 0;
+    };
+    const auto one = pass(1);
+    std::size_t broken = 0;
+    for (const auto state : one.bonds.intact) broken += state != rift::pd::bond_intact;
+    EXPECT_GT(broken, 0u);
+    for (const int team : {2, 4}) {
+      const auto many = pass(team);
+      EXPECT_TRUE(same_bits(many.force, one.force)) << model << " on " << team << " threads: forces";
+      EXPECT_TRUE(same_bits(many.bonds.intact, one.bonds.intact)) << model << " on " << team << " threads: bond states";
+      EXPECT_TRUE(same_bits(many.bonds.back_extension, one.bonds.back_extension)) << model << " on " << team << " threads: VES history";
+    }
+  }
+  omp_set_num_threads(threads);
 }
 
 }  // namespace

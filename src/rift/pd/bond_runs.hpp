@@ -283,22 +283,14 @@ std::array<double*, 3> positions_by_component(const std::vector<Vec<D>>& positio
   return x;
 }
 
-/// Calls run(r) for every run of the body, slab by slab as for_each_row_by_slabs does: the even
-/// slabs in parallel, then the odd ones.
+/// Calls run(r) for every run of the body, slab by slab as for_each_row_by_slabs does (for_each_slab:
+/// each even slab before its odd neighbours).
 template <class Run>
 void for_each_run_by_slabs(const BodyInfo& body, Run&& run) {
   if (body.slab_runs.size() < 2) return;
-  const std::size_t slabs = body.slab_runs.size() - 1;
-  for (std::size_t parity = 0; parity < 2; ++parity) {
-    // the whole body's parity (BodyInfo::first_slab): local slab `skip` is its first of this parity
-    const std::size_t skip = (body.first_slab + parity) % 2;
-    const auto count = static_cast<std::int64_t>((slabs + 1 - skip) / 2);
-#pragma omp parallel for if(rift::parallel::worth_a_team(body.last - body.first) && count > 1) schedule(dynamic, 1)
-    for (std::int64_t q = 0; q < count; ++q) {
-      const std::size_t slab = 2 * static_cast<std::size_t>(q) + skip;
-      for (std::size_t r = body.slab_runs[slab]; r < body.slab_runs[slab + 1]; ++r) run(body.runs[r]);
-    }
-  }
+  for_each_slab(body.slab_runs.size() - 1, body.first_slab, rift::parallel::worth_a_team(body.last - body.first), [&](std::size_t slab) {
+    for (std::size_t r = body.slab_runs[slab]; r < body.slab_runs[slab + 1]; ++r) run(body.runs[r]);
+  });
 }
 
 /// Whether any of the flags (1.0 or 0.0) is set; read as bits, so that the loop is vector code (a
