@@ -227,6 +227,15 @@
 // 6.81 MPa), its interface never wet, with the ligament 45-75 mm past the plane at -4.4 to -4.6
 // MPa, near sigma_h. The far side breaks in the arriving tip's own field, 9-15 mm past the plane
 // (sigma_yy -2.7 to -3.7 MPa there), before the section's equilibrium matters.
+// The injection rate (2026-11-30, nineteenth session; not kept). This scene's 3e-9 m^3/s into the
+// 1 mm slab is not the laboratory's: the thesis gives 4.2e-9 m^3/min (7e-11 m^3/s into the 3D
+// block; zhou2008_block_properties.csv), a 2D rate of 7e-12 m^3/s into 1 mm if the fracture were
+// 10 mm tall (the open hole), less if taller. With it the guar's KGD toughness number is about 2.7
+// (toughness-dominated; 0.6 here). 2-8 at 3 mm with 7e-12 m^3/s and the injection time stretched
+// alike (1720 s in 40 load steps; one thread, 9 min 44 s): arrested, broken rock 10.8 mm past the
+// plane (under the 18.1 mm threshold), its interface never open or wet, when the fluid broke
+// through to the block's outer surface at t = 1161 s. Dilated, as the experiment, still not; 2-4
+// at that rate not yet run.
 // With traction faces instead (the same scenes, faces = "tractions"): 7 of 9. 2-6 arrested (13.7 mm
 // past the plane at t = 4 s; both wings turned toward +y some 80 mm out, as in 2-4, under the 13 /
 // 3 MPa that should keep them straight: the free faces let the block bend), 2-8 crossed (22.3 mm);
