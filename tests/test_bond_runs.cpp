@@ -17,7 +17,11 @@
 //     K (3 eps)^2 / 2;
 // (7) the slabs' schedule (bond_slabs.hpp for_each_slab) on a team: no slab runs beside its
 //     neighbours, each odd slab after its two even ones, and the passes' forces, bond states and VES
-//     histories the same bits on one, two and four threads.
+//     histories the same bits on one, two and four threads;
+// (8) the rows of bond states kept with the bonds from pass to pass (bond_runs.hpp whole_rows,
+//     pd/bond_states.hpp): over passes that break bonds and a change by hand between them, forces,
+//     states and VES histories the same bits as passes that make every row afresh, and the kept rows
+//     current after each pass without being made again.
 #include <gtest/gtest.h>
 #include <omp.h>
 
@@ -86,9 +90,9 @@ void deform_and_break(rift::pd::Model<D>& m) {
     for (auto k = b.offset[i]; k < b.offset[i + 1]; ++k) {
       const auto j = static_cast<std::size_t>(b.neighbor[k]);
       if (j > i && m.reference_position[i][1] < middle && (i + j) % 5 == 0) {
-        b.intact[k] = rift::pd::bond_broken;
+        b.intact.set(k, rift::pd::bond_broken);
         for (auto q = b.offset[j]; q < b.offset[j + 1]; ++q)
-          if (static_cast<std::size_t>(b.neighbor[q]) == i) b.intact[q] = rift::pd::bond_broken;
+          if (static_cast<std::size_t>(b.neighbor[q]) == i) b.intact.set(q, rift::pd::bond_broken);
       }
     }
 }
@@ -230,9 +234,11 @@ void expect_windows_give_the_whole_forces(const rift::pd::Model<3>& m, const rif
 
 // A plate 61 x 41 sites and 7 layers thick (a run, at most 256 pairs, spans a few lattice lines),
 // deformed and partly broken: the windows of several ranges below cut it.
-rift::pd::Model<3> deformed_plate(const char* model = "pmb") {
+// With `lammps_family`, LAMMPS's bonds to 3 spacings (122 offsets: RowStates has a bit per offset).
+rift::pd::Model<3> deformed_plate(const char* model = "pmb", bool lammps_family = false) {
   std::string scene = block_scene(3, false, model);
   auto set = [&](const std::string& from, const std::string& to) { scene.replace(scene.find(from), from.size(), to); };
+  if (lammps_family) set("horizon = 3.015\n", "horizon = 3.0\npartial_volume = \"lammps\"\n");
   set("max = [0.014, 0.011, 0.009]", "max = [0.060, 0.040, 0.006]");
   set("center = [0.007, 0.0055, -0.005]", "center = [0.020, 0.012, -0.005]");
   auto m = rift::pd::discretize<3>(rift::scene::parse_string(scene, "plate.toml"));
@@ -377,11 +383,15 @@ TEST(BondRuns, RowsLeftByTheDilatationPassEqualRowsMadeAfresh) {
       for (std::size_t k = 0; k < b.intact.size(); ++k) broke += before[k] != b.intact[k];
       ASSERT_GT(broke, 40u) << model;
       ASSERT_EQ(left.intact != nullptr, lammps);
-      // copies: whole_rows makes its rows in the same buffers
       const std::vector<std::uint8_t> whole(left.whole, left.whole + m.size());
       const std::vector<std::uint64_t> words = lammps ? std::vector<std::uint64_t>(left.intact, left.intact + 2 * left.stride)
                                                       : std::vector<std::uint64_t>{};
-      const rift::pd::RowStates fresh = rift::pd::whole_rows(b, body);
+      // the rows kept with the bonds are those left (made again only where the states changed)
+      ASSERT_EQ(rift::pd::whole_rows(b, body).whole, left.whole);
+      ASSERT_EQ(rift::pd::whole_rows(b, body).version, b.intact.version());
+      rift::pd::Bonds copy = b;  // rows made afresh: no kept rows
+      copy.kept_rows = {};
+      const rift::pd::RowStates fresh = rift::pd::whole_rows(copy, body);
       for (std::size_t i = 0; i < m.size(); ++i) {
         ASSERT_EQ(whole[i], fresh.whole[i]) << model << " row " << i;
         std::int32_t intact = 0;
@@ -625,6 +635,67 @@ TEST(BondRuns, PassesGiveTheSameBitsOnOneTwoAndFourThreads) {
     }
   }
   omp_set_num_threads(threads);
+}
+
+// (8) Four steps of a plate stretched more each time (each pass breaks bonds), with every bond of one
+// row broken by hand before the third: the model whose rows are kept from pass to pass gets the
+// bits of one whose rows are made afresh for every pass, and after each pass its kept rows are
+// current (made at the states' version) and equal rows made afresh.
+TEST(BondRuns, RowsKeptFromPassToPassGiveTheBitsOfRowsMadeAfresh) {
+  const auto same_bits = [](const auto& a, const auto& b) {
+    return a.size() == b.size() && (a.empty() || std::memcmp(a.data(), b.data(), a.size() * sizeof(a[0])) == 0);
+  };
+  const auto broken_bonds = [](const rift::pd::Bonds& b) {
+    std::size_t broken = 0;
+    for (const auto state : b.intact) broken += state != rift::pd::bond_intact;
+    return broken;
+  };
+  for (const bool lammps : {true, false})
+  for (const char* model : {"pmb", "lps", "ves"}) {
+    auto kept = deformed_plate(model, lammps);
+    auto afresh = kept;
+    const auto& body = kept.bodies[0];
+    std::size_t broke = 0;
+    for (int step = 0; step < 4; ++step) {
+      for (auto* m : {&kept, &afresh}) {
+        for (std::size_t i = 0; i < m->size(); ++i) m->position[i][0] += 4e-3 * m->reference_position[i][0] * m->reference_position[i][0];
+        if (step == 2) {
+          const std::size_t i = m->size() / 2;
+          auto& b = m->bonds;
+          for (auto k = b.offset[i]; k < b.offset[i + 1]; ++k) {
+            b.intact.set(static_cast<std::size_t>(k), rift::pd::bond_broken);
+            b.intact.set(static_cast<std::size_t>(rift::pd::reverse_bond(b, body, i, k)), rift::pd::bond_broken);
+          }
+        }
+      }
+      afresh.bonds.kept_rows = {};
+      const std::size_t before = broken_bonds(kept.bonds);
+      rift::pd::compute_forces<3>(kept, nullptr, 1e-8);
+      rift::pd::compute_forces<3>(afresh, nullptr, 1e-8);
+      const std::size_t now = broken_bonds(kept.bonds) - before;
+      EXPECT_GT(now, 0u) << model << " step " << step << ": the pass broke no bond";
+      broke += now;
+      EXPECT_TRUE(same_bits(kept.force, afresh.force)) << model << " step " << step << ": forces";
+      EXPECT_TRUE(kept.bonds.intact == afresh.bonds.intact) << model << " step " << step << ": bond states";
+      EXPECT_TRUE(same_bits(kept.bonds.back_extension, afresh.bonds.back_extension)) << model << " step " << step << ": VES history";
+      const auto& made = kept.bonds.kept_rows.made;
+      ASSERT_EQ(made.size(), 1u);
+      EXPECT_EQ(made[0].version, kept.bonds.intact.version()) << model << " step " << step << ": kept rows not current";
+      const rift::pd::RowStates rows = rift::pd::whole_rows(kept.bonds, body);
+      rift::pd::Bonds copy = kept.bonds;
+      copy.kept_rows = {};
+      const rift::pd::RowStates fresh = rift::pd::whole_rows(copy, body);
+      ASSERT_EQ(rows.intact != nullptr, lammps);
+      for (std::size_t i = 0; i < kept.size(); ++i) {
+        ASSERT_EQ(rows.whole[i], fresh.whole[i]) << model << " step " << step << " row " << i;
+        if (!lammps || rows.whole[i] == rift::pd::bond_intact) continue;  // a whole row's bits are not read
+        ASSERT_EQ(rows.intact[i], fresh.intact[i]) << model << " step " << step << " row " << i;
+        ASSERT_EQ(rows.intact[rows.stride + i], fresh.intact[fresh.stride + i]) << model << " step " << step << " row " << i;
+      }
+    }
+    EXPECT_GT(broke, 1000u) << model;
+    std::printf("%s, %zu offsets: %zu bonds broken in four passes, kept rows current after each\n", model, body.family_count, broke);
+  }
 }
 
 }  // namespace

@@ -60,9 +60,9 @@ void contact_is_the_sum_over_all_unbonded_pairs() {
     for (auto q = b.offset[i]; q < b.offset[i + 1]; ++q) {
       const auto j = static_cast<std::size_t>(b.neighbor[q]);
       if (j < i || rng() % 2) continue;
-      b.intact[static_cast<std::size_t>(q)] = rift::pd::bond_broken;
+      b.intact.set(static_cast<std::size_t>(q), rift::pd::bond_broken);
       const auto first = b.neighbor.begin() + b.offset[j], last = b.neighbor.begin() + b.offset[j + 1];
-      b.intact[static_cast<std::size_t>(std::lower_bound(first, last, static_cast<std::int32_t>(i)) - b.neighbor.begin())] = rift::pd::bond_broken;
+      b.intact.set(static_cast<std::size_t>(std::lower_bound(first, last, static_cast<std::int32_t>(i)) - b.neighbor.begin()), rift::pd::bond_broken);
     }
   rift::pd::Contact<D> contact(s.contact, m);
   // a compression wave along x of up to 20% strain and a jitter of 0.03 spacings, grown over the steps

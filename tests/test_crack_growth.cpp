@@ -55,7 +55,7 @@ SteadyGrowth steady_growth(const std::string& material_keys, double K_first, dou
   };
   for (std::size_t i = 0; i < m.size(); ++i)
     for (auto k = m.bonds.offset[i]; k < m.bonds.offset[i + 1]; ++k)
-      if (crossing_x(i, static_cast<std::size_t>(m.bonds.neighbor[k])) < 0.25 * h) m.bonds.intact[k] = rift::pd::bond_broken;
+      if (crossing_x(i, static_cast<std::size_t>(m.bonds.neighbor[k])) < 0.25 * h) m.bonds.intact.set(k, rift::pd::bond_broken);
   // the tip: half a spacing past the last column whose vertical bond across the line is broken
   auto tip = [&] {
     double last = -radius;

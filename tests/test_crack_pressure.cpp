@@ -163,7 +163,7 @@ end_time = 1e-6
         const auto& xj = m.reference_position[static_cast<std::size_t>(b.neighbor[k])];
         if ((xi[1] - line) * (xj[1] - line) >= 0.0) continue;  // does not cross the line
         const double crossing = xi[0] + (line - xi[1]) * (xj[0] - xi[0]) / (xj[1] - xi[1]);
-        if (crossing >= broken_from) b.intact[k] = 0;
+        if (crossing >= broken_from) b.intact.set(k, 0);
       }
     loads.apply_body_forces(m, 0.0);
     double grown = 0.0, beyond = 0.0;
@@ -393,7 +393,7 @@ TEST(EffectiveStretch, OnlyBondsAcrossTheCrackOrItsExtensionAreShifted) {
   };
   auto break_bond = [&](double xa, double ya, double xb, double yb) {
     const auto i = particle_at(xa, ya), j = particle_at(xb, yb);
-    m.bonds.intact[entry(i, j)] = m.bonds.intact[entry(j, i)] = rift::pd::bond_broken;
+    m.bonds.intact.set(entry(i, j), rift::pd::bond_broken), m.bonds.intact.set(entry(j, i), rift::pd::bond_broken);
     return entry(i, j);
   };
   EXPECT_TRUE(marked_bond(particle_at(0.0125, 0.0075), particle_at(0.0125, 0.0085)));
@@ -510,9 +510,9 @@ TEST(InjectedFluid, AFlakeInTheFluidGetsNoLoadAndNoVolume) {
   for (std::size_t i = 0; i < m.size(); ++i)
     for (auto k = b.offset[i]; k < b.offset[i + 1]; ++k) {
       const auto j = static_cast<std::size_t>(b.neighbor[k]);
-      if (i == flake || j == flake) b.intact[k] = rift::pd::bond_broken;
+      if (i == flake || j == flake) b.intact.set(k, rift::pd::bond_broken);
       if ((i == hanging || j == hanging) && !(std::min(i, j) == std::min(hanging, behind) && std::max(i, j) == std::max(hanging, behind)))
-        b.intact[k] = rift::pd::bond_broken;
+        b.intact.set(k, rift::pd::bond_broken);
     }
   loads.apply_body_forces(m, 1.0);
   const auto& f = m.fluid_network;

@@ -84,7 +84,7 @@ Initiation initiation(const std::string& material_keys, double pressure_per_K = 
         const auto& a = m.reference_position[i];
         const auto& b = m.reference_position[static_cast<std::size_t>(m.bonds.neighbor[k])];
         if ((a[1] - tip_y) * (b[1] - tip_y) >= 0.0) continue;  // does not cross the line
-        if (a[0] + (tip_y - a[1]) * (b[0] - a[0]) / (b[1] - a[1]) < 0.25 * h) m.bonds.intact[k] = rift::pd::bond_broken;
+        if (a[0] + (tip_y - a[1]) * (b[0] - a[0]) / (b[1] - a[1]) < 0.25 * h) m.bonds.intact.set(k, rift::pd::bond_broken);
       }
   const double compression = -pressure / (2.0 * m.bodies[0].constants.kappa);  // the strain of -p I, plane strain
   for (std::size_t i = 0; i < m.size(); ++i) {

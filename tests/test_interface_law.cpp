@@ -136,7 +136,7 @@ TEST(InterfaceLaw, FailedInterfaceIsAFrictionalContact) {
     auto s = block_with_interface("[-0.03, 0.0]", "[0.03, 0.0]", "tensile_strength = 1e9\ncohesion = 1e9\nfriction_coefficient = 0.5");
     auto m = rift::pd::discretize<2>(s);
     if (failed)
-      for (auto k : m.interface_bonds.slot) m.bonds.intact[static_cast<std::size_t>(k)] = rift::pd::bond_interface_failed;
+      for (auto k : m.interface_bonds.slot) m.bonds.intact.set(static_cast<std::size_t>(k), rift::pd::bond_interface_failed);
     for (std::size_t i = 0; i < m.size(); ++i)
       if (m.reference_position[i][1] > 0) m.position[i][0] += dx, m.position[i][1] += dy;
     rift::pd::compute_forces<2>(m, nullptr, 0.0);
@@ -156,7 +156,7 @@ TEST(InterfaceLaw, FailedInterfaceIsAFrictionalContact) {
   // moved back to 2.5 um the faces carry no shear; dynamic relaxation (history_dt = 0) holds the slip
   auto s = block_with_interface("[-0.03, 0.0]", "[0.03, 0.0]", "tensile_strength = 1e9\ncohesion = 1e9\nfriction_coefficient = 0.5");
   auto m = rift::pd::discretize<2>(s);
-  for (auto k : m.interface_bonds.slot) m.bonds.intact[static_cast<std::size_t>(k)] = rift::pd::bond_interface_failed;
+  for (auto k : m.interface_bonds.slot) m.bonds.intact.set(static_cast<std::size_t>(k), rift::pd::bond_interface_failed);
   auto place_upper_half = [&](double dx) {
     for (std::size_t i = 0; i < m.size(); ++i)
       if (m.reference_position[i][1] > 0) m.position[i][0] = m.reference_position[i][0] + dx, m.position[i][1] = m.reference_position[i][1] - 1e-6;
@@ -187,7 +187,7 @@ TEST(InterfaceLaw, FaceOpeningLeavesOutTheStrainOfTheRock) {
   auto s = block_with_interface(a, b, "tensile_strength = 1e9\ncohesion = 1e9\nfriction_coefficient = 0.89");
   auto m = rift::pd::discretize<2>(s);
   auto& ib = m.interface_bonds;
-  for (auto k : ib.slot) m.bonds.intact[static_cast<std::size_t>(k)] = rift::pd::bond_interface_failed;
+  for (auto k : ib.slot) m.bonds.intact.set(static_cast<std::size_t>(k), rift::pd::bond_interface_failed);
   auto place = [&](double lift) {
     for (std::size_t i = 0; i < m.size(); ++i) {
       const auto& X = m.reference_position[i];
@@ -266,7 +266,7 @@ TEST(InterfaceLaw, FluidWeakensTheInterfaceOnlyInsideIt) {
       const auto k = static_cast<std::size_t>(ib.slot[static_cast<std::size_t>(q)]);
       const auto j = static_cast<std::size_t>(m.bonds.neighbor[k]);
       if (std::abs(m.reference_position[i][0]) < 0.003 && std::abs(m.reference_position[j][0]) < 0.003)
-        m.bonds.intact[k] = rift::pd::bond_interface_failed, has_failed[i] = 1;
+        m.bonds.intact.set(k, rift::pd::bond_interface_failed), has_failed[i] = 1;
     }
   wet(m);
   rift::pd::apply_interface_law<2>(m);  // refreshes the strain the openings are measured against
@@ -316,13 +316,13 @@ pressure = 1e6
         const auto j = static_cast<std::size_t>(b.neighbor[k]);
         const auto &p = m.reference_position[i], &q = m.reference_position[j];
         const double y = 0.5 * (p[1] + q[1]);
-        if (p[0] * q[0] < 0 && y > -0.012 && y < crack_top) b.intact[k] = rift::pd::bond_broken;
+        if (p[0] * q[0] < 0 && y > -0.012 && y < crack_top) b.intact.set(k, rift::pd::bond_broken);
       }
     const auto& ib = m.interface_bonds;
     for (std::size_t i = 0; i + 1 < ib.offset.size(); ++i)
       for (auto q = ib.offset[i]; q < ib.offset[i + 1]; ++q)
         if (std::abs(m.reference_position[i][0]) < failed_half_length)
-          b.intact[static_cast<std::size_t>(ib.slot[static_cast<std::size_t>(q)])] = failed_as;
+          b.intact.set(static_cast<std::size_t>(ib.slot[static_cast<std::size_t>(q)]), failed_as);
     for (std::size_t i = 0; i < m.size(); ++i)
       if (m.reference_position[i][1] > 0.0) m.position[i][1] += lift;
     m.fluid_network.pressure.assign(m.fluid_network.dry.size(), 1e6);
@@ -375,12 +375,12 @@ TEST(InterfaceOutcome, BreakthroughThroughAnInterfaceIsKeptWhenItShuts) {
     for (auto k = b.offset[i]; k < b.offset[i + 1]; ++k) {
       const auto j = static_cast<std::size_t>(b.neighbor[k]);
       const auto &p = m.reference_position[i], &q = m.reference_position[j];
-      if (p[0] * q[0] < 0 && 0.5 * (p[1] + q[1]) > -0.012 && 0.5 * (p[1] + q[1]) < 0.0) b.intact[k] = rift::pd::bond_broken;
+      if (p[0] * q[0] < 0 && 0.5 * (p[1] + q[1]) > -0.012 && 0.5 * (p[1] + q[1]) < 0.0) b.intact.set(k, rift::pd::bond_broken);
     }
   const auto& ib = m.interface_bonds;
   for (std::size_t i = 0; i + 1 < ib.offset.size(); ++i)
     for (auto q = ib.offset[i]; q < ib.offset[i + 1]; ++q)
-      b.intact[static_cast<std::size_t>(ib.slot[static_cast<std::size_t>(q)])] = rift::pd::bond_interface_failed;
+      b.intact.set(static_cast<std::size_t>(ib.slot[static_cast<std::size_t>(q)]), rift::pd::bond_interface_failed);
   m.fluid_network.pressure.assign(m.fluid_network.dry.size(), 1e6);
   const std::size_t source = s.cracks.size();  // the borehole
   for (std::size_t i = 0; i < m.size(); ++i)
@@ -469,9 +469,9 @@ TEST(InterfaceLaw, FailedInterfaceBondsAcrossTheFluidsCrackCarryNoContact) {
   for (std::size_t i = 0; i < m.size(); ++i)  // the crack: rock bonds across y = 0 up to the interface
     for (auto k = b.offset[i]; k < b.offset[i + 1]; ++k) {
       const auto &p = m.reference_position[i], &q = m.reference_position[static_cast<std::size_t>(b.neighbor[k])];
-      if (p[1] * q[1] < 0 && p[0] < 0 && q[0] < 0 && p[0] > -0.012 && q[0] > -0.012) b.intact[k] = rift::pd::bond_broken;
+      if (p[1] * q[1] < 0 && p[0] < 0 && q[0] < 0 && p[0] > -0.012 && q[0] > -0.012) b.intact.set(k, rift::pd::bond_broken);
     }
-  for (auto k : ib.slot) b.intact[static_cast<std::size_t>(k)] = rift::pd::bond_interface_failed;
+  for (auto k : ib.slot) b.intact.set(static_cast<std::size_t>(k), rift::pd::bond_interface_failed);
   m.fluid_network.pressure.assign(m.fluid_network.dry.size(), 1e6);
   rift::pd::update_fluid_network<2>(m);  // the crack's surface, and the marks
   const double w = 10e-6;

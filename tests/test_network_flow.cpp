@@ -59,7 +59,7 @@ Slot poiseuille(double angle, double w, double exx, double eyy, const std::strin
   auto& b = m.bonds;
   for (std::size_t i = 0; i < m.size(); ++i)
     for (auto k = b.offset[i]; k < b.offset[i + 1]; ++k)
-      if (side(i) != side(static_cast<std::size_t>(b.neighbor[k]))) b.intact[k] = rift::pd::bond_broken;
+      if (side(i) != side(static_cast<std::size_t>(b.neighbor[k]))) b.intact.set(k, rift::pd::bond_broken);
   for (std::size_t i = 0; i < m.size(); ++i) {
     const auto& X = m.reference_position[i];
     m.position[i] = {X[0] * (1.0 + exx), X[1] * (1.0 + eyy)};
@@ -115,7 +115,7 @@ TEST(NetworkFlow, SlipAlongAFailedInterfaceOpensNothing) {
   const double w = 20e-6;
   const auto& ib = m.interface_bonds;
   ASSERT_FALSE(ib.empty());
-  for (auto q : ib.slot) m.bonds.intact[static_cast<std::size_t>(q)] = rift::pd::bond_interface_failed;
+  for (auto q : ib.slot) m.bonds.intact.set(static_cast<std::size_t>(q), rift::pd::bond_interface_failed);
   for (std::size_t i = 0; i < m.size(); ++i)
     if (m.reference_position[i][1] > 0.0) m.position[i] = m.position[i] + rift::Vec<2>{3.0 * w, w};
   const auto bonds = rift::pd::flow_bonds<2>(m, viscosity, [](std::size_t, std::size_t) { return true; });
@@ -161,7 +161,7 @@ TEST(NetworkFlow, PressureDiffusesIntoARigidSlot) {
   for (std::size_t i = 0; i < m.size(); ++i)
     for (auto k = b.offset[i]; k < b.offset[i + 1]; ++k)
       if ((m.reference_position[i][1] > 0.0) != (m.reference_position[static_cast<std::size_t>(b.neighbor[k])][1] > 0.0))
-        b.intact[k] = rift::pd::bond_broken;
+        b.intact.set(k, rift::pd::bond_broken);
   const double w = 20e-6, bulk_modulus = 2.2e9, p0 = 1e6;
   for (std::size_t i = 0; i < m.size(); ++i)
     if (m.reference_position[i][1] > 0.0) m.position[i][1] += w;

@@ -63,7 +63,7 @@ std::vector<double> load_by_passes(rift::pd::Model<D>& m, const std::vector<std:
   };
   const auto cracked = forces();
   const auto states = m.bonds.intact;
-  for (const auto k : network) m.bonds.intact[static_cast<std::size_t>(k)] = rift::pd::bond_intact;
+  for (const auto k : network) m.bonds.intact.set(static_cast<std::size_t>(k), rift::pd::bond_intact);
   const auto whole = forces();
   m.bonds.intact = states;
   std::vector<double> g(m.size() * D, 0.0);
@@ -84,7 +84,7 @@ void grow_crack(rift::pd::Model<D>& m, double from, double to) {
       const auto& xj = m.reference_position[static_cast<std::size_t>(b.neighbor[k])];
       if ((xi[1] - line) * (xj[1] - line) >= 0.0) continue;
       const double crossing = xi[0] + (line - xi[1]) * (xj[0] - xi[0]) / (xj[1] - xi[1]);
-      if (crossing >= from && crossing < to) b.intact[k] = rift::pd::bond_broken;
+      if (crossing >= from && crossing < to) b.intact.set(k, rift::pd::bond_broken);
     }
 }
 
@@ -141,7 +141,7 @@ void check_incremental(const std::string& material) {
     for (int q = 2; q < D; ++q) d += std::abs(m.reference_position[i][q] - 0.0035);
     if (d < best) best = d, above = i;
   }
-  b.intact[static_cast<std::size_t>(b.offset[above])] = rift::pd::bond_broken;
+  b.intact.set(static_cast<std::size_t>(b.offset[above]), rift::pd::bond_broken);
   grow_crack<D>(m, 0.016, 0.020);
   rift::pd::update_fluid_network<D>(m);
   rift::pd::update_network_load<D>(m);
@@ -198,12 +198,12 @@ void check_growth(const std::string& material) {
   const std::size_t flake = nearest(0.017, 0.0085);
   for (auto k = b.offset[flake]; k < b.offset[flake + 1]; ++k) {
     const auto j = static_cast<std::size_t>(b.neighbor[k]);
-    b.intact[static_cast<std::size_t>(k)] = rift::pd::bond_broken;
+    b.intact.set(static_cast<std::size_t>(k), rift::pd::bond_broken);
     for (auto r = b.offset[j]; r < b.offset[j + 1]; ++r)
-      if (static_cast<std::size_t>(b.neighbor[r]) == flake) b.intact[static_cast<std::size_t>(r)] = rift::pd::bond_broken;
+      if (static_cast<std::size_t>(b.neighbor[r]) == flake) b.intact.set(static_cast<std::size_t>(r), rift::pd::bond_broken);
   }
   const std::size_t beside = nearest(0.014, 0.0095);
-  b.intact[static_cast<std::size_t>(b.offset[beside])] = rift::pd::bond_broken;
+  b.intact.set(static_cast<std::size_t>(b.offset[beside]), rift::pd::bond_broken);
   auto& f = m.fluid_network;
   ASSERT_TRUE(rift::pd::fluid_network_grows(f, 0));
   rift::pd::update_fluid_network<D>(m);

@@ -146,8 +146,8 @@ TEST(Viscoelastic, CouplingFromSumsEqualsTheSumOverTheHistories) {
             if (j <= i || m.reference_position[i][2] > 0.004 || (i * 31 + j + std::size_t(step)) % 7 != 0 ||
                 b.intact[static_cast<std::size_t>(k)] != rift::pd::bond_intact)
               continue;
-            b.intact[static_cast<std::size_t>(k)] = rift::pd::bond_broken;
-            b.intact[static_cast<std::size_t>(rift::pd::reverse_bond(b, body, i, k))] = rift::pd::bond_broken;
+            b.intact.set(static_cast<std::size_t>(k), rift::pd::bond_broken);
+            b.intact.set(static_cast<std::size_t>(rift::pd::reverse_bond(b, body, i, k)), rift::pd::bond_broken);
             ++broken_by_hand;
           }
       for (std::size_t i = 0; i < m.size(); ++i) {

@@ -14,6 +14,7 @@
 #include <limits>
 #include <memory>
 #include <thread>
+#include <utility>
 #include <vector>
 
 #include "rift/pd/bonds.hpp"
@@ -68,9 +69,13 @@ inline std::size_t pair_slot(std::size_t h) {
   return h / (2 * block) * block + h % block;
 }
 
-/// Marks broken the reverse of bond k = i-j, which a pass broke from i's side.
-inline void break_mirror_bond(Bonds& b, const BodyInfo& body, std::size_t i, std::int64_t k) {
-  b.intact[static_cast<std::size_t>(reverse_bond(b, body, i, k))] = bond_broken;
+/// After a pass broke the bonds `broken` ((i, k) of a row) from their lower ends' side, writing the
+/// states in place: their reverses too, and the change counted (BondStates).
+inline void break_mirror_bonds(Bonds& b, const BodyInfo& body, const std::vector<std::pair<std::size_t, std::int64_t>>& broken) {
+  if (broken.empty()) return;
+  std::uint8_t* const state = b.intact.writable();
+  for (const auto& [i, k] : broken) state[static_cast<std::size_t>(reverse_bond(b, body, i, k))] = bond_broken;
+  b.intact.changed();
 }
 
 /// Per-particle scratch of the passes, the calling thread's (the team reads and writes it through

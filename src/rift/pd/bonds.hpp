@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "rift/core/uninitialized_vector.hpp"
+#include "rift/pd/bond_states.hpp"
 
 namespace rift::pd {
 
@@ -68,7 +69,7 @@ struct Bonds {
   // the per-bond arrays are first touched by the passes that fill them (core/uninitialized_vector.hpp)
   uninitialized_vector<std::int32_t> neighbor;  // j
   uninitialized_vector<std::uint16_t> family;   // the bond's lattice offset, an index into `families`
-  uninitialized_vector<std::uint8_t> intact;    // bond_intact, bond_broken (never heals) or bond_interface_failed
+  BondStates intact;                            // bond_intact, bond_broken (never heals) or bond_interface_failed
   std::vector<FamilyOffset> families;  // every body's family offsets, body after body
   // The factors of particle i's side of its bonds: factors[factor_row[i] + family[k]]. Particles
   // whose family is whole (no surface, crack or borehole cuts it) have equal factors and share one
@@ -97,10 +98,25 @@ struct Bonds {
   // over the history (ves.hpp ves_dilatation).
   std::vector<double> deviatoric_sum, back_sum, intact_weighted_volume;
   std::vector<std::int32_t> summed_bonds;
+  // The rows made from `intact` for the passes (bond_runs.hpp whole_rows), kept while the states
+  // stay as they were: per particle, whether its row is whole and the bits of its intact offsets,
+  // and which particles' rows [first, last) were made at which version of the states. A cache, not
+  // state: a checkpoint's restore replaces the states, so the rows are made again.
+  struct KeptRows {
+    struct Made {
+      std::size_t first = 0, last = 0;
+      std::uint64_t version = 0;
+    };
+    std::vector<std::uint8_t> whole;
+    std::vector<std::uint64_t> intact;
+    std::vector<Made> made;
+  };
+  mutable KeptRows kept_rows;
 
   std::int64_t size() const { return static_cast<std::int64_t>(neighbor.size()); }
+  /// A pass that writes bond states through the view calls intact.changed() after it.
   BondView view() {
-    return {offset.data(), neighbor.data(), family.data(), intact.data(), families.data(), factors.data(), factor_row.data()};
+    return {offset.data(), neighbor.data(), family.data(), intact.writable(), families.data(), factors.data(), factor_row.data()};
   }
   /// The particle whose row holds entry k.
   std::size_t row_of(std::int64_t k) const {

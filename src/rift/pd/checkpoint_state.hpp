@@ -19,7 +19,8 @@ namespace rift::pd {
 static_assert(sizeof(FamilyOffset) == 7 * 8, "a member was added to FamilyOffset: list it in pd/checkpoint_state.hpp");
 static_assert(sizeof(MaterialConstants) == 3 * 4 + 4 + 12 * 8 + 2 * 8, "a member was added to MaterialConstants: list it in pd/checkpoint_state.hpp");
 static_assert(sizeof(InterfaceOutcome) == 8 + 2 * 8, "a member was added to InterfaceOutcome: list it in pd/checkpoint_state.hpp");
-static_assert(sizeof(Bonds) == 14 * 24, "a member was added to Bonds: list it in pd/checkpoint_state.hpp");
+// (the states carry a count of their changes, and the kept rows are a cache: neither is saved)
+static_assert(sizeof(Bonds) == 14 * 24 + 8 + sizeof(Bonds::KeptRows), "a member was added to Bonds: list it in pd/checkpoint_state.hpp");
 static_assert(sizeof(CrackBonds) == 7 * 24, "a member was added to CrackBonds: list it in pd/checkpoint_state.hpp");
 static_assert(sizeof(InterfaceLaw) == 12 * 8 + 24 + 8 * 5 + 8, "a member was added to InterfaceLaw: list it in pd/checkpoint_state.hpp");
 static_assert(sizeof(InterfaceBonds) == 8 * 24, "a member was added to InterfaceBonds: list it in pd/checkpoint_state.hpp");
@@ -63,7 +64,7 @@ void visit(A& a, InterfaceOutcome& o) {
 
 template <class A>
 void visit(A& a, Bonds& b) {
-  a("bonds.offset", b.offset), a("bonds.neighbor", b.neighbor), a("bonds.family", b.family), a("bonds.intact", b.intact);
+  a("bonds.offset", b.offset), a("bonds.neighbor", b.neighbor), a("bonds.family", b.family), a("bonds.intact", b.intact.replace());
   a("bonds.families", b.families), a("bonds.factor_row", b.factor_row), a("bonds.factors", b.factors);
   a("bonds.back_extension", b.back_extension), a("bonds.last_extension", b.last_extension);
   a("bonds.history_dilatation", b.history_dilatation), a("bonds.deviatoric_sum", b.deviatoric_sum), a("bonds.back_sum", b.back_sum);

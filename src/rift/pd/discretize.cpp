@@ -320,7 +320,7 @@ void build_bonds(const scene::Scene& s, Model<D>& m, const std::vector<std::arra
     info.slab_length = slab_length(b, info.first, info.last);
     make_bond_runs(b, info);
   }
-  parallel_fill(b.intact, b.neighbor.size(), bond_intact);
+  parallel_fill(b.intact.replace(), b.neighbor.size(), bond_intact);
   InterfaceBonds& ib = m.interface_bonds;
   if (!s.interfaces.empty()) {
     ib.offset.assign(n + 1, 0);

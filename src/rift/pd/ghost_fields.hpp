@@ -85,7 +85,8 @@ void refresh_ghost_bond_states(Model<D>& m) {
       for (auto k = b.offset[i]; k < b.offset[i + 1]; ++k) {
         const std::size_t a = place(i, k);
         const auto code = static_cast<std::uint64_t>(packed[i * width + a / per_double]) >> (bits * (a % per_double)) & 7u;
-        b.intact[static_cast<std::size_t>(k)] = static_cast<std::uint8_t>(code & 3u);
+        const auto state = static_cast<std::uint8_t>(code & 3u);
+        if (b.intact[static_cast<std::size_t>(k)] != state) b.intact.set(static_cast<std::size_t>(k), state);  // kept rows stay where nothing changed
         if (code & 4u) marks.push_back(k);
       }
   std::sort(marks.begin(), marks.end());

@@ -204,7 +204,9 @@ void apply_interface_law(Model<D>& m) {
   for (std::size_t r = 0; r < rows.size(); ++r) stress[r] = rock_stress<D>(m.constants_of(static_cast<std::size_t>(rows[r])), ib.strain[r]);
 #pragma omp parallel for if(rift::parallel::worth_a_team(rows.size())) schedule(static)
   for (std::size_t r = 0; r < rows.size(); ++r) pressure[r] = pressure_in_interface<D>(m, static_cast<std::size_t>(rows[r]));  // reads both ends' strains
-#pragma omp parallel for if(rift::parallel::worth_a_team(rows.size())) schedule(static)
+  std::uint8_t* const state = b.intact.writable();
+  bool failed = false;
+#pragma omp parallel for if(rift::parallel::worth_a_team(rows.size())) schedule(static) reduction(|| : failed)
   for (std::size_t r = 0; r < rows.size(); ++r) {
     const auto i = static_cast<std::size_t>(rows[r]);
     if (!m.constants_of(i).breakable) continue;
@@ -224,9 +226,10 @@ void apply_interface_law(Model<D>& m) {
       const double effective = -tn - std::max(pressure[r], pressure[rj]);  // sigma_n - p
       const bool parts = -effective > law.tensile_strength;
       const bool slips = norm<3>(shear) > law.cohesion + law.friction_coefficient * std::max(effective, 0.0);
-      if (parts || slips) b.intact[k] = bond_interface_failed;
+      if (parts || slips) state[k] = bond_interface_failed, failed = true;
     }
   }
+  if (failed) b.intact.changed();
 }
 
 }  // namespace rift::pd

@@ -196,6 +196,7 @@ void dilatation_pass(Model<D>& m, const BodyInfo& body, double* coupling, double
   const double* const strain = m.failure_strain.data();
   const double stress_to_stretch = 1.0 / (D * c.kappa), lambda = c.lame_lambda(), p_wave = c.p_wave_modulus();
   constexpr int C = stress_components<D>;
+  std::uint8_t* const state = b.intact.writable();  // counted as changed with the mirrors (break_mirror_bonds)
   // the wet rock's shift is compiled in only where there is wet rock (effective_stretch.hpp)
   auto row = [&]<bool Wet, bool Normal>(std::size_t i) {
     const Vec<D> xi_pos = m.position[i];
@@ -221,7 +222,7 @@ void dilatation_pass(Model<D>& m, const BodyInfo& body, double* coupling, double
       bool past = Normal ? value > limit : e > xi * limit, crossed = false;
       if constexpr (Wet) past = c.breakable && breaks_in_wet_rock<D>(wet, c.alpha, i, j, xi, value, limit, crossed);
       if (c.breakable && past) {
-        b.intact[k] = bond_broken;
+        state[k] = bond_broken;
         note_broken_bond(broken, crossing, i, k, crossed);
         continue;
       }
@@ -266,14 +267,12 @@ void dilatation_pass(Model<D>& m, const BodyInfo& body, double* coupling, double
     rows = whole_rows(b, body);
     dilatation_runs<D, Omega, Coupling, Corrected>(m, body, rows, coupling, smallest, broken, crossing);
   }
-  for (const auto& [i, k] : broken) break_mirror_bond(b, body, i, k);
-  if (rows_out) {
-    // the rows as the pass leaves them: those of the bonds it broke made again (or all, where it
-    // went row by row)
-    if (rows) refresh_rows(b, rows, broken);
-    else rows = whole_rows(b, body);
-    *rows_out = rows;
-  }
+  break_mirror_bonds(b, body, broken);
+  // the rows as the pass leaves the states: those of the bonds it broke made again (or all, where it
+  // went row by row)
+  if (rows) refresh_rows(b, body, rows, broken);
+  else if (rows_out) rows = whole_rows(b, body);
+  if (rows_out) *rows_out = rows;
   record_crossing_breaks<D>(m, crossing);
   if (broken_out) *broken_out = std::move(broken);
   if constexpr (!Corrected) {

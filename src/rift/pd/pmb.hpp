@@ -218,7 +218,8 @@ void pmb_forces(Model<D>& m, const BodyInfo& body) {
 #pragma omp parallel for if(rift::parallel::worth_a_team(body.last - body.first)) schedule(static)
   for (std::size_t j = body.first; j < body.last; ++j)
     for (int q = 0; q < D; ++q) m.force[j][q] = f[q][j];
-  for (const auto& [i, k] : broken) break_mirror_bond(b, body, i, k);
+  break_mirror_bonds(b, body, broken);
+  refresh_rows(b, body, rows, broken);  // the kept rows as the pass leaves the states
   record_crossing_breaks<D>(m, crossing);
   next_stretch_limits<D>(m, body, smallest);
 }

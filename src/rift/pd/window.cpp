@@ -412,6 +412,7 @@ Model<D> window_of(const Model<D>& m, const Partition& p, int rank) {
   c.offset.assign(n + 1, 0);
   c.factor_row.resize(n);
   std::map<std::pair<std::int64_t, std::uint32_t>, std::int64_t> factor_rows;  // (row, body) to its place here
+  BondStates::Storage& states = c.intact.replace();
   for_each_in(window, [&](std::size_t a, std::size_t i) {
     const BodyInfo& body = m.bodies[m.body[i]];
     for (auto k = b.offset[i]; k < b.offset[i + 1]; ++k) {
@@ -419,7 +420,7 @@ Model<D> window_of(const Model<D>& m, const Partition& p, int rank) {
       if (j == Numbering::none) continue;
       c.neighbor.push_back(static_cast<std::int32_t>(j));
       c.family.push_back(b.family[static_cast<std::size_t>(k)]);
-      c.intact.push_back(b.intact[static_cast<std::size_t>(k)]);
+      states.push_back(b.intact[static_cast<std::size_t>(k)]);
     }
     c.offset[a + 1] = c.size();
     if (c.offset[a + 1] - c.offset[a] != b.offset[i + 1] - b.offset[i]) {

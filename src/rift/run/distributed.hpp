@@ -194,8 +194,8 @@ void gather_model(const parallel::Communicator& comm, const pd::Model<D>& m, pd:
   const pd::Bonds& b = m.bonds;
   pd::Bonds* w = whole ? &whole->bonds : nullptr;
   {
-    const auto all = gather_rows<D>(comm, m, b.intact, 1, &b.offset);
-    if (w) w->intact.assign(all.begin(), all.end());
+    const auto all = gather_rows<D>(comm, m, b.intact.all(), 1, &b.offset);
+    if (w) w->intact.replace().assign(all.begin(), all.end());
   }
   if (!b.back_extension.empty()) {
     gather_into<D>(comm, m, b.history_dilatation, w ? &w->history_dilatation : nullptr);
