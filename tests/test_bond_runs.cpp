@@ -386,9 +386,10 @@ TEST(BondRuns, RowsLeftByTheDilatationPassEqualRowsMadeAfresh) {
       const std::vector<std::uint8_t> whole(left.whole, left.whole + m.size());
       const std::vector<std::uint64_t> words = lammps ? std::vector<std::uint64_t>(left.intact, left.intact + 2 * left.stride)
                                                       : std::vector<std::uint64_t>{};
-      // the rows kept with the bonds are those left (made again only where the states changed)
-      ASSERT_EQ(rift::pd::whole_rows(b, body).whole, left.whole);
-      ASSERT_EQ(rift::pd::whole_rows(b, body).version, b.intact.version());
+      // the rows left are the ones kept with the bonds, current as the pass left the states
+      ASSERT_EQ(left.whole, b.kept_rows.whole.data());
+      ASSERT_EQ(b.kept_rows.made.size(), 1u);
+      ASSERT_EQ(b.kept_rows.made[0].version, b.intact.version()) << model;
       rift::pd::Bonds copy = b;  // rows made afresh: no kept rows
       copy.kept_rows = {};
       const rift::pd::RowStates fresh = rift::pd::whole_rows(copy, body);
@@ -605,6 +606,13 @@ TEST(BondRuns, SlabsRunBesideNoNeighbourAndEachOddSlabAfterItsEvenOnes) {
   omp_set_num_threads(threads);
 }
 
+// Whether two arrays hold the same bits (PMB and LPS have no VES history: an empty array's data()
+// may be null, which memcmp must not get).
+template <class A, class B>
+bool same_bits(const A& a, const B& b) {
+  return a.size() == b.size() && (a.empty() || std::memcmp(a.data(), b.data(), a.size() * sizeof(a[0])) == 0);
+}
+
 // (7) The passes over a deformed, partly broken plate of 17,000 particles (a team's size: the slabs
 // run on the team): PMB, LPS and VES forces, the bonds that break and the VES histories the same
 // bits on one, two and four threads (the slabs and their order depend on the bonds alone).
@@ -618,10 +626,6 @@ TEST(BondRuns, PassesGiveTheSameBitsOnOneTwoAndFourThreads) {
       auto m = deformed;
       rift::pd::compute_forces<3>(m, nullptr, 1e-8);
       return m;
-    };
-    // (PMB and LPS have no VES history: an empty array's data() may be null, which memcmp must not get)
-    const auto same_bits = [](const auto& a, const auto& b) {
-      return a.size() == b.size() && (a.empty() || std::memcmp(a.data(), b.data(), a.size() * sizeof(a[0])) == 0);
     };
     const auto one = pass(1);
     std::size_t broken = 0;
@@ -642,9 +646,6 @@ TEST(BondRuns, PassesGiveTheSameBitsOnOneTwoAndFourThreads) {
 // bits of one whose rows are made afresh for every pass, and after each pass its kept rows are
 // current (made at the states' version) and equal rows made afresh.
 TEST(BondRuns, RowsKeptFromPassToPassGiveTheBitsOfRowsMadeAfresh) {
-  const auto same_bits = [](const auto& a, const auto& b) {
-    return a.size() == b.size() && (a.empty() || std::memcmp(a.data(), b.data(), a.size() * sizeof(a[0])) == 0);
-  };
   const auto broken_bonds = [](const rift::pd::Bonds& b) {
     std::size_t broken = 0;
     for (const auto state : b.intact) broken += state != rift::pd::bond_intact;
