@@ -236,6 +236,22 @@
 // plane (under the 18.1 mm threshold), its interface never open or wet, when the fluid broke
 // through to the block's outer surface at t = 1161 s. Dilated, as the experiment, still not; 2-4
 // at that rate not yet run.
+// The far side's own strain (2026-12-01, twentieth session; 3 mm, platens, guar, one thread; not
+// kept): the rock's failure strain of each particle (update_failure_strain, bulk_strain.hpp) from
+// its bonds that do not cross the interface, so that a far-side particle no longer reads the near
+// side's opening through the intact interface bonds of its 9 mm horizon. 2-8 crossed as before
+// (from t = 3.5 s: 18.4 mm past, 19.7 mm at 3.6 s; its interface never open) and 2-4 too (23.2 mm
+// at t = 4 s): the far side does not break on what its strain reads across the plane.
+// The breakdown-pressure scene in a section twice as long along the fracture (2026-12-01,
+// twenty-first session; x from -300 to 300 mm, the block 300 mm across sigma_h as before, so that
+// the far side's ligament keeps near sigma_h; p_b = 10 MPa, V_s = 1e-5 m^3, 20 s in 200 load steps;
+// one thread, 14 min to t = 16.3 s; not kept): the same as in the 300 mm block. The wall broke
+// down at t = 15.2 s, the interface dilated at t = 15.4 s (p = 8.06 MPa, open along 32.9 mm; broken
+// rock 3.1 mm past the plane), and the far side's crack grew on with the fluid, crossed from t =
+// 15.8 s (19.5 mm past, p = 7.54 MPa) and 35.3 mm at t = 16.3 s. So once a spacing of the far
+// side's rock is broken and wet it runs as the hydraulic fracture itself does, at sigma_h plus
+// K / sqrt(pi a) (about 7 MPa here, under the 7.25 MPa plus T_i the interface asks for), whatever
+// the section's length; only the far side's first break decides.
 // With traction faces instead (the same scenes, faces = "tractions"): 7 of 9. 2-6 arrested (13.7 mm
 // past the plane at t = 4 s; both wings turned toward +y some 80 mm out, as in 2-4, under the 13 /
 // 3 MPa that should keep them straight: the free faces let the block bend), 2-8 crossed (22.3 mm);
