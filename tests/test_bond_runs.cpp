@@ -21,7 +21,9 @@
 // (8) the rows of bond states kept with the bonds from pass to pass (bond_runs.hpp whole_rows,
 //     pd/bond_states.hpp): over passes that break bonds and a change by hand between them, forces,
 //     states and VES histories the same bits as passes that make every row afresh, and the kept rows
-//     current after each pass without being made again.
+//     current after each pass without being made again;
+// (9) the one-loop form of a PMB run whose upper ends are lower ends further on adds each bond to
+//     its ends in the bonds' order, the bits of the bonds taken one at a time, on every clone.
 #include <gtest/gtest.h>
 #include <omp.h>
 
@@ -41,6 +43,7 @@
 
 #include "rift/core/vector_isa.hpp"
 #include "rift/pd/bond_runs.hpp"
+#include "rift/pd/pmb.hpp"
 #include "rift/pd/discretize.hpp"
 #include "rift/pd/forces.hpp"
 #include "rift/pd/ves.hpp"
@@ -700,3 +703,72 @@ TEST(BondRuns, RowsKeptFromPassToPassGiveTheBitsOfRowsMadeAfresh) {
 }
 
 }  // namespace
+
+// (9) The one-loop form of a PMB run (pmb.hpp pmb_run_to_ends), whose upper ends are lower ends of
+// the same run further on (j - i = 8 to 13, 64 bonds): on every clone the forces and smallest
+// stretches are the bits of the bonds taken one at a time in the run's order (each bond's force
+// +g to f_i, -g to f_j, as Silling and Askari's pair force c omega s V_j along the deformed bond),
+// and a bond past its limit adds nothing and is marked for the caller. Exact: the same IEEE
+// operations in the same order (vector_isa.hpp); a vector that held an end twice would lose a term.
+TEST(BondRuns, OneLoopFormAddsToOverlappingEndsInTheBondsOrder) {
+  constexpr std::size_t length = 64;
+  const double spacing = 1e-3, coefficient = 2.5e20, volume = 1e-9;
+  const rift::VectorIsa best = rift::vector_isa();
+  for (std::size_t distance : {8u, 9u, 13u}) {
+    const std::size_t n = length + distance;
+    const double bond_length = distance * spacing, inverse_length = 1.0 / bond_length;
+    std::array<std::vector<double>, 3> x;
+    for (int q = 0; q < 3; ++q) {
+      x[q].resize(n);
+      for (std::size_t p = 0; p < n; ++p)  // a line along x, stretched and bent unevenly (stretches about 1e-5)
+        x[q][p] = q == 0 ? p * spacing + 1e-7 * std::sin(0.7 * static_cast<double>(p)) : 1e-7 * std::cos(1.3 * static_cast<double>(p) + q);
+    }
+    std::vector<double> limit(n, 5e-4);
+    limit[20] = -1.0;  // bonds 20 (lower end 20) and 20 - distance (upper end 20) pass their limit
+    // the reference: bond t of the run joins t and t + distance
+    // forces before the run of the bonds' own size, so that the order of the terms shows in the bits
+    std::array<std::vector<double>, 3> f_before;
+    for (int q = 0; q < 3; ++q)
+      for (std::size_t p = 0; p < n; ++p) f_before[q].push_back(3.3e6 * std::sin(1.7 * static_cast<double>(p) + q));
+    auto f_one = f_before;
+    std::vector<double> smallest_one(n, std::numeric_limits<double>::max());
+    std::vector<int> past_one(length, 0);
+    for (std::size_t t = 0; t < length; ++t) {
+      const std::size_t i = t, j = t + distance;
+      const double ex = x[0][j] - x[0][i], ey = x[1][j] - x[1][i], ez = x[2][j] - x[2][i];
+      const double r = std::sqrt(ex * ex + ey * ey + ez * ez);
+      const double s = (r - bond_length) * inverse_length;
+      if (s > std::min(limit[i], limit[j])) {
+        past_one[t] = 1;
+        continue;
+      }
+      const double scalar = coefficient * s * volume / r;
+      const double g[3] = {scalar * ex, scalar * ey, scalar * ez};
+      for (int q = 0; q < 3; ++q) f_one[q][i] += g[q], f_one[q][j] -= g[q];
+      smallest_one[i] = std::min(smallest_one[i], s), smallest_one[j] = std::min(smallest_one[j], s);
+    }
+    ASSERT_EQ(std::count(past_one.begin(), past_one.end(), 1), 2) << "distance " << distance;
+    for (const auto isa : {rift::VectorIsa::sse2, rift::VectorIsa::avx2, rift::VectorIsa::avx512}) {
+      if (static_cast<int>(isa) > static_cast<int>(best)) continue;
+      auto f = f_before;
+      std::vector<double> smallest(n, std::numeric_limits<double>::max()), flagged(length, 0.0);
+      rift::pd::PmbRun a;
+      a.length = length;
+      a.xa = x[0].data(), a.ya = x[1].data(), a.za = x[2].data();
+      a.xb = x[0].data() + distance, a.yb = x[1].data() + distance, a.zb = x[2].data() + distance;
+      a.limit_a = limit.data(), a.limit_b = limit.data() + distance;
+      a.bond_length = bond_length, a.inverse_length = inverse_length, a.coefficient = coefficient, a.volume = volume;
+      a.fxa = f[0].data(), a.fya = f[1].data(), a.fza = f[2].data();
+      a.fxb = f[0].data() + distance, a.fyb = f[1].data() + distance, a.fzb = f[2].data() + distance;
+      a.smallest_a = smallest.data(), a.smallest_b = smallest.data() + distance;
+      a.may_break = flagged.data();
+      a.breakable = true;
+      a.ends_apart = rift::pd::ends_apart_in_vectors({0, static_cast<std::int32_t>(distance), 0, 0, static_cast<std::uint16_t>(length)});
+      ASSERT_TRUE(a.ends_apart) << "distance " << distance;
+      EXPECT_TRUE((rift::pd::pmb_run_kernel<3, false, false, false>(isa)(a))) << "distance " << distance;
+      for (std::size_t t = 0; t < length; ++t) ASSERT_EQ(flagged[t] != 0.0, past_one[t] == 1) << "distance " << distance << " bond " << t;
+      for (int q = 0; q < 3; ++q) EXPECT_TRUE(same_bits(f[q], f_one[q])) << "distance " << distance << " component " << q << " isa " << static_cast<int>(isa);
+      EXPECT_TRUE(same_bits(smallest, smallest_one)) << "distance " << distance << " isa " << static_cast<int>(isa);
+    }
+  }
+}

@@ -30,6 +30,18 @@ inline constexpr std::size_t max_run_length = Bonds::history_block;
 /// Runs shorter than this are taken bond by bond: a vector's set-up would cost more.
 inline constexpr std::size_t short_run = 4;
 
+/// The widest vector (AVX-512: eight doubles). A run whose upper ends start at least this far past
+/// its lower ends (j - i, or past the run's end) can add to both ends in one loop, in vectors (omp
+/// simd safelen): an end that is both a lower end and, further on, an upper end of the run is never
+/// in one vector twice, and takes its two terms in the bonds' order.
+inline constexpr std::size_t simd_ends_apart = 8;
+
+/// Whether a run's ends lie apart in vectors (simd_ends_apart).
+inline bool ends_apart_in_vectors(const BondRun& run) {
+  const auto distance = static_cast<std::int64_t>(run.j) - static_cast<std::int64_t>(run.i);
+  return distance >= static_cast<std::int64_t>(std::min<std::size_t>(run.length, simd_ends_apart));
+}
+
 /// Groups the body's forward bonds into runs (after its bonds and slab length are made): every
 /// forward bond belongs to exactly one run. A distributed run's window (pd/window.hpp) gives its
 /// numbering: its runs are the whole run's, cut to the window, and none spans a jump of the

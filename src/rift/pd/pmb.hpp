@@ -78,13 +78,65 @@ struct PmbRun {
   double *smallest_a = nullptr, *smallest_b = nullptr;
   double* may_break = nullptr;  // where a run that may break a bond leaves which (1: may break), for the caller
   bool breakable = false;
+  bool ends_apart = false;  // ends_apart_in_vectors (bond_runs.hpp): the one-loop form
 };
 
+/// The one-loop form of a run (ends_apart_in_vectors): each bond's pair force and stretch go to its
+/// ends as soon as they are made, without the buffers of pmb_run_pair_forces, except where the bond
+/// may break (it passes its limit, lowered by the wet rock's shift where `Shifted`): those add
+/// nothing, and `may_break` marks them for the caller to settle one by one. Returns whether any
+/// does. The same IEEE operations on each bond as pmb_run_pair_forces.
+template <int D, bool Corrected, bool Shifted, bool Masked>
+[[gnu::always_inline]] inline bool pmb_run_to_ends(const PmbRun& a) {
+  constexpr double none = std::numeric_limits<double>::max();
+  const std::size_t length = a.length;
+  const double *xa = a.xa, *ya = a.ya, *za = a.za, *xb = a.xb, *yb = a.yb, *zb = a.zb;
+  const double *limit_a = a.limit_a, *limit_b = a.limit_b, *pore_a = a.pore_a, *pore_b = a.pore_b;
+  const double *alive = a.alive, *factor = a.factor;
+  double *fxa = a.fxa, *fya = a.fya, *fza = a.fza, *fxb = a.fxb, *fyb = a.fyb, *fzb = a.fzb;
+  double *smallest_a = a.smallest_a, *smallest_b = a.smallest_b, *past = a.may_break;
+  const double shift_scale = a.shift_scale, bond_length = a.bond_length, inverse_length = a.inverse_length;
+  const double coefficient = a.coefficient, volume = a.volume;
+  const bool breakable = a.breakable;
+  // the upper ends may be lower ends of the same run further on (f_b = f_a + d, d >= simd_ends_apart)
+#pragma omp simd safelen(simd_ends_apart)
+  for (std::size_t t = 0; t < length; ++t) {
+    double ex, ey, ez;
+    const double r2 = run_bond_vector<D>(xa, ya, za, xb, yb, zb, t, ex, ey, ez);
+    const double r = std::sqrt(r2);
+    const double s = (r - bond_length) * inverse_length;
+    double limit = limit_b[t] < limit_a[t] ? limit_b[t] : limit_a[t];
+    if constexpr (Shifted) limit -= shift_scale * (pore_a[t] < pore_b[t] ? pore_a[t] : pore_b[t]);
+    const bool on = Masked ? alive[t] != 0.0 : true;
+    const bool breaks = breakable && on && s > limit;
+    past[t] = breaks ? 1.0 : 0.0;
+    const bool adds = on && !breaks;
+    double scalar = coefficient * s;
+    if constexpr (Corrected) scalar *= factor[t];
+    scalar = scalar * volume / r;
+    scalar = adds ? scalar : 0.0;
+    const double gx = scalar * ex, gy = scalar * ey;
+    fxa[t] += gx, fya[t] += gy;
+    fxb[t] -= gx, fyb[t] -= gy;
+    if constexpr (D == 3) {
+      const double gz = scalar * ez;
+      fza[t] += gz, fzb[t] -= gz;
+    }
+    const double stretch = adds ? s : none;
+    smallest_a[t] = stretch < smallest_a[t] ? stretch : smallest_a[t];
+    smallest_b[t] = stretch < smallest_b[t] ? stretch : smallest_b[t];
+  }
+  return any_set(past, length);
+}
+
 /// A run's pair forces added to its ends, unless a bond of it may break (returns true, and which
-/// in may_break: the caller takes those bond by bond and the rest again without them).
+/// in may_break: the caller takes those bond by bond and the rest again without them). Where the
+/// run's ends lie apart in vectors (PmbRun::ends_apart), in one loop: the forces of the bonds that
+/// may not break added, and those that may marked for the caller to settle alone.
 template <int D, bool Corrected, bool Shifted, bool Masked>
 struct PmbRunKernel {
   [[gnu::always_inline]] static bool run(const PmbRun& a) {
+    if (a.ends_apart) return pmb_run_to_ends<D, Corrected, Shifted, Masked>(a);
     alignas(64) double g[3][max_run_length], stretch[max_run_length], past[max_run_length];
     const bool may_break = pmb_run_pair_forces<D, Corrected, Shifted, Masked>(
         a.length, a.xa, a.ya, a.za, a.xb, a.yb, a.zb, a.limit_a, a.limit_b, a.pore_a, a.pore_b, a.shift_scale, a.alive, a.factor,
@@ -192,12 +244,18 @@ void pmb_forces(Model<D>& m, const BodyInfo& body) {
     a.smallest_a = smallest + i, a.smallest_b = smallest + j;
     a.breakable = breakable;
     a.may_break = flagged;
+    a.ends_apart = ends_apart_in_vectors(run);
     bool may_break;
     if (pore)
       may_break = masked ? pmb_run_kernel<D, Corrected, true, true>(isa)(a) : pmb_run_kernel<D, Corrected, true, false>(isa)(a);
     else
       may_break = masked ? pmb_run_kernel<D, Corrected, false, true>(isa)(a) : pmb_run_kernel<D, Corrected, false, false>(isa)(a);
     if (!may_break) return;
+    if (a.ends_apart) {  // the rest of the run is added: the bonds that may break one by one
+      for (std::size_t t = 0; t < length; ++t)
+        if (flagged[t] != 0.0) settle.template operator()<Wet, Corrected>(run, t);
+      return;
+    }
     // the bonds that may break one by one; the rest of the run again in the vector form, without
     // them (each bond of a run has its own two ends, so the order of their forces does not matter)
     for (std::size_t t = 0; t < length; ++t) alive[t] = flagged[t] != 0.0 ? 0.0 : masked ? alive[t] : 1.0;
