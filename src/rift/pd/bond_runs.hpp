@@ -342,6 +342,41 @@ void for_each_run_by_slabs(const BodyInfo& body, Run&& run) {
   for (std::size_t t = 0; t < length; ++t) smallest[t] = s[t] < smallest[t] ? s[t] : smallest[t];
 }
 
+/// Where a run kernel's pair forces go, bond t's g (per component, the force on the lower end;
+/// the upper end takes -g) and its stretch s (`none`: adds nothing; Stretch: the kernel keeps the
+/// ends' smallest stretches), for a run whose ends may share a vector: into buffers, which
+/// add_pair_forces_to_run_ends and lower_to_run_stretches then add to the ends, loop after loop.
+template <int D, bool Stretch>
+struct PairForcesToBuffers {
+  double *gx, *gy, *gz, *stretch;
+  [[gnu::always_inline]] void operator()(std::size_t t, double x, double y, double z, double s) const {
+    gx[t] = x, gy[t] = y;
+    if constexpr (D == 3) gz[t] = z;
+    if constexpr (Stretch) stretch[t] = s;
+  }
+};
+
+/// The same straight to the ends (a run whose ends lie apart in vectors: ends_apart_in_vectors), so
+/// that each end takes its terms in the bonds' order (the kernel's loop is omp simd
+/// safelen(simd_ends_apart)).
+template <int D, bool Stretch>
+struct PairForcesToEnds {
+  double *fxa, *fya, *fza, *fxb, *fyb, *fzb, *smallest_a = nullptr, *smallest_b = nullptr;
+  template <class RunArguments>
+  explicit PairForcesToEnds(const RunArguments& a) : fxa(a.fxa), fya(a.fya), fza(a.fza), fxb(a.fxb), fyb(a.fyb), fzb(a.fzb) {
+    if constexpr (Stretch) smallest_a = a.smallest_a, smallest_b = a.smallest_b;
+  }
+  [[gnu::always_inline]] void operator()(std::size_t t, double x, double y, double z, double s) const {
+    fxa[t] += x, fya[t] += y;
+    fxb[t] -= x, fyb[t] -= y;
+    if constexpr (D == 3) fza[t] += z, fzb[t] -= z;
+    if constexpr (Stretch) {
+      smallest_a[t] = s < smallest_a[t] ? s : smallest_a[t];
+      smallest_b[t] = s < smallest_b[t] ? s : smallest_b[t];
+    }
+  }
+};
+
 /// What a run's pair forces g (per component) add to its ends: +g to the lower ends' forces, -g to
 /// the upper ends' (the fxa ... fzb of a kernel's arguments `a`).
 template <int D, class RunArguments>

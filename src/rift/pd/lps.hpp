@@ -157,6 +157,7 @@ void dilatation_runs(Model<D>& m, const BodyInfo& body, const RowStates& rows, d
     a.smallest_a = smallest + i, a.smallest_b = smallest + j;
     a.breakable = c.breakable;
     a.may_break = flagged;
+    a.ends_apart = ends_apart_in_vectors(run);
     bool may_break;
     if (pore)
       may_break = masked ? vector_clone<DilatationRunKernel<D, Corrected, Coupling, true, true>, DilatationRun>(isa)(a)
@@ -165,6 +166,11 @@ void dilatation_runs(Model<D>& m, const BodyInfo& body, const RowStates& rows, d
       may_break = masked ? vector_clone<DilatationRunKernel<D, Corrected, Coupling, false, true>, DilatationRun>(isa)(a)
                          : vector_clone<DilatationRunKernel<D, Corrected, Coupling, false, false>, DilatationRun>(isa)(a);
     if (!may_break) return;
+    if (a.ends_apart) {  // the rest of the run is added: the bonds that may break one by one
+      for (std::size_t t = 0; t < length; ++t)
+        if (flagged[t] != 0.0) settle.template operator()<Wet>(run, t);
+      return;
+    }
     // the bonds that may break one by one; the rest of the run again in the vector form, without
     // them (each bond of a run has its own two ends, so the order of their terms does not matter)
     for (std::size_t t = 0; t < length; ++t) alive[t] = flagged[t] != 0.0 ? 0.0 : masked ? alive[t] : 1.0;
@@ -406,6 +412,7 @@ void state_based_forces(Model<D>& m, const BodyInfo& body, double history_dt, co
       a.one_minus_decay = step.one_minus_decay, a.decay = step.decay, a.beta = step.beta;
     }
     a.bond_length = family.length, a.omega = influence(Omega, family.length, horizon), a.volume = family.volume;
+    a.ends_apart = ends_apart_in_vectors(run);
     auto kernel = [&]<bool Advance>() {
       if (masked)
         vector_clone<StateForceRunKernel<D, Corrected, Viscous, Advance, true>, StateForceRun>(isa)(a);

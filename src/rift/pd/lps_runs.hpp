@@ -1,10 +1,12 @@
 // The run kernels of the LPS and VES passes (lps.hpp, ves.hpp; runs: bond_runs.hpp). Each takes the
 // bonds of one run together in one loop without branches over contiguous arrays, which the compiler
-// makes vector code, into buffers that are then added to the run's two ends. Every bond's terms are
+// makes vector code, straight into the run's two ends where they lie apart in vectors
+// (ends_apart_in_vectors), else into buffers that are then added to the ends. Every bond's terms are
 // the row formulas' to the last bit (the same operations in the same order), but for the deviatoric
 // extension e - theta (|xi| / d), which takes |xi| / d per run where a row divided theta |xi| by d
 // per bond (a rounding apart; the bonds a run takes one by one use the run's form).
 #pragma once
+#include <algorithm>
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
@@ -29,23 +31,52 @@ struct DilatationRun {
   double *smallest_a = nullptr, *smallest_b = nullptr;
   double* may_break = nullptr;  // where a run that may break a bond leaves which (1: may break), for the caller
   bool breakable = false;
+  bool ends_apart = false;  // bond_runs.hpp ends_apart_in_vectors: the one-loop form
 };
 
-/// The terms of a run's bonds in the dilatation pass (lps.hpp dilatation_pass): theta of each end
-/// (wa, wb: b e V, or omega |xi| e V without the correction, scaled after the pass), q of each end
-/// (qa, qb: g omega |xi| e V; Coupling), the stretch (`none` where not intact). Returns whether an
-/// intact bond may break: its extension past |xi| min(s0_i, s0_j), or its stretch past that limit
-/// less the wet rock's shift (Shifted); the caller then takes the run bond by bond.
-template <int D, bool Corrected, bool Coupling, bool Shifted, bool Masked>
+/// Where a dilatation run's terms go (as bond_runs.hpp PairForcesToBuffers, PairForcesToEnds):
+/// bond t's terms of theta (wa, wb) and of q (qa, qb; Coupling) at each end, and its stretch s.
+template <bool Coupling>
+struct DilatationToBuffers {
+  double *wa, *wb, *qa, *qb, *stretch;
+  [[gnu::always_inline]] void operator()(std::size_t t, double a, double b, double qa_t, double qb_t, double s) const {
+    wa[t] = a, wb[t] = b;
+    if constexpr (Coupling) qa[t] = qa_t, qb[t] = qb_t;
+    stretch[t] = s;
+  }
+};
+template <bool Coupling>
+struct DilatationToEnds {
+  double *theta_a, *theta_b, *coupling_a, *coupling_b, *smallest_a, *smallest_b;
+  template <class Run>
+  explicit DilatationToEnds(const Run& a)
+      : theta_a(a.theta_a), theta_b(a.theta_b), coupling_a(a.coupling_a), coupling_b(a.coupling_b), smallest_a(a.smallest_a),
+        smallest_b(a.smallest_b) {}
+  [[gnu::always_inline]] void operator()(std::size_t t, double a, double b, double qa_t, double qb_t, double s) const {
+    theta_a[t] += a, theta_b[t] += b;
+    if constexpr (Coupling) coupling_a[t] += qa_t, coupling_b[t] += qb_t;
+    smallest_a[t] = s < smallest_a[t] ? s : smallest_a[t];
+    smallest_b[t] = s < smallest_b[t] ? s : smallest_b[t];
+  }
+};
+
+/// The terms of a run's bonds in the dilatation pass (lps.hpp dilatation_pass), bond t's to out(t,
+/// ...) (DilatationToBuffers, DilatationToEnds): theta of each end (b e V, or omega |xi| e V without
+/// the correction, scaled after the pass), q of each end (g omega |xi| e V, or omega |xi| e V;
+/// Coupling), the stretch (`none` where not intact). Where `breakable`, an intact bond whose
+/// extension passes |xi| min(s0_i, s0_j), or whose stretch passes that limit less the wet rock's
+/// shift (Shifted), may break: it adds nothing (as a bond that is not intact) and is marked in
+/// `past` for the caller to take bond by bond; returns whether any is.
+template <int D, bool Corrected, bool Coupling, bool Shifted, bool Masked, class Out>
 [[gnu::always_inline]] inline bool dilatation_run_terms(
     std::size_t length, const double* __restrict xa, const double* __restrict ya, const double* __restrict za,
     const double* __restrict xb, const double* __restrict yb, const double* __restrict zb, const double* __restrict limit_a,
     const double* __restrict limit_b, const double* __restrict pore_a, const double* __restrict pore_b, double shift_scale,
     const double* __restrict alive, const double* __restrict weight_a, const double* __restrict weight_b,
     const double* __restrict correction_a, const double* __restrict correction_b, double bond_length, double inverse_length,
-    double volume, double omega_length, double* __restrict wa, double* __restrict wb, double* __restrict qa, double* __restrict qb,
-    double* __restrict stretch, double* __restrict past) {
+    double volume, double omega_length, bool breakable, Out out, double* __restrict past) {
   constexpr double none = std::numeric_limits<double>::max();
+#pragma omp simd safelen(simd_ends_apart)
   for (std::size_t t = 0; t < length; ++t) {
     double ex, ey, ez;
     const double r2 = run_bond_vector<D>(xa, ya, za, xb, yb, zb, t, ex, ey, ez);
@@ -55,20 +86,18 @@ template <int D, bool Corrected, bool Coupling, bool Shifted, bool Masked>
     double lowered = limit;
     if constexpr (Shifted) lowered -= shift_scale * (pore_a[t] < pore_b[t] ? pore_a[t] : pore_b[t]);
     const bool on = Masked ? alive[t] != 0.0 : true;
-    past[t] = on && (e > bond_length * limit || s > lowered) ? 1.0 : 0.0;
+    const bool breaks = breakable & on & ((e > bond_length * limit) | (s > lowered));  // no branch: vector code
+    past[t] = breaks ? 1.0 : 0.0;
+    const bool adds = on && !breaks;
     const double ev = e * volume;
     const double w = omega_length * ev;
     if constexpr (Corrected) {
-      wa[t] = on ? weight_a[t] * ev : 0.0;
-      wb[t] = on ? weight_b[t] * ev : 0.0;
-      if constexpr (Coupling) {
-        qa[t] = on ? correction_a[t] * w : 0.0;
-        qb[t] = on ? correction_b[t] * w : 0.0;
-      }
-    } else {
-      wa[t] = on ? w : 0.0;
+      out(t, adds ? weight_a[t] * ev : 0.0, adds ? weight_b[t] * ev : 0.0, adds ? correction_a[t] * w : 0.0,
+          adds ? correction_b[t] * w : 0.0, adds ? s : none);
+    } else {  // both ends take omega |xi| e V, and so does q
+      const double both = adds ? w : 0.0;
+      out(t, both, both, both, both, adds ? s : none);
     }
-    stretch[t] = on ? s : none;
   }
   return any_set(past, length);
 }
@@ -76,23 +105,26 @@ template <int D, bool Corrected, bool Coupling, bool Shifted, bool Masked>
 template <int D, bool Corrected, bool Coupling, bool Shifted, bool Masked>
 struct DilatationRunKernel {
   [[gnu::always_inline]] static bool run(const DilatationRun& a) {
+    if (a.ends_apart)  // in one loop (bond_runs.hpp ends_apart_in_vectors)
+      return dilatation_run_terms<D, Corrected, Coupling, Shifted, Masked>(
+          a.length, a.xa, a.ya, a.za, a.xb, a.yb, a.zb, a.limit_a, a.limit_b, a.pore_a, a.pore_b, a.shift_scale, a.alive, a.weight_a,
+          a.weight_b, a.correction_a, a.correction_b, a.bond_length, a.inverse_length, a.volume, a.omega_length, a.breakable,
+          DilatationToEnds<Coupling>(a), a.may_break);
+    // the caller's second pass over a run that may break a bond reads the first pass's marks
     alignas(64) double wa[max_run_length], wb[max_run_length], qa[max_run_length], qb[max_run_length], stretch[max_run_length],
         past[max_run_length];
-    const bool may_break = dilatation_run_terms<D, Corrected, Coupling, Shifted, Masked>(
-        a.length, a.xa, a.ya, a.za, a.xb, a.yb, a.zb, a.limit_a, a.limit_b, a.pore_a, a.pore_b, a.shift_scale, a.alive, a.weight_a,
-        a.weight_b, a.correction_a, a.correction_b, a.bond_length, a.inverse_length, a.volume, a.omega_length, wa, wb, qa, qb, stretch,
-        past);
-    if (a.breakable && may_break) {
-      for (std::size_t t = 0; t < a.length; ++t) a.may_break[t] = past[t];
+    if (dilatation_run_terms<D, Corrected, Coupling, Shifted, Masked>(
+            a.length, a.xa, a.ya, a.za, a.xb, a.yb, a.zb, a.limit_a, a.limit_b, a.pore_a, a.pore_b, a.shift_scale, a.alive, a.weight_a,
+            a.weight_b, a.correction_a, a.correction_b, a.bond_length, a.inverse_length, a.volume, a.omega_length, a.breakable,
+            DilatationToBuffers<Coupling>{wa, wb, qa, qb, stretch}, past)) {
+      std::copy(past, past + a.length, a.may_break);
       return true;
     }
-    // without the correction both ends take omega |xi| e V (and so does q)
-    const double* const to_b = Corrected ? wb : wa;
     add_to_run_ends(a.theta_a, wa, a.length);
-    add_to_run_ends(a.theta_b, to_b, a.length);
+    add_to_run_ends(a.theta_b, wb, a.length);
     if constexpr (Coupling) {
-      add_to_run_ends(a.coupling_a, Corrected ? qa : wa, a.length);
-      add_to_run_ends(a.coupling_b, Corrected ? qb : wa, a.length);
+      add_to_run_ends(a.coupling_a, qa, a.length);
+      add_to_run_ends(a.coupling_b, qb, a.length);
     }
     lower_to_run_stretches(a.smallest_a, stretch, a.length);
     lower_to_run_stretches(a.smallest_b, stretch, a.length);
@@ -116,6 +148,7 @@ struct StateForceRun {
   double bond_length = 0.0, omega = 0.0, volume = 0.0, lambda = 0.0;
   double one_minus_decay = 0.0, decay = 1.0, beta = 0.0;
   double *fxa = nullptr, *fya = nullptr, *fza = nullptr, *fxb = nullptr, *fyb = nullptr, *fzb = nullptr;
+  bool ends_apart = false;  // bond_runs.hpp ends_apart_in_vectors: the one-loop form
 };
 
 /// Asks the cache for the `length` history values `ahead` slots on from `start` (for writing). The
@@ -131,7 +164,7 @@ struct StateForceRun {
 /// directions of every intact bond advances over the step first (viscous_step.hpp, with e_d(n) from
 /// the pair's last extension as last_deviatoric_extension takes it, which then becomes e(n+1); a bond
 /// that is not intact keeps its history), and the force takes the new one as stored.
-template <int D, bool Corrected, bool Viscous, bool Advance, bool Masked>
+template <int D, bool Corrected, bool Viscous, bool Advance, bool Masked, class Out>
 [[gnu::always_inline]] inline void state_force_run_terms(
     std::size_t length, const double* __restrict xa, const double* __restrict ya, const double* __restrict za,
     const double* __restrict xb, const double* __restrict yb, const double* __restrict zb, const double* __restrict pressure_a,
@@ -140,9 +173,10 @@ template <int D, bool Corrected, bool Viscous, bool Advance, bool Masked>
     const double* __restrict weight_a, const double* __restrict weight_b, const double* __restrict correction_a,
     const double* __restrict correction_b, const double* __restrict last_theta_a, const double* __restrict last_theta_b,
     float* __restrict back_a, float* __restrict back_b, float* __restrict last_extension, double lambda, double one_minus_decay, double decay, double beta, double bond_length, double omega,
-    double volume, double* __restrict gx, double* __restrict gy, double* __restrict gz) {
+    double volume, Out out) {
   const double omega_length = omega * bond_length;
   const double length_over_d = bond_length / D;  // e_d = e - theta |xi| / d, without a division per bond
+#pragma omp simd safelen(simd_ends_apart)
   for (std::size_t t = 0; t < length; ++t) {
     double ex, ey, ez;
     const double r2 = run_bond_vector<D>(xa, ya, za, xb, yb, zb, t, ex, ey, ez);
@@ -176,16 +210,13 @@ template <int D, bool Corrected, bool Viscous, bool Advance, bool Masked>
     }
     double scalar = (t_a + t_b) * volume / r;
     if constexpr (Masked) scalar = alive[t] != 0.0 ? scalar : 0.0;
-    gx[t] = scalar * ex;
-    gy[t] = scalar * ey;
-    if constexpr (D == 3) gz[t] = scalar * ez;
+    out(t, scalar * ex, scalar * ey, scalar * ez, 0.0);
   }
 }
 
 template <int D, bool Corrected, bool Viscous, bool Advance, bool Masked>
 struct StateForceRunKernel {
   [[gnu::always_inline]] static bool run(const StateForceRun& a) {
-    alignas(64) double g[3][max_run_length];
     if constexpr (Viscous) {
       // the history of the runs one family offset on (bonds.hpp: the next history_block pairs of
       // either stream): hardware prefetching loses the streams between runs of a few cache lines
@@ -193,10 +224,20 @@ struct StateForceRunKernel {
       prefetch_history(a.back_b, 2 * Bonds::history_block, a.length);
       if constexpr (Advance) prefetch_history(a.last_extension, Bonds::history_block, a.length);
     }
+    if (a.ends_apart) {  // in one loop (bond_runs.hpp ends_apart_in_vectors)
+      state_force_run_terms<D, Corrected, Viscous, Advance, Masked>(
+          a.length, a.xa, a.ya, a.za, a.xb, a.yb, a.zb, a.pressure_a, a.pressure_b, a.coefficient_a, a.coefficient_b, a.theta_a,
+          a.theta_b, a.alive, a.weight_a, a.weight_b, a.correction_a, a.correction_b, a.last_theta_a, a.last_theta_b, a.back_a,
+          a.back_b, a.last_extension, a.lambda, a.one_minus_decay, a.decay, a.beta, a.bond_length, a.omega, a.volume,
+          PairForcesToEnds<D, false>(a));
+      return false;
+    }
+    alignas(64) double g[3][max_run_length];
     state_force_run_terms<D, Corrected, Viscous, Advance, Masked>(
         a.length, a.xa, a.ya, a.za, a.xb, a.yb, a.zb, a.pressure_a, a.pressure_b, a.coefficient_a, a.coefficient_b, a.theta_a, a.theta_b,
         a.alive, a.weight_a, a.weight_b, a.correction_a, a.correction_b, a.last_theta_a, a.last_theta_b, a.back_a, a.back_b,
-        a.last_extension, a.lambda, a.one_minus_decay, a.decay, a.beta, a.bond_length, a.omega, a.volume, g[0], g[1], g[2]);
+        a.last_extension, a.lambda, a.one_minus_decay, a.decay, a.beta, a.bond_length, a.omega, a.volume,
+        PairForcesToBuffers<D, false>{g[0], g[1], g[2], nullptr});
     add_pair_forces_to_run_ends<D>(a, g);
     return false;
   }

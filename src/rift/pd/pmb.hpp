@@ -27,25 +27,26 @@ inline double pmb_bond_force(double micromodulus, double omega, double s, float 
   return micromodulus * omega * s * (0.5f * (correction + mirror_correction));
 }
 
-/// The pair forces of a run of PMB bonds (bond_runs.hpp) into buffers: g, the force density on
-/// the lower ends per unit V_j, component by component (the upper ends take -g), and `stretch`, each
-/// bond's stretch (`none` for a bond that is not intact). The lower ends' positions and stretch
-/// limits start at a, the upper ends' at b. `alive` (Masked; else every bond is intact): 1 for an
-/// intact bond, 0 for another; `factor` (Corrected): (g_i + g_j) / 2; `past`: scratch. Returns
-/// whether an intact bond's stretch passes its limit, lowered by the wet rock's shift where
-/// `Shifted` (effective_stretch.hpp): the run may then break a bond, which the caller settles bond
-/// by bond. One loop without branches over contiguous arrays, so the compiler makes it vector code;
-/// every bond's force is the row's to the last bit.
-template <int D, bool Corrected, bool Shifted, bool Masked>
+/// The pair forces of a run of PMB bonds (bond_runs.hpp), bond t's to out(t, g, s) (bond_runs.hpp
+/// PairForcesToBuffers or PairForcesToEnds): g, the force density on the lower end per unit V_j,
+/// component by component (the upper end takes -g), and s its stretch. The lower ends' positions and
+/// stretch limits start at a, the upper ends' at b. `alive` (Masked; else every bond is intact): 1
+/// for an intact bond, 0 for another; `factor` (Corrected): (g_i + g_j) / 2. Where `breakable`, an
+/// intact bond whose stretch passes its limit, lowered by the wet rock's shift where `Shifted`
+/// (effective_stretch.hpp), may break: it adds nothing (g = 0, s = `none`, as a bond that is not
+/// intact) and is marked in `past` for the caller to settle bond by bond; returns whether any is.
+/// One loop without branches over contiguous arrays, vector code; every bond's force is the row's to
+/// the last bit.
+template <int D, bool Corrected, bool Shifted, bool Masked, class Out>
 [[gnu::always_inline]] inline bool pmb_run_pair_forces(std::size_t length, const double* __restrict xa, const double* __restrict ya,
                                 const double* __restrict za, const double* __restrict xb, const double* __restrict yb,
                                 const double* __restrict zb, const double* __restrict limit_a, const double* __restrict limit_b,
                                 const double* __restrict pore_a, const double* __restrict pore_b, double shift_scale,
                                 const double* __restrict alive, const double* __restrict factor, double bond_length,
-                                double inverse_length, double coefficient, double volume, double* __restrict gx,
-                                double* __restrict gy, double* __restrict gz, double* __restrict stretch,
+                                double inverse_length, double coefficient, double volume, bool breakable, Out out,
                                 double* __restrict past) {
   constexpr double none = std::numeric_limits<double>::max();
+#pragma omp simd safelen(simd_ends_apart)
   for (std::size_t t = 0; t < length; ++t) {
     double ex, ey, ez;
     const double r2 = run_bond_vector<D>(xa, ya, za, xb, yb, zb, t, ex, ey, ez);
@@ -54,15 +55,14 @@ template <int D, bool Corrected, bool Shifted, bool Masked>
     double limit = limit_b[t] < limit_a[t] ? limit_b[t] : limit_a[t];
     if constexpr (Shifted) limit -= shift_scale * (pore_a[t] < pore_b[t] ? pore_a[t] : pore_b[t]);
     const bool on = Masked ? alive[t] != 0.0 : true;
-    past[t] = on && s > limit ? 1.0 : 0.0;
+    const bool breaks = breakable && on && s > limit;
+    past[t] = breaks ? 1.0 : 0.0;
+    const bool adds = on && !breaks;
     double scalar = coefficient * s;
     if constexpr (Corrected) scalar *= factor[t];
     scalar = scalar * volume / r;
-    scalar = on ? scalar : 0.0;
-    gx[t] = scalar * ex;
-    gy[t] = scalar * ey;
-    if constexpr (D == 3) gz[t] = scalar * ez;
-    stretch[t] = on ? s : none;
+    scalar = adds ? scalar : 0.0;
+    out(t, scalar * ex, scalar * ey, scalar * ez, adds ? s : none);
   }
   return any_set(past, length);
 }
@@ -81,54 +81,6 @@ struct PmbRun {
   bool ends_apart = false;  // ends_apart_in_vectors (bond_runs.hpp): the one-loop form
 };
 
-/// The one-loop form of a run (ends_apart_in_vectors): each bond's pair force and stretch go to its
-/// ends as soon as they are made, without the buffers of pmb_run_pair_forces, except where the bond
-/// may break (it passes its limit, lowered by the wet rock's shift where `Shifted`): those add
-/// nothing, and `may_break` marks them for the caller to settle one by one. Returns whether any
-/// does. The same IEEE operations on each bond as pmb_run_pair_forces.
-template <int D, bool Corrected, bool Shifted, bool Masked>
-[[gnu::always_inline]] inline bool pmb_run_to_ends(const PmbRun& a) {
-  constexpr double none = std::numeric_limits<double>::max();
-  const std::size_t length = a.length;
-  const double *xa = a.xa, *ya = a.ya, *za = a.za, *xb = a.xb, *yb = a.yb, *zb = a.zb;
-  const double *limit_a = a.limit_a, *limit_b = a.limit_b, *pore_a = a.pore_a, *pore_b = a.pore_b;
-  const double *alive = a.alive, *factor = a.factor;
-  double *fxa = a.fxa, *fya = a.fya, *fza = a.fza, *fxb = a.fxb, *fyb = a.fyb, *fzb = a.fzb;
-  double *smallest_a = a.smallest_a, *smallest_b = a.smallest_b, *past = a.may_break;
-  const double shift_scale = a.shift_scale, bond_length = a.bond_length, inverse_length = a.inverse_length;
-  const double coefficient = a.coefficient, volume = a.volume;
-  const bool breakable = a.breakable;
-  // the upper ends may be lower ends of the same run further on (f_b = f_a + d, d >= simd_ends_apart)
-#pragma omp simd safelen(simd_ends_apart)
-  for (std::size_t t = 0; t < length; ++t) {
-    double ex, ey, ez;
-    const double r2 = run_bond_vector<D>(xa, ya, za, xb, yb, zb, t, ex, ey, ez);
-    const double r = std::sqrt(r2);
-    const double s = (r - bond_length) * inverse_length;
-    double limit = limit_b[t] < limit_a[t] ? limit_b[t] : limit_a[t];
-    if constexpr (Shifted) limit -= shift_scale * (pore_a[t] < pore_b[t] ? pore_a[t] : pore_b[t]);
-    const bool on = Masked ? alive[t] != 0.0 : true;
-    const bool breaks = breakable && on && s > limit;
-    past[t] = breaks ? 1.0 : 0.0;
-    const bool adds = on && !breaks;
-    double scalar = coefficient * s;
-    if constexpr (Corrected) scalar *= factor[t];
-    scalar = scalar * volume / r;
-    scalar = adds ? scalar : 0.0;
-    const double gx = scalar * ex, gy = scalar * ey;
-    fxa[t] += gx, fya[t] += gy;
-    fxb[t] -= gx, fyb[t] -= gy;
-    if constexpr (D == 3) {
-      const double gz = scalar * ez;
-      fza[t] += gz, fzb[t] -= gz;
-    }
-    const double stretch = adds ? s : none;
-    smallest_a[t] = stretch < smallest_a[t] ? stretch : smallest_a[t];
-    smallest_b[t] = stretch < smallest_b[t] ? stretch : smallest_b[t];
-  }
-  return any_set(past, length);
-}
-
 /// A run's pair forces added to its ends, unless a bond of it may break (returns true, and which
 /// in may_break: the caller takes those bond by bond and the rest again without them). Where the
 /// run's ends lie apart in vectors (PmbRun::ends_apart), in one loop: the forces of the bonds that
@@ -136,13 +88,18 @@ template <int D, bool Corrected, bool Shifted, bool Masked>
 template <int D, bool Corrected, bool Shifted, bool Masked>
 struct PmbRunKernel {
   [[gnu::always_inline]] static bool run(const PmbRun& a) {
-    if (a.ends_apart) return pmb_run_to_ends<D, Corrected, Shifted, Masked>(a);
+    // (no lambda here: its body would not take the clone's target)
+    if (a.ends_apart)
+      return pmb_run_pair_forces<D, Corrected, Shifted, Masked>(
+          a.length, a.xa, a.ya, a.za, a.xb, a.yb, a.zb, a.limit_a, a.limit_b, a.pore_a, a.pore_b, a.shift_scale, a.alive, a.factor,
+          a.bond_length, a.inverse_length, a.coefficient, a.volume, a.breakable, PairForcesToEnds<D, true>(a), a.may_break);
+    // the caller's second pass over a run that may break a bond reads the first pass's marks
     alignas(64) double g[3][max_run_length], stretch[max_run_length], past[max_run_length];
-    const bool may_break = pmb_run_pair_forces<D, Corrected, Shifted, Masked>(
-        a.length, a.xa, a.ya, a.za, a.xb, a.yb, a.zb, a.limit_a, a.limit_b, a.pore_a, a.pore_b, a.shift_scale, a.alive, a.factor,
-        a.bond_length, a.inverse_length, a.coefficient, a.volume, g[0], g[1], g[2], stretch, past);
-    if (a.breakable && may_break) {
-      for (std::size_t t = 0; t < a.length; ++t) a.may_break[t] = past[t];
+    if (pmb_run_pair_forces<D, Corrected, Shifted, Masked>(
+            a.length, a.xa, a.ya, a.za, a.xb, a.yb, a.zb, a.limit_a, a.limit_b, a.pore_a, a.pore_b, a.shift_scale, a.alive, a.factor,
+            a.bond_length, a.inverse_length, a.coefficient, a.volume, a.breakable, PairForcesToBuffers<D, true>{g[0], g[1], g[2], stretch},
+            past)) {
+      std::copy(past, past + a.length, a.may_break);
       return true;
     }
     add_pair_forces_to_run_ends<D>(a, g);
