@@ -166,18 +166,10 @@ void dilatation_runs(Model<D>& m, const BodyInfo& body, const RowStates& rows, d
       may_break = masked ? vector_clone<DilatationRunKernel<D, Corrected, Coupling, false, true>, DilatationRun>(isa)(a)
                          : vector_clone<DilatationRunKernel<D, Corrected, Coupling, false, false>, DilatationRun>(isa)(a);
     if (!may_break) return;
-    if (a.ends_apart) {  // the rest of the run is added: the bonds that may break one by one
-      for (std::size_t t = 0; t < length; ++t)
-        if (flagged[t] != 0.0) settle.template operator()<Wet>(run, t);
-      return;
-    }
-    // the bonds that may break one by one; the rest of the run again in the vector form, without
-    // them (each bond of a run has its own two ends, so the order of their terms does not matter)
-    for (std::size_t t = 0; t < length; ++t) alive[t] = flagged[t] != 0.0 ? 0.0 : masked ? alive[t] : 1.0;
-    const bool again = pore ? vector_clone<DilatationRunKernel<D, Corrected, Coupling, true, true>, DilatationRun>(isa)(a)
-                            : vector_clone<DilatationRunKernel<D, Corrected, Coupling, false, true>, DilatationRun>(isa)(a);
+    // the rest of the run is added: the bonds that may break one by one (each bond of a run has its
+    // own two ends, so the order of their terms does not matter)
     for (std::size_t t = 0; t < length; ++t)
-      if (again || flagged[t] != 0.0) settle.template operator()<Wet>(run, t);
+      if (flagged[t] != 0.0) settle.template operator()<Wet>(run, t);
   };
   if (wet)
     for_each_run_by_slabs(body, [&](const BondRun& r) { run_terms.template operator()<true>(r); });

@@ -6,7 +6,6 @@
 // extension e - theta (|xi| / d), which takes |xi| / d per run where a row divided theta |xi| by d
 // per bond (a rounding apart; the bonds a run takes one by one use the run's form).
 #pragma once
-#include <algorithm>
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
@@ -110,16 +109,11 @@ struct DilatationRunKernel {
           a.length, a.xa, a.ya, a.za, a.xb, a.yb, a.zb, a.limit_a, a.limit_b, a.pore_a, a.pore_b, a.shift_scale, a.alive, a.weight_a,
           a.weight_b, a.correction_a, a.correction_b, a.bond_length, a.inverse_length, a.volume, a.omega_length, a.breakable,
           DilatationToEnds<Coupling>(a), a.may_break);
-    // the caller's second pass over a run that may break a bond reads the first pass's marks
-    alignas(64) double wa[max_run_length], wb[max_run_length], qa[max_run_length], qb[max_run_length], stretch[max_run_length],
-        past[max_run_length];
-    if (dilatation_run_terms<D, Corrected, Coupling, Shifted, Masked>(
-            a.length, a.xa, a.ya, a.za, a.xb, a.yb, a.zb, a.limit_a, a.limit_b, a.pore_a, a.pore_b, a.shift_scale, a.alive, a.weight_a,
-            a.weight_b, a.correction_a, a.correction_b, a.bond_length, a.inverse_length, a.volume, a.omega_length, a.breakable,
-            DilatationToBuffers<Coupling>{wa, wb, qa, qb, stretch}, past)) {
-      std::copy(past, past + a.length, a.may_break);
-      return true;
-    }
+    alignas(64) double wa[max_run_length], wb[max_run_length], qa[max_run_length], qb[max_run_length], stretch[max_run_length];
+    const bool may_break = dilatation_run_terms<D, Corrected, Coupling, Shifted, Masked>(
+        a.length, a.xa, a.ya, a.za, a.xb, a.yb, a.zb, a.limit_a, a.limit_b, a.pore_a, a.pore_b, a.shift_scale, a.alive, a.weight_a,
+        a.weight_b, a.correction_a, a.correction_b, a.bond_length, a.inverse_length, a.volume, a.omega_length, a.breakable,
+        DilatationToBuffers<Coupling>{wa, wb, qa, qb, stretch}, a.may_break);
     add_to_run_ends(a.theta_a, wa, a.length);
     add_to_run_ends(a.theta_b, wb, a.length);
     if constexpr (Coupling) {
@@ -128,7 +122,7 @@ struct DilatationRunKernel {
     }
     lower_to_run_stretches(a.smallest_a, stretch, a.length);
     lower_to_run_stretches(a.smallest_b, stretch, a.length);
-    return false;
+    return may_break;
   }
 };
 

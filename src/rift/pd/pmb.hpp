@@ -81,10 +81,9 @@ struct PmbRun {
   bool ends_apart = false;  // ends_apart_in_vectors (bond_runs.hpp): the one-loop form
 };
 
-/// A run's pair forces added to its ends, unless a bond of it may break (returns true, and which
-/// in may_break: the caller takes those bond by bond and the rest again without them). Where the
-/// run's ends lie apart in vectors (PmbRun::ends_apart), in one loop: the forces of the bonds that
-/// may not break added, and those that may marked for the caller to settle alone.
+/// A run's pair forces added to its ends, but for the bonds that may break: those add nothing and are
+/// marked in may_break for the caller to settle one by one (returns whether any is). Where the run's
+/// ends lie apart in vectors (PmbRun::ends_apart) in one loop, else through buffers.
 template <int D, bool Corrected, bool Shifted, bool Masked>
 struct PmbRunKernel {
   [[gnu::always_inline]] static bool run(const PmbRun& a) {
@@ -93,19 +92,15 @@ struct PmbRunKernel {
       return pmb_run_pair_forces<D, Corrected, Shifted, Masked>(
           a.length, a.xa, a.ya, a.za, a.xb, a.yb, a.zb, a.limit_a, a.limit_b, a.pore_a, a.pore_b, a.shift_scale, a.alive, a.factor,
           a.bond_length, a.inverse_length, a.coefficient, a.volume, a.breakable, PairForcesToEnds<D, true>(a), a.may_break);
-    // the caller's second pass over a run that may break a bond reads the first pass's marks
-    alignas(64) double g[3][max_run_length], stretch[max_run_length], past[max_run_length];
-    if (pmb_run_pair_forces<D, Corrected, Shifted, Masked>(
-            a.length, a.xa, a.ya, a.za, a.xb, a.yb, a.zb, a.limit_a, a.limit_b, a.pore_a, a.pore_b, a.shift_scale, a.alive, a.factor,
-            a.bond_length, a.inverse_length, a.coefficient, a.volume, a.breakable, PairForcesToBuffers<D, true>{g[0], g[1], g[2], stretch},
-            past)) {
-      std::copy(past, past + a.length, a.may_break);
-      return true;
-    }
+    alignas(64) double g[3][max_run_length], stretch[max_run_length];
+    const bool may_break = pmb_run_pair_forces<D, Corrected, Shifted, Masked>(
+        a.length, a.xa, a.ya, a.za, a.xb, a.yb, a.zb, a.limit_a, a.limit_b, a.pore_a, a.pore_b, a.shift_scale, a.alive, a.factor,
+        a.bond_length, a.inverse_length, a.coefficient, a.volume, a.breakable, PairForcesToBuffers<D, true>{g[0], g[1], g[2], stretch},
+        a.may_break);
     add_pair_forces_to_run_ends<D>(a, g);
     lower_to_run_stretches(a.smallest_a, stretch, a.length);
     lower_to_run_stretches(a.smallest_b, stretch, a.length);
-    return false;
+    return may_break;
   }
 };
 
@@ -208,17 +203,10 @@ void pmb_forces(Model<D>& m, const BodyInfo& body) {
     else
       may_break = masked ? pmb_run_kernel<D, Corrected, false, true>(isa)(a) : pmb_run_kernel<D, Corrected, false, false>(isa)(a);
     if (!may_break) return;
-    if (a.ends_apart) {  // the rest of the run is added: the bonds that may break one by one
-      for (std::size_t t = 0; t < length; ++t)
-        if (flagged[t] != 0.0) settle.template operator()<Wet, Corrected>(run, t);
-      return;
-    }
-    // the bonds that may break one by one; the rest of the run again in the vector form, without
-    // them (each bond of a run has its own two ends, so the order of their forces does not matter)
-    for (std::size_t t = 0; t < length; ++t) alive[t] = flagged[t] != 0.0 ? 0.0 : masked ? alive[t] : 1.0;
-    const bool again = pore ? pmb_run_kernel<D, Corrected, true, true>(isa)(a) : pmb_run_kernel<D, Corrected, false, true>(isa)(a);
+    // the rest of the run is added: the bonds that may break one by one (each bond of a run has its
+    // own two ends, so the order of their forces does not matter)
     for (std::size_t t = 0; t < length; ++t)
-      if (again || flagged[t] != 0.0) settle.template operator()<Wet, Corrected>(run, t);
+      if (flagged[t] != 0.0) settle.template operator()<Wet, Corrected>(run, t);
   };
   auto runs = [&]<bool Wet>() {
     if (c.surface_correction)
