@@ -37,7 +37,8 @@ double compute_kernel(long iterations) {
 
 double throughput_kernel(long iterations) {
   typedef double Pair __attribute__((vector_size(16)));  // two doubles: SSE2, on every x86-64
-  // twelve chains in twelve of the sixteen SSE registers, two multiply-adds apart in each
+  // twelve chains, each in one of the sixteen SSE registers, so that a multiply and an add of
+  // another chain fill every cycle a chain waits on its last result
   constexpr int chains = 12;
   Pair a[chains];
   for (int k = 0; k < chains; ++k) a[k] = Pair{1.0, 1.1} + 0.01 * k;
