@@ -772,3 +772,24 @@ TEST(BondRuns, OneLoopFormAddsToOverlappingEndsInTheBondsOrder) {
     }
   }
 }
+
+// A change of bond states takes a version no other states have (pd/bond_states.hpp): a copy keeps its
+// original's version until either changes, and two states changed apart never share one, even where
+// each made the same number of changes (a cache made from one, as the fluid network's counts of
+// bonds are, is then never taken for the other's).
+TEST(BondStates, AChangeTakesAVersionNoOtherStatesHave) {
+  rift::pd::BondStates a;
+  a.replace().assign(16, rift::pd::bond_intact);
+  rift::pd::BondStates b = a;
+  EXPECT_EQ(a.version(), b.version());
+  a.set(3, rift::pd::bond_broken);
+  b.set(5, rift::pd::bond_broken);
+  EXPECT_NE(a.version(), b.version());
+  rift::pd::BondStates c, d;
+  c.replace().assign(16, rift::pd::bond_intact);
+  d.replace().assign(16, rift::pd::bond_intact);
+  EXPECT_NE(c.version(), d.version());
+  const auto before = c.version();
+  c.changed();
+  EXPECT_NE(c.version(), before);
+}

@@ -24,6 +24,10 @@ export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMPI_MCA_rmaps_
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
 fail() { echo "FAIL: $*"; exit 1; }
+# one_rank ARGS...: rift without mpirun, the reference the distributed runs are compared with, on
+# both of the cores this test has to itself (tests/CMakeLists.txt: its mpiruns take them; rift's sums
+# do not depend on the number of threads, so its bytes are a one-thread run's)
+one_rank() { OMP_NUM_THREADS=2 "$rift" "$@"; }
 # RIFT_MPI_SANITIZED=1 (the sanitizer build, tests/CMakeLists.txt): each scene is compared on its
 # largest rank count alone, and the scenes of minutes each under the sanitizers (thousands of dynamic
 # relaxation iterations, the MPM crack's growth) are left out (skipped): the sanitizers look for
@@ -187,7 +191,7 @@ sed -e 's/model = "pmb"/model = "lps"/' -e 's/fracture_energy = 3.8/bond_failure
   -e 's/name = "plate"/name = "ns_plate"/' "$tmp/plate.toml" > "$tmp/ns_plate.toml"
 
 for scene in plate bar ves_bar ns_plate; do
-  "$rift" run "$tmp/$scene.toml" -o "$tmp/$scene-serial" -q > "$tmp/$scene-serial.log"
+  one_rank run "$tmp/$scene.toml" -o "$tmp/$scene-serial" -q > "$tmp/$scene-serial.log"
   same_on_ranks "$scene" 1 2 3
   echo "ok: $scene on $(compared_on 1 2 3) ranks: the same bytes in every output as one rank"
 done
@@ -201,7 +205,7 @@ done
 sed -e 's/type = "velocity"/type = "displacement"/' -e 's/^z = 5.0/z = 2.0e-6\ntime = { function = "ramp", start = 0.0, end = 1.0 }/' \
   -e 's/type = "explicit"/type = "dynamic_relaxation"\nload_steps = 2\nmax_iterations = 400\ntolerance = 1e-4/' -e 's/end_time = 2.0e-5/end_time = 1.0/' \
   -e '/^snapshots = 3/d' -e '/^history_rows = 10/d' -e 's/name = "bar"/name = "relax_bar"/' "$tmp/bar.toml" > "$tmp/relax_bar.toml"
-skipped relax_bar || "$rift" run "$tmp/relax_bar.toml" -o "$tmp/relax_bar-serial" -q > /dev/null
+skipped relax_bar || one_rank run "$tmp/relax_bar.toml" -o "$tmp/relax_bar-serial" -q > /dev/null
 for scene in bar ves_bar relax_bar; do
   skipped "$scene" && continue
   for grid in 1x2x2 1x2x1; do
@@ -275,7 +279,7 @@ SCENE
 sed -e 's/type = "traction"/type = "velocity"/' -e 's/^y = 4.0e6/y = -50.0/' -e 's/^y = -4.0e6/y = 0.0/' \
     -e 's/end_time = 2.5e-5/end_time = 4e-5/' -e 's/name = "plate"/name = "squeeze"/' "$tmp/plate.toml" > "$tmp/squeeze.toml"
 for scene in impact squeeze; do
-  "$rift" run "$tmp/$scene.toml" -o "$tmp/$scene-serial" -q > /dev/null
+  one_rank run "$tmp/$scene.toml" -o "$tmp/$scene-serial" -q > /dev/null
   same_on_ranks "$scene" 2 3
 done
 awk -F, 'NR > 1 { b = $6 } END { exit !(b > 10000) }' "$tmp/impact-serial/history.csv" || fail "impact: the striker did not break the plate"
@@ -296,7 +300,7 @@ grep -q 'type = "fixed"\|type = "displacement"' "$tmp/free_plate.toml" && fail "
 for case in "relax_plate 100" "free_plate 1000"; do
   read -r scene least <<< "$case"
   skipped "$scene" && continue
-  "$rift" run "$tmp/$scene.toml" -o "$tmp/$scene-serial" -q > /dev/null
+  one_rank run "$tmp/$scene.toml" -o "$tmp/$scene-serial" -q > /dev/null
   same_on_ranks "$scene" 2 3
   awk -F, -v least="$least" 'NR > 1 { b = $4 } END { exit !(b > least) }' "$tmp/$scene-serial/history.csv" || fail "$scene: fewer than $least bonds broke"
 done
@@ -363,7 +367,7 @@ for case in "insitu_platens force evaluations of preconditioned conjugate gradie
   "insitu_coarse force evaluations of preconditioned conjugate gradients" "insitu_dr iterations of dynamic relaxation"; do
   read -r scene how <<< "$case"
   skipped "$scene" && continue
-  "$rift" run "$tmp/$scene.toml" -o "$tmp/$scene-serial" > "$tmp/$scene-serial.log" 2>&1 || { cat "$tmp/$scene-serial.log"; fail "$scene: one rank"; }
+  one_rank run "$tmp/$scene.toml" -o "$tmp/$scene-serial" > "$tmp/$scene-serial.log" 2>&1 || { cat "$tmp/$scene-serial.log"; fail "$scene: one rank"; }
   grep -q "in-situ stage: equilibrium in [0-9]* $how" "$tmp/$scene-serial.log" || fail "$scene: its in-situ stage did not reach equilibrium by $how"
   awk -F, 'NR > 1 { b = $4 } END { exit !(b > 1000) }' "$tmp/$scene-serial/history.csv" || fail "$scene: fewer than 1000 bonds broke"
   same_on_ranks "$scene" 2 3
@@ -473,22 +477,22 @@ damage_image = false
 damage_histogram = false
 SCENE
 if ! skipped borehole; then
-  "$rift" run "$tmp/borehole.toml" -o "$tmp/borehole-serial" -q > /dev/null
+  one_rank run "$tmp/borehole.toml" -o "$tmp/borehole-serial" -q > /dev/null
   sed -e 's/breakdown_pressure = 4e6/breakdown_pressure = 100e6/' -e 's/name = "borehole"/name = "sealed"/' "$tmp/borehole.toml" > "$tmp/sealed.toml"
-  "$rift" run "$tmp/sealed.toml" -o "$tmp/sealed-serial" -q > /dev/null
+  one_rank run "$tmp/sealed.toml" -o "$tmp/sealed-serial" -q > /dev/null
   # the fluid must have entered the pre-crack: the borehole's pressure at the end is under half the
   # sealed borehole's
   paste -d, "$tmp/borehole-serial/history.csv" "$tmp/sealed-serial/history.csv" | awk -F, 'NR > 1 { open = $4; shut = $12 } END { exit !(open < 0.5 * shut) }' ||
     fail "borehole: the fluid did not enter the dry pre-crack after breakdown"
 fi
-"$rift" run "$tmp/pressurized.toml" -o "$tmp/pressurized-serial" -q > /dev/null
+one_rank run "$tmp/pressurized.toml" -o "$tmp/pressurized-serial" -q > /dev/null
 # growing: the pressurized pre-crack in rock whose bonds break (fracture_energy), the fluid's cracks
 # growing across both cuts: the ghosts' bond states from their owners, the labels, fragments and
 # network load made over the ranks (fluid_network.hpp, network_load.hpp)
 sed -e 's/poisson_ratio = 0.25/poisson_ratio = 0.25\nfracture_energy = 0.5/' -e 's/name = "pressurized"/name = "growing"/' \
   -e 's/history = \["kinetic_energy", "strain_energy"\]/history = ["kinetic_energy", "strain_energy", "broken_bonds"]/' \
   "$tmp/pressurized.toml" > "$tmp/growing.toml"
-"$rift" run "$tmp/growing.toml" -o "$tmp/growing-serial" -q > /dev/null
+one_rank run "$tmp/growing.toml" -o "$tmp/growing-serial" -q > /dev/null
 # the cracks grew: over a thousand bonds broken by the end
 awk -F, 'NR == 1 { for (c = 1; c <= NF; ++c) if ($c == "broken_bonds") column = c } NR > 1 { broken = $column } END { exit !(column && broken > 1000) }' \
   "$tmp/growing-serial/history.csv" || fail "growing: the fluid's cracks did not grow"
@@ -497,7 +501,7 @@ awk -F, 'NR == 1 { for (c = 1; c <= NF; ++c) if ($c == "broken_bonds") column = 
 # cut, its pressures solved over the whole network on every rank
 sed -e 's/fluid_bulk_modulus = 2.2e9/fluid_bulk_modulus = 2.2e9\nfluid_viscosity = 0.001/' -e 's/center = \[0.02, 0.032\]/center = [0.02, -0.009]/' \
   -e 's/name = "growing"/name = "flowing"/' "$tmp/growing.toml" > "$tmp/flowing.toml"
-"$rift" run "$tmp/flowing.toml" -o "$tmp/flowing-serial" -q > /dev/null
+one_rank run "$tmp/flowing.toml" -o "$tmp/flowing-serial" -q > /dev/null
 # the water flowed and held pressure: 0.62 MPa in the borehole at the end, where the lumped fluid
 # of growing (no viscosity) had cavitated to zero
 awk -F, 'NR == 1 { for (c = 1; c <= NF; ++c) if ($c == "pressure_borehole_0") column = c } NR > 1 { p = $column } END { exit !(column && p > 1e5) }' \
@@ -507,7 +511,7 @@ awk -F, 'NR == 1 { for (c = 1; c <= NF; ++c) if ($c == "pressure_borehole_0") co
 # ghost end's strain and fluid from their owners; the outcome is reduced over the ranks
 awk '/^\[solver\]/ { print "[[interfaces]]\npoints = [[0.01, -0.045], [0.01, 0.045]]\ntensile_strength = 0.2e6\nfriction_coefficient = 0.6" } { print }' \
   "$tmp/growing.toml" | sed -e 's/name = "growing"/name = "interface"/' > "$tmp/interface.toml"
-"$rift" run "$tmp/interface.toml" -o "$tmp/interface-serial" > "$tmp/interface-serial.log" 2>&1
+one_rank run "$tmp/interface.toml" -o "$tmp/interface-serial" > "$tmp/interface-serial.log" 2>&1
 # its fracture crossed the interface and the fluid opened it: crossed+dilated (one rank's reading)
 grep -q "interface 0: crossed+dilated" "$tmp/interface-serial.log" || { cat "$tmp/interface-serial.log"; fail "interface: not crossed+dilated on one rank"; }
 # competing: the growing scene's borehole beside the pressurized crack and a dry pre-crack from
@@ -517,7 +521,7 @@ grep -q "interface 0: crossed+dilated" "$tmp/interface-serial.log" || { cat "$tm
 awk '/^\[\[boreholes\]\]/ { print "[[cracks]]\npoints = [[-0.002, 0.02], [0.03, 0.0]]\n" } { print }' "$tmp/growing.toml" |
   sed -e 's/name = "growing"/name = "competing"/' -e 's/center = \[0.02, 0.032\]/center = [0.02, 0.0]/' -e 's/end_time = 5e-5/end_time = 3.5e-5/' \
   > "$tmp/competing.toml"
-"$rift" run "$tmp/competing.toml" -o "$tmp/competing-serial" -q > /dev/null
+one_rank run "$tmp/competing.toml" -o "$tmp/competing-serial" -q > /dev/null
 for scene in borehole pressurized growing flowing interface competing; do
   skipped "$scene" && continue
   same_on_ranks "$scene" 2 3
@@ -528,7 +532,7 @@ done
 sed -e 's/end_time = 1.0/end_time = 0.1/' -e 's/load_steps = 20/load_steps = 2/' -e 's/snapshots = 20/snapshots = 2\ndamage_image = false\ndamage_histogram = false/' \
   -e 's/name = "hf_kgd_viscosity"/name = "kgd_viscous"/' "$examples/hf_kgd_viscosity.toml" > "$tmp/kgd_viscous.toml"
 if ! skipped kgd_viscous; then
-  "$rift" run "$tmp/kgd_viscous.toml" -o "$tmp/kgd_viscous-serial" -q > /dev/null
+  one_rank run "$tmp/kgd_viscous.toml" -o "$tmp/kgd_viscous-serial" -q > /dev/null
   awk -F, 'NR > 1 { b = $3 } END { exit !(b > 50) }' "$tmp/kgd_viscous-serial/history.csv" || fail "kgd_viscous: its crack did not grow"
   same_on_ranks kgd_viscous 2
 fi
@@ -613,7 +617,7 @@ fields = ["displacement", "velocity", "stress", "strain_energy_density"]
 history_rows = 20
 SCENE
 for scene in mpm_cantilever mpm_disks mpm_block; do
-  "$rift" run "$tmp/$scene.toml" -o "$tmp/$scene-serial" -q > /dev/null
+  one_rank run "$tmp/$scene.toml" -o "$tmp/$scene-serial" -q > /dev/null
   for np in $(ranks_compared 1 2 3); do
     run_on_ranks "$scene" "$np"
     out="$tmp/$scene-np$np"
@@ -646,7 +650,7 @@ awk -F, 'NR > 1 && $4 > s { s = $4 } END { exit !(s > 1e-4) }' "$tmp/mpm_disks-s
 # crosses two cuts on 3 ranks; each rank moves the crack particles in its slab and all add up the
 # velocities; rank 0 takes J and K at the tip on the whole model gathered at the history rows
 sed -e 's/end_time = 0.015/end_time = 0.0003/' -e 's/history_rows = 100/history_rows = 8/' "$examples/mpm_dcb.toml" > "$tmp/mpm_dcb.toml"
-"$rift" run "$tmp/mpm_dcb.toml" -o "$tmp/mpm_dcb-serial" -q > /dev/null
+one_rank run "$tmp/mpm_dcb.toml" -o "$tmp/mpm_dcb-serial" -q > /dev/null
 "${mpirun[@]}" -np 3 "$rift" run "$tmp/mpm_dcb.toml" -o "$tmp/mpm_dcb-np3" -q > "$tmp/mpm_dcb-np3.log" 2>&1 ||
   { cat "$tmp/mpm_dcb-np3.log"; fail "mpm_dcb: mpirun -np 3"; }
 "$compare_fields" "$tmp/mpm_dcb-serial" "$tmp/mpm_dcb-np3" 1e-12 || fail "mpm_dcb on 3 ranks differs from the one-rank run"
@@ -661,7 +665,7 @@ echo "ok: mpm_dcb (an explicit crack across a cut, J and K at its tip on the mid
 sed -e 's/end_time = 0.0076/end_time = 0.0005/' -e 's/history_rows = 200/history_rows = 10/' -e 's/toughness = 8.0e5/toughness = 1.0e4/' \
   "$examples/mpm_mixed_mode_growth.toml" > "$tmp/mpm_growth.toml"
 if ! skipped mpm_growth; then
-  "$rift" run "$tmp/mpm_growth.toml" -o "$tmp/mpm_growth-serial" > "$tmp/mpm_growth-serial.log"
+  one_rank run "$tmp/mpm_growth.toml" -o "$tmp/mpm_growth-serial" > "$tmp/mpm_growth-serial.log"
   "${mpirun[@]}" -np 2 "$rift" run "$tmp/mpm_growth.toml" -o "$tmp/mpm_growth-np2" > "$tmp/mpm_growth-np2.log" 2>&1 ||
     { cat "$tmp/mpm_growth-np2.log"; fail "mpm_growth: mpirun -np 2"; }
   grep -q "crack growth [1-9][0-9]* increments" "$tmp/mpm_growth-serial.log" || fail "mpm_growth: the crack did not grow"

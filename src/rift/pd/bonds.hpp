@@ -232,6 +232,10 @@ struct FluidNetwork {
   bool relabel = true;                        // the labels are to be made from scratch (the first time, a wall broke down)
   bool pressure_bonds = false;                // the whole model has pressure bonds (crack_pressure.hpp; a rank's window may hold none)
   std::vector<std::uint64_t> bond_counts;     // per particle at the last update: its intact and broken bonds counted (fluid_network.hpp)
+  // the bond states' version (BondStates::version) bond_counts were counted at, and the failed
+  // interface bonds of the owned rows then: a cache, not state (0: not counted)
+  std::uint64_t counted_states = 0;
+  std::int64_t counted_interface_failed = 0;
   std::vector<std::uint8_t> outer_surface;    // per particle: on the body's outer free surface (fluid_network.hpp)
   std::vector<std::uint8_t> in_crack;         // per particle: the fluid reaches it across a crack (a broken or cut bond), not only at a borehole's wall
   std::vector<std::uint8_t> immersed;         // per particle: wet, in a fragment its intact bonds no longer join to the body (fluid_network.hpp): no fluid load

@@ -457,20 +457,26 @@ void update_fluid_network(Model<D>& m) {
   const bool distributed = ranks.distributed();
   // the rows this rank decides: on N ranks its owned particles' (the owners decide the ghosts')
   const std::vector<IndexRange> owned = m.owned(), ghost_rows = m.ghost_ranges();
+  // no state changed since the last count (a relaxation's iterations hold the bonds): the counts
+  // stand, and no particle's bonds changed on this rank, without a pass over the bonds
+  const bool counted = made && f.counted_states == b.intact.version();
   static thread_local std::vector<std::uint64_t> counts;  // the calling thread's, kept between calls
-  counts.resize(n);
-  std::int64_t owned_failed = 0;
-  for (const IndexRange& r : owned) owned_failed += count_bond_states(b, r.first, r.last, counts);
+  std::vector<std::uint64_t>& target = counted ? f.bond_counts : counts;
+  std::int64_t owned_failed = counted ? f.counted_interface_failed : 0;
   const auto count_ghost_rows = [&] {
-    for (const IndexRange& r : ghost_rows) count_bond_states(b, r.first, r.last, counts);
+    for (const IndexRange& r : ghost_rows) count_bond_states(b, r.first, r.last, target);
   };
-  count_ghost_rows();
   // the particles whose bonds changed state since the last update
   std::vector<std::size_t> changed;
-  if (made)
-    for (const IndexRange& r : owned)
-      for (std::size_t i = r.first; i < r.last; ++i)
-        if (counts[i] != f.bond_counts[i]) changed.push_back(i);
+  if (!counted) {
+    counts.resize(n);
+    for (const IndexRange& r : owned) owned_failed += count_bond_states(b, r.first, r.last, counts);
+    count_ghost_rows();
+    if (made)
+      for (const IndexRange& r : owned)
+        for (std::size_t i = r.first; i < r.last; ++i)
+          if (counts[i] != f.bond_counts[i]) changed.push_back(i);
+  }
   bool any_changed = !changed.empty();
   if (distributed) {
     // the ghosts' rows as their owners broke them, once a bond changed on any rank
@@ -480,7 +486,8 @@ void update_fluid_network(Model<D>& m) {
       count_ghost_rows();  // only the ghost rows changed
     }
   }
-  std::swap(f.bond_counts, counts);
+  if (!counted) std::swap(f.bond_counts, counts);
+  f.counted_states = b.intact.version(), f.counted_interface_failed = owned_failed;
   // the failed interface bonds of the whole model (each counted at both ends, as one rank counts them)
   const std::int64_t interface_failed =
       distributed && !m.interface_bonds.laws.empty() ? static_cast<std::int64_t>(ranks.sum(static_cast<double>(owned_failed))) : owned_failed;

@@ -208,7 +208,33 @@ inline std::vector<double> solve_network_pressure(const std::vector<FlowBond>& b
   }
   Eigen::SparseMatrix<double> A(free_nodes, free_nodes);
   A.setFromTriplets(entries.begin(), entries.end());
-  Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> solver(A);
+  // The fill-reducing ordering and the symbolic factorization (most of a solve: the minimum degree
+  // ordering) kept from the calling thread's last solves for the last few patterns (a relaxation's
+  // iterations between bond breaks, each with its few cavitation passes, repeat them):
+  // analyzePattern() then factorize() is what compute() does, so a kept analysis gives the same bits.
+  struct KeptAnalysis {
+    Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> solver;
+    std::vector<int> outer, inner;
+    std::uint64_t used = 0;
+  };
+  static thread_local std::array<KeptAnalysis, 4> kept;
+  static thread_local std::uint64_t solves = 0;
+  const auto outer = A.outerIndexPtr(), inner = A.innerIndexPtr();
+  const auto stored = static_cast<std::size_t>(A.nonZeros());
+  auto same_pattern = [&](const KeptAnalysis& k) {
+    return k.outer.size() == static_cast<std::size_t>(free_nodes) + 1 && k.inner.size() == stored &&
+           std::equal(k.outer.begin(), k.outer.end(), outer) && std::equal(k.inner.begin(), k.inner.end(), inner);
+  };
+  auto found = std::find_if(kept.begin(), kept.end(), same_pattern);
+  if (found == kept.end()) {  // the least recently used makes way
+    found = std::min_element(kept.begin(), kept.end(), [](const KeptAnalysis& a, const KeptAnalysis& b) { return a.used < b.used; });
+    found->outer.clear(), found->inner.clear();  // a throw below leaves nothing kept
+    found->solver.analyzePattern(A);
+    found->outer.assign(outer, outer + free_nodes + 1), found->inner.assign(inner, inner + stored);
+  }
+  found->used = ++solves;
+  auto& solver = found->solver;
+  solver.factorize(A);
   if (solver.info() != Eigen::Success) throw std::runtime_error("network flow: a part of the network holds no fluid and meets no fixed pressure");
   const Eigen::VectorXd x = solver.solve(rhs);
   for (std::size_t a = 0; a < n; ++a)
