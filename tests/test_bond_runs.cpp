@@ -367,7 +367,7 @@ void check_pmb_against_rows(bool surface_correction) {
 // The rows of bond states the dilatation pass leaves for the force pass (bond_runs.hpp RowStates:
 // those of the bonds it broke made again, refresh_rows) equal rows made afresh from every bond's
 // state after it, bit for bit, with the intact counts of each row; and the pass broke bonds. With
-// LAMMPS's bonds to 3 spacings (122 offsets: a bit per offset) and the default's (250: no bits).
+// LAMMPS's bonds to 3 spacings (122 offsets: two words of bits per row) and the default's (250: four).
 TEST(BondRuns, RowsLeftByTheDilatationPassEqualRowsMadeAfresh) {
   for (const bool lammps : {true, false})
     for (const char* model : {"lps", "ves"}) {
@@ -385,10 +385,10 @@ TEST(BondRuns, RowsLeftByTheDilatationPassEqualRowsMadeAfresh) {
       std::size_t broke = 0;
       for (std::size_t k = 0; k < b.intact.size(); ++k) broke += before[k] != b.intact[k];
       ASSERT_GT(broke, 40u) << model;
-      ASSERT_EQ(left.intact != nullptr, lammps);
+      ASSERT_NE(left.intact, nullptr);
+      ASSERT_EQ(left.words, lammps ? 2u : 4u);
       const std::vector<std::uint8_t> whole(left.whole, left.whole + m.size());
-      const std::vector<std::uint64_t> words = lammps ? std::vector<std::uint64_t>(left.intact, left.intact + 2 * left.stride)
-                                                      : std::vector<std::uint64_t>{};
+      const std::vector<std::uint64_t> words(left.intact, left.intact + left.words * left.stride);
       // the rows left are the ones kept with the bonds, current as the pass left the states
       ASSERT_EQ(left.whole, b.kept_rows.whole.data());
       ASSERT_EQ(b.kept_rows.made.size(), 1u);
@@ -401,9 +401,8 @@ TEST(BondRuns, RowsLeftByTheDilatationPassEqualRowsMadeAfresh) {
         std::int32_t intact = 0;
         for (auto k = b.offset[i]; k < b.offset[i + 1]; ++k) intact += b.intact[static_cast<std::size_t>(k)] == rift::pd::bond_intact;
         ASSERT_EQ(rift::pd::intact_bond_count(b, fresh, i), intact) << model << " row " << i;
-        if (!lammps || whole[i] == rift::pd::bond_intact) continue;  // a whole row's bits are not read
-        ASSERT_EQ(words[i], fresh.intact[i]) << model << " row " << i;
-        ASSERT_EQ(words[left.stride + i], fresh.intact[fresh.stride + i]) << model << " row " << i;
+        if (whole[i] == rift::pd::bond_intact) continue;  // a whole row's bits are not read
+        for (std::size_t w = 0; w < left.words; ++w) ASSERT_EQ(words[w * left.stride + i], fresh.intact[w * fresh.stride + i]) << model << " row " << i;
       }
     }
 }
@@ -689,12 +688,12 @@ TEST(BondRuns, RowsKeptFromPassToPassGiveTheBitsOfRowsMadeAfresh) {
       rift::pd::Bonds copy = kept.bonds;
       copy.kept_rows = {};
       const rift::pd::RowStates fresh = rift::pd::whole_rows(copy, body);
-      ASSERT_EQ(rows.intact != nullptr, lammps);
+      ASSERT_NE(rows.intact, nullptr);
       for (std::size_t i = 0; i < kept.size(); ++i) {
         ASSERT_EQ(rows.whole[i], fresh.whole[i]) << model << " step " << step << " row " << i;
-        if (!lammps || rows.whole[i] == rift::pd::bond_intact) continue;  // a whole row's bits are not read
-        ASSERT_EQ(rows.intact[i], fresh.intact[i]) << model << " step " << step << " row " << i;
-        ASSERT_EQ(rows.intact[rows.stride + i], fresh.intact[fresh.stride + i]) << model << " step " << step << " row " << i;
+        if (rows.whole[i] == rift::pd::bond_intact) continue;  // a whole row's bits are not read
+        for (std::size_t w = 0; w < rows.words; ++w)
+          ASSERT_EQ(rows.intact[w * rows.stride + i], fresh.intact[w * fresh.stride + i]) << model << " step " << step << " row " << i;
       }
     }
     EXPECT_GT(broke, 1000u) << model;
@@ -792,4 +791,63 @@ TEST(BondStates, AChangeTakesAVersionNoOtherStatesHave) {
   const auto before = c.version();
   c.changed();
   EXPECT_NE(c.version(), before);
+}
+
+// A family of more offsets than the rows hold bits for (bond_runs.hpp max_row_words) has none: its
+// runs then find each bond's state in its row. The passes with rows without bits give the bits of
+// the passes with them: the dilatation pass (dilatations, couplings, smallest stretches and the
+// bonds it broke) and the force pass, on the deformed block with the default's 250 offsets (four
+// words of bits), with and without the surface correction, and a row of failed interface bonds.
+TEST(BondRuns, RowsWithoutBitsGiveTheBitsOfRowsWithThem) {
+  using Influence = rift::scene::Influence;
+  for (const bool corrected : {false, true}) {
+    auto with = rift::pd::discretize<3>(rift::scene::parse_string(block_scene(3, corrected, "lps"), "block.toml"));
+    deform_and_break(with);
+    const auto& body = with.bodies[0];
+    {  // a row whose bonds are all failed interface bonds (its state's bits all 0: none intact)
+      auto& b = with.bonds;
+      const std::size_t i = with.size() / 3;
+      for (auto k = b.offset[i]; k < b.offset[i + 1]; ++k) {
+        b.intact.set(static_cast<std::size_t>(k), rift::pd::bond_interface_failed);
+        b.intact.set(static_cast<std::size_t>(rift::pd::reverse_bond(b, body, i, k)), rift::pd::bond_interface_failed);
+      }
+      ASSERT_EQ(rift::pd::intact_bond_count(b, rift::pd::whole_rows(b, body), i), 0);
+    }
+    auto without = with;
+    ASSERT_EQ(body.constants.surface_correction, corrected);
+    struct Pass {
+      std::vector<double> coupling, smallest;
+      std::vector<std::pair<std::size_t, std::int64_t>> broken, crossing;
+    };
+    auto dilatation = [&](rift::pd::Model<3>& m, bool bits, Pass& p) {
+      rift::pd::RowStates rows = rift::pd::whole_rows(m.bonds, body);
+      ASSERT_NE(rows.intact, nullptr);
+      if (!bits) rows.intact = nullptr;
+      p.coupling.assign(m.size(), 0.0), p.smallest.assign(m.size(), 1e300);
+      std::fill(m.dilatation.begin(), m.dilatation.end(), 0.0);
+      if (corrected)
+        rift::pd::dilatation_runs<3, Influence::constant, true, true>(m, body, rows, p.coupling.data(), p.smallest.data(), p.broken, p.crossing);
+      else
+        rift::pd::dilatation_runs<3, Influence::constant, true, false>(m, body, rows, p.coupling.data(), p.smallest.data(), p.broken, p.crossing);
+      m.bonds.intact.changed();
+      std::sort(p.broken.begin(), p.broken.end());
+    };
+    Pass a, z;
+    dilatation(with, true, a);
+    dilatation(without, false, z);
+    EXPECT_GT(a.broken.size(), 0u);
+    EXPECT_EQ(a.broken, z.broken);
+    EXPECT_TRUE(same_bits(with.dilatation, without.dilatation));
+    EXPECT_TRUE(same_bits(a.coupling, z.coupling));
+    EXPECT_TRUE(same_bits(a.smallest, z.smallest));
+    EXPECT_TRUE(with.bonds.intact == without.bonds.intact);
+    auto forces = [&](rift::pd::Model<3>& m, bool bits) {
+      rift::pd::RowStates rows = rift::pd::whole_rows(m.bonds, body);
+      if (!bits) rows.intact = nullptr;
+      rift::pd::state_based_forces<3, Influence::constant, false>(m, body, 0.0, &rows);
+    };
+    forces(with, true);
+    forces(without, false);
+    EXPECT_TRUE(same_bits(with.force, without.force)) << "surface correction " << corrected;
+  }
 }

@@ -111,24 +111,26 @@ inline void make_bond_runs(const Bonds& b, BodyInfo& body, const Numbering& numb
 /// whether its row is whole (every bond intact: the bonds' states are 1 or less for a broken bond, 2
 /// for a failed interface bond, so their AND is 1 only when all are 1; a run of whole rows needs no
 /// look at its bonds' states), and for the rows that are not, a bit per family offset of the body
-/// (where it has at most 128: a horizon of 3 spacings has 122 in 3D), set where that bond is intact.
+/// (where it has at most 64 max_row_words = 512: a horizon of 3 spacings has 122 in 3D with LAMMPS's
+/// partial volumes, 250 with the default's), set where that bond is intact.
 /// Made from the states only where they changed (whole_rows); after a pass that broke bonds, those
 /// of the bonds it broke made again (refresh_rows) for the force pass and the VES sums (ves.hpp).
+inline constexpr std::size_t max_row_words = 8;
 struct RowStates {
   std::uint8_t* whole = nullptr;
-  // offsets 0-63 of particle i at intact[i], 64-127 at intact[stride + i] (a run's rows one word
-  // after the next); null: the body has more offsets
+  // offsets 64 w to 64 w + 63 of particle i at intact[w stride + i] (a run's rows one word after the
+  // next); null: the body has more offsets
   std::uint64_t* intact = nullptr;
-  std::size_t stride = 0;
+  std::size_t stride = 0, words = 0;
   std::size_t first_family = 0;
   std::size_t family_count = 0;
   std::uint64_t version = 0;  // the version of the bond states the rows are (BondStates::version)
   explicit operator bool() const { return whole != nullptr; }
 };
 
-/// Bit t of bits (bits[0]: t < 64, bits[1]: the rest) set where state[t] is bond_intact, t < count
-/// <= 128. The states are 0, 1 or 2, so bit 0 of a state says intact; eight states at a time, their
-/// bits 0 gathered into one byte by a multiply (the eight partial products land on distinct bits of
+/// Bit t of bits (bit t & 63 of bits[t / 64]) set where state[t] is bond_intact, t < count <= 64
+/// max_row_words. The states are 0, 1 or 2, so bit 0 of a state says intact; eight states at a
+/// time, their bits 0 gathered into one byte by a multiply (the eight partial products land on distinct bits of
 /// the top byte), without the branch per bond that a row's random breaks mispredict.
 inline void intact_bits(const std::uint8_t* state, std::size_t count, std::uint64_t* bits) {
   static_assert(bond_intact == 1 && bond_broken == 0 && bond_interface_failed == 2);
@@ -156,7 +158,7 @@ inline void make_row_state(const Bonds& b, const RowStates& rows, std::size_t i)
   const std::uint8_t all = row_whole(b, i);
   rows.whole[i] = all;
   if (!rows.intact || all == bond_intact) return;
-  std::uint64_t word[2] = {0, 0};
+  std::uint64_t word[max_row_words] = {};
   if (static_cast<std::size_t>(last - first) == rows.family_count) {
     // a whole family: its rows' families ascend, so the bond's place is its offset
     intact_bits(state + first, rows.family_count, word);
@@ -167,7 +169,7 @@ inline void make_row_state(const Bonds& b, const RowStates& rows, std::size_t i)
         word[f >> 6] |= std::uint64_t{1} << (f & 63);
       }
   }
-  rows.intact[i] = word[0], rows.intact[rows.stride + i] = word[1];
+  for (std::size_t w = 0; w < rows.words; ++w) rows.intact[w * rows.stride + i] = word[w];
 }
 
 /// The rows of the body's particles, kept with the bonds (Bonds::kept_rows, indexed by particle, so
@@ -177,10 +179,11 @@ inline void make_row_state(const Bonds& b, const RowStates& rows, std::size_t i)
 inline RowStates whole_rows(const Bonds& b, const BodyInfo& body) {
   Bonds::KeptRows& kept = b.kept_rows;
   const std::size_t stride = b.offset.size();
-  const bool bits = body.family_count <= 128;
+  const std::size_t words = (body.family_count + 63) / 64;
+  const bool bits = words <= max_row_words;
   if (kept.whole.size() != stride) kept.whole.resize(stride), kept.made.clear();
-  if (bits && kept.intact.size() < 2 * stride) kept.intact.resize(2 * stride);  // never shrinks: another body's rows may be in use
-  const RowStates rows{kept.whole.data(), bits ? kept.intact.data() : nullptr, stride, body.first_family, body.family_count,
+  if (bits && kept.intact.size() < words * stride) kept.intact.resize(words * stride);  // never shrinks: another body's rows may be in use
+  const RowStates rows{kept.whole.data(), bits ? kept.intact.data() : nullptr, stride, bits ? words : 0, body.first_family, body.family_count,
                        b.intact.version()};
   const auto same = [&](const Bonds::KeptRows::Made& r) { return r.first == body.first && r.last == body.last; };
   const auto made = std::find_if(kept.made.begin(), kept.made.end(), same);
@@ -213,7 +216,11 @@ inline void refresh_rows(const Bonds& b, const BodyInfo& body, const RowStates& 
 inline std::int32_t intact_bond_count(const Bonds& b, const RowStates& rows, std::size_t i) {
   const auto length = static_cast<std::int32_t>(b.offset[i + 1] - b.offset[i]);
   if (rows.whole[i] == bond_intact) return length;
-  if (rows.intact) return std::popcount(rows.intact[i]) + std::popcount(rows.intact[rows.stride + i]);
+  if (rows.intact) {
+    std::int32_t count = 0;
+    for (std::size_t w = 0; w < rows.words; ++w) count += std::popcount(rows.intact[w * rows.stride + i]);
+    return count;
+  }
   std::int32_t count = 0;
   for (auto k = b.offset[i]; k < b.offset[i + 1]; ++k) count += b.intact[static_cast<std::size_t>(k)] == bond_intact;
   return count;
@@ -232,6 +239,19 @@ inline std::int64_t run_bond(const Bonds& b, const BondRun& run, std::size_t t) 
   if (run.position != BondRun::varies) return b.offset[i] + run.position;
   const auto first = b.neighbor.begin() + b.offset[i], last = b.neighbor.begin() + b.offset[i + 1];
   return std::lower_bound(first, last, static_cast<std::int32_t>(run.j + static_cast<std::int32_t>(t))) - b.neighbor.begin();
+}
+
+/// Whether bond t of a run is intact: from the rows' states where they hold the bits of its row (a
+/// whole row, or the bit of the run's offset), else from its own state (found in its row: a search
+/// where the run's place in its rows varies, at a body's surfaces, which short runs mostly are).
+inline bool run_bond_intact(const Bonds& b, const BondRun& run, const RowStates& rows, std::size_t t) {
+  const std::size_t i = static_cast<std::size_t>(run.i) + t;
+  if (rows.whole[i] == bond_intact) return true;
+  if (rows.intact) {
+    const std::size_t f = run.family - rows.first_family;
+    return (rows.intact[(f >> 6) * rows.stride + i] >> (f & 63) & 1u) != 0;
+  }
+  return b.intact[static_cast<std::size_t>(run_bond(b, run, t))] == bond_intact;
 }
 
 /// Whether the run has a row that is not whole (RowStates); then alive[t] is 1 for its intact
@@ -254,17 +274,16 @@ inline bool mask_run(const Bonds& b, const BondRun& run, const RowStates& rows, 
   return true;
 }
 
-/// Bond t of a run as a row takes it: its ends i and j, its index k in i's row and its deformed
-/// vector y_j - y_i from the per-component positions x (positions_by_component).
+/// Bond t of a run as a row takes it: its ends i and j and its deformed vector y_j - y_i from the
+/// per-component positions x (positions_by_component); its index in i's row is run_bond's.
 template <int D>
-struct RunBond {
+struct RunEnds {
   std::size_t i, j;
-  std::int64_t k;
   Vec<D> eta;
 };
 template <int D>
-RunBond<D> run_bond_at(const Bonds& b, const BondRun& run, std::size_t t, const std::array<double*, 3>& x) {
-  RunBond<D> bond{static_cast<std::size_t>(run.i) + t, static_cast<std::size_t>(run.j) + t, run_bond(b, run, t), {}};
+RunEnds<D> run_ends_at(const BondRun& run, std::size_t t, const std::array<double*, 3>& x) {
+  RunEnds<D> bond{static_cast<std::size_t>(run.i) + t, static_cast<std::size_t>(run.j) + t, {}};
   for (int q = 0; q < D; ++q) bond.eta[q] = x[static_cast<std::size_t>(q)][bond.j] - x[static_cast<std::size_t>(q)][bond.i];
   return bond;
 }

@@ -86,8 +86,10 @@ void dilatation_runs(Model<D>& m, const BodyInfo& body, const RowStates& rows, d
   const VectorIsa isa = vector_isa();
   // bond t of a run, as a row takes it
   auto settle = [&]<bool Wet>(const BondRun& run, std::size_t t) {
-    const auto [i, j, k, eta] = run_bond_at<D>(b, run, t, x);
-    if (v.intact[k] != bond_intact) return;
+    // the rows' states as the pass found them: a run holds each pair once, and the pass breaks the
+    // lower end's bond (the mirrors after it), so they are the bond's own state here
+    if (!run_bond_intact(b, run, rows, t)) return;
+    const auto [i, j, eta] = run_ends_at<D>(run, t, x);
     const FamilyOffset& family = v.families[run.family];
     const double xi = family.length;
     const double e = norm<D>(eta) - xi;
@@ -96,6 +98,7 @@ void dilatation_runs(Model<D>& m, const BodyInfo& body, const RowStates& rows, d
     bool past = e > xi * limit, crossed = false;
     if constexpr (Wet) past = c.breakable && breaks_in_wet_rock<D>(wet, c.alpha, i, j, xi, value, limit, crossed);
     if (c.breakable && past) {
+      const std::int64_t k = run_bond(b, run, t);
       v.intact[k] = bond_broken;
       note_broken_bond(broken, crossing, i, k, crossed);
       return;
@@ -332,8 +335,8 @@ void state_based_forces(Model<D>& m, const BodyInfo& body, double history_dt, co
   const VectorIsa isa = vector_isa();
   // bond t of a run, as a row takes it
   auto settle = [&](const BondRun& run, std::size_t t) {
-    const auto [i, j, k, eta] = run_bond_at<D>(b, run, t, x);
-    if (b.intact[static_cast<std::size_t>(k)] != bond_intact) return;
+    if (!run_bond_intact(b, run, rows, t)) return;
+    const auto [i, j, eta] = run_ends_at<D>(run, t, x);
     const double r = norm<D>(eta);
     const FamilyOffset& family = b.families[run.family];
     const double xi = family.length;

@@ -136,8 +136,10 @@ void pmb_forces(Model<D>& m, const BodyInfo& body) {
   const VectorIsa isa = vector_isa();
   // bond t of a run, one at a time, as a row would take it: for a run that may break a bond
   auto settle = [&]<bool Wet, bool Corrected>(const BondRun& run, std::size_t t) {
-    const auto [i, j, k, eta] = run_bond_at<D>(b, run, t, x);
-    if (v.intact[k] != bond_intact) return;
+    // the rows' states as the pass found them: a run holds each pair once, and the pass breaks the
+    // lower end's bond (the mirrors after it), so they are the bond's own state here
+    if (!run_bond_intact(b, run, rows, t)) return;
+    const auto [i, j, eta] = run_ends_at<D>(run, t, x);
     const double r = norm<D>(eta);
     const FamilyOffset& family = v.families[run.family];
     const double s = (r - family.length) * family.inverse_length;
@@ -145,6 +147,7 @@ void pmb_forces(Model<D>& m, const BodyInfo& body) {
     bool past = s > limit, crossed = false;
     if constexpr (Wet) past = breakable && breaks_in_wet_rock<D>(wet, c.alpha, i, j, family.length, s, limit, crossed);
     if (breakable && past) {
+      const std::int64_t k = run_bond(b, run, t);
       v.intact[k] = bond_broken;
       note_broken_bond(broken, crossing, i, k, crossed);
       return;
