@@ -151,25 +151,41 @@ TEST(NetworkFlow, PoiseuilleAt30DegreesIsTheCubicLawWithinOnePercent) {
   EXPECT_NEAR(r.flux / r.expected, 1.0, 0.01);
 }
 
+// The block cut along y = 0 and its upper half lifted by w: a rigid slot of opening w, its flow
+// bonds, and each particle's share of the slot's volume (the node's storage).
+struct RigidSlot {
+  rift::pd::Model<2> m;
+  std::vector<rift::pd::FlowBond> bonds;
+  std::vector<double> stored;
+};
+RigidSlot rigid_slot(double w) {
+  RigidSlot slot{block(), {}, {}};
+  auto& m = slot.m;
+  auto& b = m.bonds;
+  for (std::size_t i = 0; i < m.size(); ++i)
+    for (auto k = b.offset[i]; k < b.offset[i + 1]; ++k)
+      if ((m.reference_position[i][1] > 0.0) != (m.reference_position[static_cast<std::size_t>(b.neighbor[k])][1] > 0.0))
+        b.intact.set(k, rift::pd::bond_broken);
+  for (std::size_t i = 0; i < m.size(); ++i)
+    if (m.reference_position[i][1] > 0.0) m.position[i][1] += w;
+  slot.bonds = rift::pd::flow_bonds<2>(m, viscosity, [](std::size_t, std::size_t) { return true; });
+  slot.stored.assign(m.size(), 0.0);
+  for (const auto& f : slot.bonds) slot.stored[f.i] += 0.5 * f.volume, slot.stored[f.j] += 0.5 * f.volume;
+  return slot;
+}
+
 // Transient flow into a rigid slot: the fluid (bulk modulus K_f) stored in the crack's volume and
 // its conductance make a diffusion of the pressure with D = w^2 K_f / (12 mu); from a pressure p0
 // held at the slot's end from t = 0, p = p0 erfc(d / (2 sqrt(D t))) a distance d into it (Carslaw
 // and Jaeger 1959, sec. 2.4). 100 backward Euler steps: 0.469 against erfc(1/2) = 0.4795 (0.470
 // with 1000 steps; the rest is the lattice's, the held columns reaching two spacings into the slot).
 TEST(NetworkFlow, PressureDiffusesIntoARigidSlot) {
-  auto m = block();
-  auto& b = m.bonds;
-  for (std::size_t i = 0; i < m.size(); ++i)
-    for (auto k = b.offset[i]; k < b.offset[i + 1]; ++k)
-      if ((m.reference_position[i][1] > 0.0) != (m.reference_position[static_cast<std::size_t>(b.neighbor[k])][1] > 0.0))
-        b.intact.set(k, rift::pd::bond_broken);
   const double w = 20e-6, bulk_modulus = 2.2e9, p0 = 1e6;
-  for (std::size_t i = 0; i < m.size(); ++i)
-    if (m.reference_position[i][1] > 0.0) m.position[i][1] += w;
-  const auto bonds = rift::pd::flow_bonds<2>(m, viscosity, [](std::size_t, std::size_t) { return true; });
+  const RigidSlot slot = rigid_slot(w);
+  const auto& m = slot.m;
+  const auto& bonds = slot.bonds;
+  const auto& stored = slot.stored;
   const std::size_t N = m.size();
-  std::vector<double> stored(N, 0.0);  // each node's share of the crack's volume
-  for (const auto& f : bonds) stored[f.i] += 0.5 * f.volume, stored[f.j] += 0.5 * f.volume;
   const double D = w * w * bulk_modulus / (12.0 * viscosity), end = 0.015 * 0.015 / D;  // sqrt(D t) = 15 mm
   const int steps = 100;
   const double dt = end / steps;
@@ -198,18 +214,11 @@ TEST(NetworkFlow, PressureDiffusesIntoARigidSlot) {
 // patterns and drops them (four are kept), each solve against the same solve on a new thread (whose
 // kept patterns start empty).
 TEST(NetworkFlow, AKeptAnalysisGivesTheBitsOfAFreshOne) {
-  auto m = block();
-  auto& b = m.bonds;
-  for (std::size_t i = 0; i < m.size(); ++i)
-    for (auto k = b.offset[i]; k < b.offset[i + 1]; ++k)
-      if ((m.reference_position[i][1] > 0.0) != (m.reference_position[static_cast<std::size_t>(b.neighbor[k])][1] > 0.0))
-        b.intact.set(k, rift::pd::bond_broken);
-  for (std::size_t i = 0; i < m.size(); ++i)
-    if (m.reference_position[i][1] > 0.0) m.position[i][1] += 20e-6;
-  const auto bonds = rift::pd::flow_bonds<2>(m, viscosity, [](std::size_t, std::size_t) { return true; });
+  const RigidSlot slot = rigid_slot(20e-6);
+  const auto& m = slot.m;
+  const auto& bonds = slot.bonds;
+  const auto& stored = slot.stored;
   const std::size_t N = m.size();
-  std::vector<double> stored(N, 0.0);
-  for (const auto& f : bonds) stored[f.i] += 0.5 * f.volume, stored[f.j] += 0.5 * f.volume;
   std::vector<double> storage(N), previous(N), zero(N, 0.0), value(N, 0.0);
   for (std::size_t i = 0; i < N; ++i) {
     storage[i] = stored[i] / 2.2e9;
