@@ -1,7 +1,10 @@
 // The vector instructions the passes' run kernels use (pd/bond_runs.hpp). The default build targets
 // the x86-64 baseline (SSE2: two doubles a vector), so that one binary runs everywhere; the kernels
-// are also compiled for AVX2 (four) and AVX-512 (eight) and chosen once, at run time, by what the
-// processor has. Every clone does the same IEEE operations in the same order (no fused multiply-add:
+// are also compiled for AVX2 (four) and AVX-512 and chosen once, at run time, by what the processor
+// has. The AVX-512 clone keeps to vectors of four doubles (AVX-512VL: its masks and 32 registers on
+// 256-bit vectors): on a Xeon (Sapphire Rapids) the cube's runs, a few dozen bonds each, ran 5-10%
+// slower in vectors of eight than in vectors of four (bench/README.md, session of 2026-12-01,
+// twenty-fifth). Every clone does the same IEEE operations in the same order (no fused multiply-add:
 // -ffp-contract=off; square roots and divisions are correctly rounded at every width), so results
 // are the same bits whichever runs (tests/test_bond_runs.cpp).
 #pragma once
@@ -39,7 +42,7 @@ inline VectorIsa set_vector_isa(VectorIsa isa) {
 // The attributes of a kernel's clones.
 #if defined(__x86_64__) && defined(__GNUC__)
 #define RIFT_TARGET_AVX2 __attribute__((target("avx2")))
-#define RIFT_TARGET_AVX512 __attribute__((target("avx512f,prefer-vector-width=512")))
+#define RIFT_TARGET_AVX512 __attribute__((target("avx512f,avx512vl,prefer-vector-width=256")))
 #else
 #define RIFT_TARGET_AVX2
 #define RIFT_TARGET_AVX512

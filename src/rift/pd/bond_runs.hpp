@@ -30,7 +30,7 @@ inline constexpr std::size_t max_run_length = Bonds::history_block;
 /// Runs shorter than this are taken bond by bond: a vector's set-up would cost more.
 inline constexpr std::size_t short_run = 4;
 
-/// The widest vector (AVX-512: eight doubles). A run whose upper ends start at least this far past
+/// The widest vector a clone may use (eight doubles; core/vector_isa.hpp). A run whose upper ends start at least this far past
 /// its lower ends (j - i, or past the run's end) can add to both ends in one loop, in vectors (omp
 /// simd safelen): an end that is both a lower end and, further on, an upper end of the run is never
 /// in one vector twice, and takes its two terms in the bonds' order.
