@@ -22,8 +22,8 @@ namespace rift::parallel {
 /// body(i) for i in [first, last). One compiled loop for a team's chunks and for the calling thread
 /// alone: inlined into each caller, GCC 12 compiled the 2D stress update's point body in the team's
 /// copy with its velocity gradient stored to the stack as scalars and read back as pairs (a failed
-/// store forwarding, twice a point), and two threads ran that pass 1.69 times faster than one
-/// instead of 2 (bench/README.md, session of 2026-12-01, twenty-fifth).
+/// store forwarding, twice a point), and two threads ran that pass 1.65-1.73 times faster than
+/// one instead of 2 (bench/README.md, session of 2026-12-01, twenty-fifth).
 template <class Body>
 [[gnu::noinline]] void for_each_in_range(std::size_t first, std::size_t last, Body& body) {
   for (std::size_t i = first; i < last; ++i) body(i);

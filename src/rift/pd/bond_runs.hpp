@@ -30,10 +30,10 @@ inline constexpr std::size_t max_run_length = Bonds::history_block;
 /// Runs shorter than this are taken bond by bond: a vector's set-up would cost more.
 inline constexpr std::size_t short_run = 4;
 
-/// The widest vector a clone may use (eight doubles; core/vector_isa.hpp). A run whose upper ends start at least this far past
-/// its lower ends (j - i, or past the run's end) can add to both ends in one loop, in vectors (omp
-/// simd safelen): an end that is both a lower end and, further on, an upper end of the run is never
-/// in one vector twice, and takes its two terms in the bonds' order.
+/// The widest vector a clone may use (eight doubles; core/vector_isa.hpp). A run whose upper ends
+/// start at least this far past its lower ends (j - i, or past the run's end) can add to both ends
+/// in one loop, in vectors (omp simd safelen): an end that is both a lower end and, further on, an
+/// upper end of the run is never in one vector twice, and takes its two terms in the bonds' order.
 inline constexpr std::size_t simd_ends_apart = 8;
 
 /// Whether a run's ends lie apart in vectors (simd_ends_apart).
@@ -111,8 +111,8 @@ inline void make_bond_runs(const Bonds& b, BodyInfo& body, const Numbering& numb
 /// whether its row is whole (every bond intact: the bonds' states are 1 or less for a broken bond, 2
 /// for a failed interface bond, so their AND is 1 only when all are 1; a run of whole rows needs no
 /// look at its bonds' states), and for the rows that are not, a bit per family offset of the body
-/// (where it has at most 64 max_row_words = 512: a horizon of 3 spacings has 122 in 3D with LAMMPS's
-/// partial volumes, 250 with the default's), set where that bond is intact.
+/// (where it has at most 64 x max_row_words = 512: a horizon of 3 spacings has 122 in 3D with
+/// LAMMPS's partial volumes, 250 with the default's), set where that bond is intact.
 /// Made from the states only where they changed (whole_rows); after a pass that broke bonds, those
 /// of the bonds it broke made again (refresh_rows) for the force pass and the VES sums (ves.hpp).
 inline constexpr std::size_t max_row_words = 8;
@@ -128,10 +128,10 @@ struct RowStates {
   explicit operator bool() const { return whole != nullptr; }
 };
 
-/// Bit t of bits (bit t & 63 of bits[t / 64]) set where state[t] is bond_intact, t < count <= 64
+/// Bit t of bits (bit t & 63 of bits[t / 64]) set where state[t] is bond_intact, t < count <= 64 x
 /// max_row_words. The states are 0, 1 or 2, so bit 0 of a state says intact; eight states at a
-/// time, their bits 0 gathered into one byte by a multiply (the eight partial products land on distinct bits of
-/// the top byte), without the branch per bond that a row's random breaks mispredict.
+/// time, their bits 0 gathered into one byte by a multiply (the eight partial products land on
+/// distinct bits of the top byte), without the branch per bond that a row's random breaks mispredict.
 inline void intact_bits(const std::uint8_t* state, std::size_t count, std::uint64_t* bits) {
   static_assert(bond_intact == 1 && bond_broken == 0 && bond_interface_failed == 2);
   constexpr std::uint64_t low_bits = 0x0101010101010101ull, gather = 0x0102040810204080ull;
