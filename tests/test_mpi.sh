@@ -496,6 +496,13 @@ one_rank run "$tmp/growing.toml" -o "$tmp/growing-serial" -q > /dev/null
 # the cracks grew: over a thousand bonds broken by the end
 awk -F, 'NR == 1 { for (c = 1; c <= NF; ++c) if ($c == "broken_bonds") column = c } NR > 1 { broken = $column } END { exit !(column && broken > 1000) }' \
   "$tmp/growing-serial/history.csv" || fail "growing: the fluid's cracks did not grow"
+# growing_uncorrected: the same without the surface correction, whose network load the runs of
+# bonds make over each rank's window (network_load_runs.hpp)
+sed -e 's/fracture_energy = 0.5/fracture_energy = 0.5\nsurface_correction = false/' -e 's/name = "growing"/name = "growing_uncorrected"/' \
+  "$tmp/growing.toml" > "$tmp/growing_uncorrected.toml"
+one_rank run "$tmp/growing_uncorrected.toml" -o "$tmp/growing_uncorrected-serial" -q > /dev/null
+awk -F, 'NR == 1 { for (c = 1; c <= NF; ++c) if ($c == "broken_bonds") column = c } NR > 1 { broken = $column } END { exit !(column && broken > 1000) }' \
+  "$tmp/growing_uncorrected-serial/history.csv" || fail "growing_uncorrected: the fluid's cracks did not grow"
 # flowing: the growing scene's borehole on the cut of 2 ranks, its water flowing along the cracks
 # grown from its wall by the cubic law (viscous_fluid.hpp): the network's nodes on both sides of the
 # cut, its pressures solved over the whole network on every rank
@@ -522,7 +529,7 @@ awk '/^\[\[boreholes\]\]/ { print "[[cracks]]\npoints = [[-0.002, 0.02], [0.03, 
   sed -e 's/name = "growing"/name = "competing"/' -e 's/center = \[0.02, 0.032\]/center = [0.02, 0.0]/' -e 's/end_time = 5e-5/end_time = 3.5e-5/' \
   > "$tmp/competing.toml"
 one_rank run "$tmp/competing.toml" -o "$tmp/competing-serial" -q > /dev/null
-for scene in borehole pressurized growing flowing interface competing; do
+for scene in borehole pressurized growing growing_uncorrected flowing interface competing; do
   skipped "$scene" && continue
   same_on_ranks "$scene" 2 3
 done
@@ -536,7 +543,7 @@ if ! skipped kgd_viscous; then
   awk -F, 'NR > 1 { b = $3 } END { exit !(b > 50) }' "$tmp/kgd_viscous-serial/history.csv" || fail "kgd_viscous: its crack did not grow"
   same_on_ranks kgd_viscous 2
 fi
-echo "ok: a borehole breaking down into a dry pre-crack (dynamic relaxation, in-situ stage), a pressurized pre-crack beside an injected borehole (explicit), the same pre-crack growing in breakable rock, a viscous fluid flowing along the cracks it grows across a cut, a pre-existing fracture across every cut that the fluid's crack crosses and dilates, and two fluids competing for a dry pre-crack on $(compared_on 2 3) ranks (and a viscous KGD fracture by dynamic relaxation on 2): the same bytes as one rank"
+echo "ok: a borehole breaking down into a dry pre-crack (dynamic relaxation, in-situ stage), a pressurized pre-crack beside an injected borehole (explicit), the same pre-crack growing in breakable rock (with and without the surface correction), a viscous fluid flowing along the cracks it grows across a cut, a pre-existing fracture across every cut that the fluid's crack crosses and dilates, and two fluids competing for a dry pre-crack on $(compared_on 2 3) ranks (and a viscous KGD fracture by dynamic relaxation on 2): the same bytes as one rank"
 
 # checkpoints written by 2 ranks restart on 3 and on 1, and the continued runs write the bytes of
 # the uninterrupted one-rank run (rank 0 gathers the whole run's state: any number of ranks reads it;

@@ -2,7 +2,8 @@
 // force evaluations under a uniform expansion, F with the bonds as they are and F^s with the
 // network's broken bonds held intact: g_s,i = (F_i - F^s_i) / (eps d kappa_i). rift evaluates the
 // difference itself on the particles within reach of the network alone, under a unit expansion
-// (every model is linear in it); here g is made from the definition with the model's own passes over
+// (every model is linear in it), or without the surface correction by the runs of bonds over the
+// whole body (network_load_runs.hpp); here g is made from the definition with the model's own passes over
 // the whole body (pmb.hpp, lps.hpp: what network_load.hpp did before), from the positions of the
 // expansion eps = 0.5, on a 2D and a 3D block whose crack grew from a pressurized pre-crack, PMB, LPS
 // with and without the surface correction and VES (by its LPS response). Tolerance 1e-12 of the
@@ -98,6 +99,8 @@ void check(const std::string& material) {
   const auto network = rift::pd::network_bond_list<D>(m, 0);
   ASSERT_GT(network.size(), 20u);
   const auto state = b.intact;
+  // without the surface correction g is made by the runs (network_load_runs.hpp), else by the rows
+  EXPECT_EQ(rift::pd::detail::load_by_runs<D>(m), material.find("surface_correction = false") != std::string::npos);
   rift::pd::update_network_load<D>(m);
   ASSERT_EQ(b.intact, state);  // the model as it was
   const auto local = m.fluid_network.network_load.at(0);
@@ -264,7 +267,8 @@ TEST(FluidNetwork, UpdatesWhileItGrowsEqualTheNetworkMadeFromScratch) {
 }
 
 TEST(NetworkLoad, IncrementalUpdateEqualsTheLoadMadeFromScratch) {
-  for (const char* material : {"model = \"pmb\"\n", "model = \"lps\"\n", "model = \"ves\"\nviscous_fraction = 0.5\nrelaxation_time = 1e-4\n"}) {
+  for (const char* material : {"model = \"pmb\"\n", "model = \"lps\"\n", "model = \"ves\"\nviscous_fraction = 0.5\nrelaxation_time = 1e-4\n",
+                               "model = \"lps\"\nsurface_correction = false\n"}) {
     check_incremental<2>(material);
     check_incremental<3>(material);
   }
@@ -272,7 +276,8 @@ TEST(NetworkLoad, IncrementalUpdateEqualsTheLoadMadeFromScratch) {
 
 TEST(NetworkLoad, LocalEvaluationEqualsTheDefinitionOverTheWholeBody) {
   for (const char* material : {"model = \"pmb\"\n", "model = \"lps\"\n", "model = \"lps\"\nsurface_correction = false\n",
-                               "model = \"ves\"\nviscous_fraction = 0.5\nrelaxation_time = 1e-4\n"}) {
+                               "model = \"ves\"\nviscous_fraction = 0.5\nrelaxation_time = 1e-4\n",
+                               "model = \"ves\"\nviscous_fraction = 0.5\nrelaxation_time = 1e-4\nsurface_correction = false\n"}) {
     check<2>(material);
     check<3>(material);
   }

@@ -1,0 +1,74 @@
+// The network load (network_load.hpp) of the bodies without the surface correction, in one pass over
+// the runs of bonds (bond_runs.hpp). Without the correction every factor of a bond is one, and t of
+// end e of a bond under the unit expansion (network_load.hpp end_force_state) is omega |xi| times a
+// number of e alone, from its NetworkEnd z:
+//   a network bond: t_e = omega |xi| held_e,   held_e = z.held + z.a (1 - z.theta / d),
+//   an intact bond: t_e = omega |xi| change_e, change_e = z.change - z.a z.d_theta / d,
+// both zero where e has no network bond (z zero). The pair force of F - F^s along xi is
+// -(t_i + t_j) V / |xi|, so a bond adds -omega V (s_i + s_j) xi to g_i (and the opposite to g_j),
+// s the ends' change or held by the bond's state: per run (one family offset) a constant vector
+// times a sum of two numbers read contiguously at both ends, a loop of a few vector instructions
+// where the rows' pass (changed_rows_pass) gathered every neighbour's NetworkEnd (a fifth of a
+// thesis-size step in the breaking regime).
+#pragma once
+#include <cstddef>
+
+#include "rift/core/vector_isa.hpp"
+#include "rift/pd/bond_runs.hpp"
+
+namespace rift::pd {
+
+/// One run of the network load pass: the lower ends' arrays start at a, the upper ends' at b;
+/// `alive` (Masked): 1 for an intact bond, 0 for another; wet: 1 where the network's fluid reached
+/// the particle (FluidNetwork::source), else 0; k: -omega V xi of the run's family; g: the sums, per
+/// component.
+struct NetworkLoadRun {
+  std::size_t length = 0;
+  const double *change_a = nullptr, *change_b = nullptr, *held_a = nullptr, *held_b = nullptr;
+  const double *wet_a = nullptr, *wet_b = nullptr, *alive = nullptr;
+  double kx = 0.0, ky = 0.0, kz = 0.0;
+  double *fxa = nullptr, *fya = nullptr, *fza = nullptr, *fxb = nullptr, *fyb = nullptr, *fzb = nullptr;
+  bool ends_apart = false;  // bond_runs.hpp ends_apart_in_vectors: the one-loop form
+};
+
+/// s_i + s_j of a bond (the file's comment): the ends' changes for an intact bond, their held values
+/// for a broken bond between two wet particles (a network bond), else nothing.
+[[gnu::always_inline]] inline double network_bond_sum(bool intact, double change_i, double change_j, double held_i, double held_j,
+                                                      double wet_i, double wet_j) {
+  const double network = wet_i * wet_j != 0.0 ? held_i + held_j : 0.0;
+  return intact ? change_i + change_j : network;
+}
+
+/// The pair terms (s_i + s_j) k of a run's bonds, bond t's to out(t, ...) (bond_runs.hpp
+/// PairForcesToEnds, PairForcesToBuffers).
+template <int D, bool Masked, class Out>
+[[gnu::always_inline]] inline void network_load_run_terms(std::size_t length, const double* __restrict change_a,
+                                                          const double* __restrict change_b, const double* __restrict held_a,
+                                                          const double* __restrict held_b, const double* __restrict wet_a,
+                                                          const double* __restrict wet_b, const double* __restrict alive, double kx,
+                                                          double ky, double kz, Out out) {
+#pragma omp simd safelen(simd_ends_apart)
+  for (std::size_t t = 0; t < length; ++t) {
+    const bool intact = Masked ? alive[t] != 0.0 : true;
+    const double w = network_bond_sum(intact, change_a[t], change_b[t], held_a[t], held_b[t], wet_a[t], wet_b[t]);
+    out(t, w * kx, w * ky, w * kz, 0.0);
+  }
+}
+
+template <int D, bool Masked>
+struct NetworkLoadRunKernel {
+  [[gnu::always_inline]] static bool run(const NetworkLoadRun& a) {
+    if (a.ends_apart) {  // in one loop (bond_runs.hpp ends_apart_in_vectors)
+      network_load_run_terms<D, Masked>(a.length, a.change_a, a.change_b, a.held_a, a.held_b, a.wet_a, a.wet_b, a.alive, a.kx, a.ky,
+                                        a.kz, PairForcesToEnds<D, false>(a));
+      return false;
+    }
+    alignas(64) double g[3][max_run_length];
+    network_load_run_terms<D, Masked>(a.length, a.change_a, a.change_b, a.held_a, a.held_b, a.wet_a, a.wet_b, a.alive, a.kx, a.ky, a.kz,
+                                      PairForcesToBuffers<D, false>{g[0], g[1], g[2], nullptr});
+    add_pair_forces_to_run_ends<D>(a, g);
+    return false;
+  }
+};
+
+}  // namespace rift::pd
