@@ -21,7 +21,8 @@
 // (8) the rows of bond states kept with the bonds from pass to pass (bond_runs.hpp whole_rows,
 //     pd/bond_states.hpp): over passes that break bonds and a change by hand between them, forces,
 //     states and VES histories the same bits as passes that make every row afresh, and the kept rows
-//     current after each pass without being made again;
+//     current after each pass without being made again, giving the fluid's counts of each row's
+//     intact and broken bonds (fluid_network.hpp count_bond_states) without its states;
 // (9) the one-loop form of a PMB run whose upper ends are lower ends further on adds each bond to
 //     its ends in the bonds' order, the bits of the bonds taken one at a time, on every clone.
 #include <gtest/gtest.h>
@@ -45,6 +46,7 @@
 #include "rift/pd/bond_runs.hpp"
 #include "rift/pd/pmb.hpp"
 #include "rift/pd/discretize.hpp"
+#include "rift/pd/fluid_network.hpp"
 #include "rift/pd/forces.hpp"
 #include "rift/pd/ves.hpp"
 #include "rift/pd/window.hpp"
@@ -404,6 +406,13 @@ TEST(BondRuns, RowsLeftByTheDilatationPassEqualRowsMadeAfresh) {
         if (whole[i] == rift::pd::bond_intact) continue;  // a whole row's bits are not read
         for (std::size_t w = 0; w < left.words; ++w) ASSERT_EQ(words[w * left.stride + i], fresh.intact[w * fresh.stride + i]) << model << " row " << i;
       }
+      // the fluid's counts of each row's intact and broken bonds (fluid_network.hpp
+      // count_bond_states) from the rows kept (kept_row_count) equal those from the states
+      std::vector<std::uint64_t> by_rows(m.size()), by_states(m.size());
+      ASSERT_EQ(rift::pd::count_bond_states(b, 0, m.size(), by_rows, true), 0);
+      ASSERT_EQ(rift::pd::count_bond_states(b, 0, m.size(), by_states, false), 0);
+      EXPECT_EQ(by_rows, by_states) << model;
+      EXPECT_GT(std::count_if(by_states.begin(), by_states.end(), [](std::uint64_t c) { return (c >> 32) > 0; }), 20) << model;
     }
 }
 

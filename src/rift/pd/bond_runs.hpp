@@ -191,8 +191,28 @@ inline RowStates whole_rows(const Bonds& b, const BodyInfo& body) {
 #pragma omp parallel for if(rift::parallel::worth_a_team(body.last - body.first)) schedule(static)
   for (std::size_t i = body.first; i < body.last; ++i) make_row_state(b, rows, i);
   std::erase_if(kept.made, [&](const Bonds::KeptRows::Made& r) { return r.first < body.last && body.first < r.last; });
-  kept.made.push_back({body.first, body.last, b.intact.version()});
+  kept.made.push_back({body.first, body.last, b.intact.version(), rows.words});
   return rows;
+}
+
+/// The intact and broken bonds of row i (intact | broken << 32, as fluid_network.hpp
+/// count_bond_states counts them) from the rows r kept at the states' version now (whole_rows),
+/// where every state is intact or broken (no interface law): 17 bytes a particle read, where its
+/// states are a byte a bond (a thesis-size step's counts read 509 MB). False where r does not hold
+/// the row's bits.
+inline bool kept_row_count(const Bonds& b, const Bonds::KeptRows::Made& r, std::size_t i, std::uint64_t& count) {
+  const Bonds::KeptRows& kept = b.kept_rows;
+  const auto length = static_cast<std::uint64_t>(b.offset[i + 1] - b.offset[i]);
+  if (kept.whole[i] == bond_intact) {
+    count = length;
+    return true;
+  }
+  const std::size_t stride = b.offset.size();
+  if (r.words == 0 || kept.intact.size() < r.words * stride) return false;
+  std::uint64_t intact = 0;
+  for (std::size_t w = 0; w < r.words; ++w) intact += static_cast<std::uint64_t>(std::popcount(kept.intact[w * stride + i]));
+  count = intact | (length - intact) << 32;
+  return true;
 }
 
 /// Makes the rows of both ends of the bonds `broken` ((i, k) of a row) again, after a pass broke

@@ -106,6 +106,7 @@ struct Bonds {
     struct Made {
       std::size_t first = 0, last = 0;
       std::uint64_t version = 0;
+      std::size_t words = 0;  // of the bits of intact offsets per particle (0: none kept)
     };
     std::vector<std::uint8_t> whole;
     std::vector<std::uint64_t> intact;

@@ -24,6 +24,7 @@
 #include <vector>
 
 #include "rift/core/phase_times.hpp"
+#include "rift/pd/bond_runs.hpp"
 #include "rift/pd/crack_junction.hpp"
 #include "rift/pd/effective_stretch.hpp"
 #include "rift/pd/ghost_fields.hpp"
@@ -124,11 +125,22 @@ int source_next_to(const Model<D>& m, std::size_t i) {
 
 /// Per particle of rows [first, last): its intact and its broken bonds counted (bond states never
 /// heal, so any change of state among its bonds changes these). Returns the failed interface bonds
-/// of those rows.
-inline std::int64_t count_bond_states(const Bonds& b, std::size_t first, std::size_t last, std::vector<std::uint64_t>& counts) {
+/// of those rows. Where every state is intact or broken (`no_interface`: the model has no interface
+/// law), a row the kept rows hold at the states' version is counted from them (bond_runs.hpp
+/// kept_row_count), without its states.
+inline std::int64_t count_bond_states(const Bonds& b, std::size_t first, std::size_t last, std::vector<std::uint64_t>& counts,
+                                      bool no_interface = false) {
+  std::vector<Bonds::KeptRows::Made> kept;  // the ranges of kept rows current now
+  if (no_interface)
+    for (const auto& r : b.kept_rows.made)
+      if (r.version == b.intact.version() && r.first < last && first < r.last) kept.push_back(r);
   std::int64_t interface_failed = 0;
 #pragma omp parallel for if(rift::parallel::worth_a_team(last - first)) schedule(static) reduction(+ : interface_failed)
   for (std::size_t i = first; i < last; ++i) {
+    bool counted = false;
+    for (const auto& r : kept)
+      if (i >= r.first && i < r.last) counted = kept_row_count(b, r, i, counts[i]);
+    if (counted) continue;
     std::uint64_t intact = 0, broken = 0;
     for (auto k = b.offset[i]; k < b.offset[i + 1]; ++k) {
       const auto state = b.intact[static_cast<std::size_t>(k)];
@@ -463,14 +475,15 @@ void update_fluid_network(Model<D>& m) {
   static thread_local std::vector<std::uint64_t> counts;  // the calling thread's, kept between calls
   std::vector<std::uint64_t>& target = counted ? f.bond_counts : counts;
   std::int64_t owned_failed = counted ? f.counted_interface_failed : 0;
+  const bool no_interface = m.interface_bonds.laws.empty();  // every state intact or broken
   const auto count_ghost_rows = [&] {
-    for (const IndexRange& r : ghost_rows) count_bond_states(b, r.first, r.last, target);
+    for (const IndexRange& r : ghost_rows) count_bond_states(b, r.first, r.last, target, no_interface);
   };
   // the particles whose bonds changed state since the last update
   std::vector<std::size_t> changed;
   if (!counted) {
     counts.resize(n);
-    for (const IndexRange& r : owned) owned_failed += count_bond_states(b, r.first, r.last, counts);
+    for (const IndexRange& r : owned) owned_failed += count_bond_states(b, r.first, r.last, counts, no_interface);
     count_ghost_rows();
     if (made)
       for (const IndexRange& r : owned)
