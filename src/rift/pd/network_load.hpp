@@ -25,13 +25,14 @@
 // all its 494 million directed bonds whenever a crack grew. What g reads of each end (NetworkEnd)
 // is kept between calls and made again only where the end's bonds changed; the particles around an
 // end whose NetworkEnd changed take the change of its terms alone (changed_rows_pass). Without the
-// surface correction every factor of a bond is one, and g is made over the whole model by the runs
-// of bonds from the ends' NetworkEnd (network_load_runs.hpp): a few vector instructions a bond,
-// where the rows' pass gathered each neighbour's NetworkEnd (in the breaking regime of the
-// thesis-size example, 1 mm lattice: the network load 82 -> 55 s of 406 s).
+// surface correction every factor of a bond is one, and g is made by the runs of bonds from the
+// ends' NetworkEnd (network_load_runs.hpp): a few vector instructions a bond, where the rows' pass
+// gathered each neighbour's NetworkEnd; on the blocks of particles within reach of the ends made
+// again alone, to the bits of a pass over every run (network_load_by_runs).
 #pragma once
 #include <algorithm>
 #include <array>
+#include <atomic>
 #include <cstdint>
 #include <vector>
 
@@ -250,27 +251,62 @@ bool load_by_runs(const Model<D>& m) {
   return true;
 }
 
-/// g of source s over the whole model from its ends (network_load_runs.hpp), by the runs of every
-/// body: as the force pass sums (lps.hpp state_based_forces), in an order that depends on the bonds
-/// alone, so on any number of threads and ranks the same bits.
+/// g of source s from its ends (network_load_runs.hpp) by the runs of every body, as the force pass
+/// sums (lps.hpp state_based_forces): in an order that depends on the bonds alone, so on any number
+/// of threads and ranks the same bits. Only g of the blocks of particles that hold a particle of
+/// `changed` (the ends made again) or a neighbour of one is made again (all of them where `all`):
+/// g_i reads i's bonds' states and the terms of i and its neighbours alone, so every other g is as
+/// it was. A block's g is made from every run that reaches the block, as the whole pass makes it,
+/// so it is the same bits as the pass over every run made from scratch.
 template <int D>
-void network_load_by_runs(const Model<D>& m, int s, const std::vector<NetworkEnd>& ends, std::vector<double>& g) {
+void network_load_by_runs(const Model<D>& m, int s, const std::vector<NetworkEnd>& ends, const std::vector<std::size_t>& changed, bool all,
+                          std::vector<double>& g) {
   const Bonds& b = m.bonds;
   const FluidNetwork& f = m.fluid_network;
   const std::size_t n = m.size();
+  constexpr std::size_t block = 64;
+  const std::size_t blocks = (n + block - 1) / block;
+  // per block, whether its g is made again, and whether it holds an end (change or held nonzero):
+  // a run that reaches no block of either kind adds nothing to a g made again, and is skipped (at
+  // the thesis size a pass over every run was a tenth of an early step); the calling thread's, the
+  // team writes them through the pointers
+  static thread_local std::vector<std::uint8_t> remade, has_end;
+  remade.assign(blocks, all ? 1 : 0), has_end.assign(blocks, 0);
+  std::uint8_t* const block_remade = remade.data();
+  std::uint8_t* const block_has_end = has_end.data();
+  if (!all) {
+#pragma omp parallel for if(rift::parallel::worth_a_team(changed.size() * 16)) schedule(static)
+    for (std::size_t q = 0; q < changed.size(); ++q) {
+      const std::size_t x = changed[q];
+      std::atomic_ref<std::uint8_t>(block_remade[x / block]).store(1, std::memory_order_relaxed);
+      for (auto k = b.offset[x]; k < b.offset[x + 1]; ++k)
+        std::atomic_ref<std::uint8_t>(block_remade[static_cast<std::size_t>(b.neighbor[k]) / block]).store(1, std::memory_order_relaxed);
+    }
+  }
   std::array<double*, 3> sum{};
   for (int q = 0; q < D; ++q) sum[static_cast<std::size_t>(q)] = pass_scratch(n, 5 + q);
   double* const change = pass_scratch(n, 8);
   double* const held = pass_scratch(n, 9);
   double* const wet = pass_scratch(n, 10);
 #pragma omp parallel for if(rift::parallel::worth_a_team(n)) schedule(static)
-  for (std::size_t i = 0; i < n; ++i) {
-    const NetworkEnd& z = ends[i];
-    change[i] = z.change - z.a * z.d_theta / D;
-    held[i] = z.held + z.a * (1.0 - z.theta / D);
-    wet[i] = f.source[i] == s ? 1.0 : 0.0;
-    for (int q = 0; q < D; ++q) sum[static_cast<std::size_t>(q)][i] = 0.0;
+  for (std::size_t first = 0; first < n; first += block) {
+    bool any = false;
+    for (std::size_t i = first; i < std::min(n, first + block); ++i) {
+      const NetworkEnd& z = ends[i];
+      change[i] = z.change - z.a * z.d_theta / D;
+      held[i] = z.held + z.a * (1.0 - z.theta / D);
+      wet[i] = f.source[i] == s ? 1.0 : 0.0;
+      for (int q = 0; q < D; ++q) sum[static_cast<std::size_t>(q)][i] = 0.0;
+      any |= change[i] != 0.0 || held[i] != 0.0;
+    }
+    block_has_end[first / block] = any ? 1 : 0;
   }
+  // whether a block of [first, first + length) is so marked
+  auto any_in = [&](const std::uint8_t* marked, std::size_t first, std::size_t length) {
+    for (std::size_t q = first / block; q <= (first + length - 1) / block; ++q)
+      if (marked[q]) return true;
+    return false;
+  };
   const VectorIsa isa = vector_isa();
   for (const auto& body : m.bodies) {
     if (body.last <= body.first) continue;
@@ -279,6 +315,8 @@ void network_load_by_runs(const Model<D>& m, int s, const std::vector<NetworkEnd
     const scene::Influence omega_kind = body.constants.influence;
     for_each_run_by_slabs(body, [&](const BondRun& run) {
       const std::size_t length = run.length, i = static_cast<std::size_t>(run.i), j = static_cast<std::size_t>(run.j);
+      if (!any_in(block_remade, i, length) && !any_in(block_remade, j, length)) return;
+      if (!any_in(block_has_end, i, length) && !any_in(block_has_end, j, length)) return;  // zeros: every sum's bits as they are
       const FamilyOffset& family = b.families[run.family];
       const double scale = -influence(omega_kind, family.length, horizon) * family.volume;  // -omega V
       std::array<double, 3> k{};
@@ -305,11 +343,14 @@ void network_load_by_runs(const Model<D>& m, int s, const std::vector<NetworkEnd
       else vector_clone<NetworkLoadRunKernel<D, false>, NetworkLoadRun>(isa)(a);
     });
   }
-  // g_i = (F_i - F^s_i) / (d kappa_i)
+  // g_i = (F_i - F^s_i) / (d kappa_i) of the blocks made again
 #pragma omp parallel for if(rift::parallel::worth_a_team(n)) schedule(static)
-  for (std::size_t i = 0; i < n; ++i) {
-    const double scale = 1.0 / (D * m.constants_of(i).kappa);
-    for (std::size_t q = 0; q < static_cast<std::size_t>(D); ++q) g[i * D + q] = sum[q][i] * scale;
+  for (std::size_t first = 0; first < n; first += block) {
+    if (!block_remade[first / block]) continue;
+    for (std::size_t i = first; i < std::min(n, first + block); ++i) {
+      const double scale = 1.0 / (D * m.constants_of(i).kappa);
+      for (std::size_t q = 0; q < static_cast<std::size_t>(D); ++q) g[i * D + q] = sum[q][i] * scale;
+    }
   }
 }
 
@@ -399,7 +440,7 @@ void update_network_load(Model<D>& m) {
     detail::refresh_ghost_ends<D>(m, is_end, ends);
     // g over the whole model from the ends by the runs, or of those made again and their
     // neighbours' changed by the changes of their ends
-    if (by_runs) detail::network_load_by_runs<D>(m, source, ends, g);
+    if (by_runs) detail::network_load_by_runs<D>(m, source, ends, changed, all, g);
     else detail::changed_rows_pass<D>(m, changed, before, is_end, ends, terms, f.load_changed_mark, in_network, g);
   }
   f.load_from_scratch = false;
