@@ -258,9 +258,10 @@ bool load_by_runs(const Model<D>& m) {
 /// g_i reads i's bonds' states and the terms of i and its neighbours alone, so every other g is as
 /// it was. A block's g is made from every run that reaches the block, as the whole pass makes it,
 /// so it is the same bits as the pass over every run made from scratch.
+/// `terms`: each family offset's omega (family_terms).
 template <int D>
 void network_load_by_runs(const Model<D>& m, int s, const std::vector<NetworkEnd>& ends, const std::vector<std::size_t>& changed, bool all,
-                          std::vector<double>& g) {
+                          const FamilyTerms& terms, std::vector<double>& g) {
   const Bonds& b = m.bonds;
   const FluidNetwork& f = m.fluid_network;
   const std::size_t n = m.size();
@@ -311,14 +312,12 @@ void network_load_by_runs(const Model<D>& m, int s, const std::vector<NetworkEnd
   for (const auto& body : m.bodies) {
     if (body.last <= body.first) continue;
     const RowStates rows = whole_rows(b, body);
-    const double horizon = body.constants.horizon;
-    const scene::Influence omega_kind = body.constants.influence;
     for_each_run_by_slabs(body, [&](const BondRun& run) {
       const std::size_t length = run.length, i = static_cast<std::size_t>(run.i), j = static_cast<std::size_t>(run.j);
       if (!any_in(block_remade, i, length) && !any_in(block_remade, j, length)) return;
       if (!any_in(block_has_end, i, length) && !any_in(block_has_end, j, length)) return;  // zeros: every sum's bits as they are
       const FamilyOffset& family = b.families[run.family];
-      const double scale = -influence(omega_kind, family.length, horizon) * family.volume;  // -omega V
+      const double scale = -terms.omega[run.family] * family.volume;  // -omega V
       std::array<double, 3> k{};
       for (int q = 0; q < D; ++q) k[static_cast<std::size_t>(q)] = scale * family.xi[static_cast<std::size_t>(q)];
       if (length < short_run) {  // bond by bond
@@ -438,9 +437,9 @@ void update_network_load(Model<D>& m) {
     }
     // a ghost's row is cut to the window: its NetworkEnd is its owner's
     detail::refresh_ghost_ends<D>(m, is_end, ends);
-    // g over the whole model from the ends by the runs, or of those made again and their
-    // neighbours' changed by the changes of their ends
-    if (by_runs) detail::network_load_by_runs<D>(m, source, ends, changed, all, g);
+    // g by the runs on the blocks within reach of those made again, or of those made again and
+    // their neighbours' changed by the changes of their ends
+    if (by_runs) detail::network_load_by_runs<D>(m, source, ends, changed, all, terms, g);
     else detail::changed_rows_pass<D>(m, changed, before, is_end, ends, terms, f.load_changed_mark, in_network, g);
   }
   f.load_from_scratch = false;
