@@ -52,6 +52,22 @@ namespace rift::pd {
 
 namespace detail {
 
+/// NetworkEnd of particle i (network_end) from its sums over the intact bonds (th, q) and over the
+/// network's (d_th, d_q).
+template <int D>
+NetworkEnd end_from_sums(const Model<D>& m, std::size_t i, double th, double q, double d_th, double d_q) {
+  const auto& c = m.constants_of(i);
+  const double m_i = m.weighted_volume[i], scale = c.surface_correction ? 1.0 : dilatation_scale<D>(m_i);
+  th = (th + d_th) * scale, d_th *= scale;
+  NetworkEnd z;
+  z.theta = th, z.d_theta = d_th;
+  z.a = m_i > 0.0 ? c.lps_deviatoric_coefficient() / m_i : 0.0;
+  // b_ij p_i, with b_ij = omega |xi| d / m_i without the surface correction: the scale folded into p
+  z.held = pressure_factor<D>(c.kappa, th, z.a, q + d_q - th * m_i / D) * scale;
+  z.change = pressure_factor<D>(c.kappa, d_th, z.a, d_q - d_th * m_i / D) * scale;
+  return z;
+}
+
 /// What the network load reads of particle i (PMB: nothing) under the unit uniform expansion
 /// y = 2 X (e = |xi|): its theta and P (lps.hpp lps_dilatation) with the network's bonds held
 /// intact, the network bonds' share of each (F^s less F), and its p of both (force_state).
@@ -77,34 +93,57 @@ NetworkEnd network_end(const Model<D>& m, std::size_t i, InNetwork in_network, b
     if (intact) th += t, q += u;
     else d_th += t, d_q += u;
   }
-  const double m_i = m.weighted_volume[i], scale = c.surface_correction ? 1.0 : dilatation_scale<D>(m_i);
-  th = (th + d_th) * scale, d_th *= scale;
-  NetworkEnd z;
-  z.theta = th, z.d_theta = d_th;
-  z.a = m_i > 0.0 ? c.lps_deviatoric_coefficient() / m_i : 0.0;
-  // b_ij p_i, with b_ij = omega |xi| d / m_i without the surface correction: the scale folded into p
-  z.held = pressure_factor<D>(c.kappa, th, z.a, q + d_q - th * m_i / D) * scale;
-  z.change = pressure_factor<D>(c.kappa, d_th, z.a, d_q - d_th * m_i / D) * scale;
-  return z;
+  return end_from_sums<D>(m, i, th, q, d_th, d_q);
 }
 
-/// Per family offset of the model, its body's omega(|xi|) and |xi| / d: read from a table, the
-/// passes below divide by nothing per bond (a division was a sixth of their time).
+/// Per family offset of the model, its body's omega(|xi|), |xi| / d and omega |xi|^2 V (a bond's
+/// term of theta and q without the surface correction, as network_end makes it): read from a
+/// table, the passes below divide by nothing per bond (a division was a sixth of their time).
 struct FamilyTerms {
-  std::vector<double> omega, length_over_d;
+  std::vector<double> omega, length_over_d, weight;
 };
 
 template <int D>
 FamilyTerms family_terms(const Model<D>& m) {
   FamilyTerms t;
   const auto& families = m.bonds.families;
-  t.omega.assign(families.size(), 0.0), t.length_over_d.assign(families.size(), 0.0);
+  t.omega.assign(families.size(), 0.0), t.length_over_d.assign(families.size(), 0.0), t.weight.assign(families.size(), 0.0);
   for (const auto& body : m.bodies)
     for (std::size_t a = body.first_family; a < body.first_family + body.family_count; ++a) {
-      t.omega[a] = influence(body.constants.influence, families[a].length, body.constants.horizon);
-      t.length_over_d[a] = families[a].length / D;
+      const double xi = families[a].length;
+      t.omega[a] = influence(body.constants.influence, xi, body.constants.horizon);
+      t.length_over_d[a] = xi / D;
+      t.weight[a] = t.omega[a] * xi * (xi * families[a].volume);
     }
   return t;
+}
+
+/// network_end of source s where g is made by the runs (load_by_runs: no surface correction, no
+/// interface law, so a bond is intact or broken, and a broken one is in s's network where the fluid
+/// of s reached both ends): the same sums to the bit, without a branch on a bond's state (in the
+/// damaged rows, where it is a coin toss, the branches' misses were most of network_end's time).
+/// Every term of q is theta's (omega |xi|^2 V, from `terms`), so q and theta are one sum. A particle
+/// the fluid of s has not reached has no network bond: not an end, nothing summed. Zero where i is
+/// not an end (as update_network_load keeps it).
+template <int D>
+NetworkEnd uncorrected_network_end(const Model<D>& m, std::size_t i, int s, const FamilyTerms& terms, bool& is_end) {
+  const Bonds& b = m.bonds;
+  const int* const source = m.fluid_network.source.data();
+  is_end = false;
+  if (source[i] != s) return {};
+  const double* const weight = terms.weight.data();
+  double th = 0.0, d_th = 0.0;  // adding +0.0 leaves a sum's bits as they are
+  bool end = false;
+  for (auto k = b.offset[i]; k < b.offset[i + 1]; ++k) {
+    const auto state = b.intact[static_cast<std::size_t>(k)];
+    const bool network = state == bond_broken && source[static_cast<std::size_t>(b.neighbor[k])] == s;
+    const double w = weight[b.family[static_cast<std::size_t>(k)]];
+    th += state == bond_intact ? w : 0.0;
+    d_th += network ? w : 0.0;
+    end |= network;
+  }
+  is_end = end;
+  return end ? end_from_sums<D>(m, i, th, th, d_th, d_th) : NetworkEnd{};
 }
 
 /// t of end z of a bond (force_state) under the unit expansion: with the network held (a network
@@ -431,7 +470,7 @@ void update_network_load(Model<D>& m) {
     for (std::size_t q = 0; q < changed.size(); ++q) {
       const std::size_t i = changed[q];
       bool end = false;
-      const NetworkEnd z = detail::network_end<D>(m, i, in_network, end);
+      const NetworkEnd z = by_runs ? detail::uncorrected_network_end<D>(m, i, source, terms, end) : detail::network_end<D>(m, i, in_network, end);
       is_end[i] = end ? 1 : 0;
       ends[i] = end ? z : NetworkEnd{};
     }
