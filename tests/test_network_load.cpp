@@ -13,6 +13,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <sstream>
 #include <string>
@@ -267,6 +268,115 @@ TEST(FluidNetwork, UpdatesWhileItGrowsEqualTheNetworkMadeFromScratch) {
   for (const char* material : {"model = \"lps\"\n", "model = \"ves\"\nviscous_fraction = 0.5\nrelaxation_time = 1e-4\n"}) {
     check_growth<2>(material);
     check_growth<3>(material);
+  }
+}
+
+// The peeling of the fragments (fluid_network.hpp peel_fragments) stops reading a row once a part
+// of its shape tensor passes the test at the whole row's bound. Against the definition: after
+// bonds near the crack broke at random (94% of them, both directions), every wet particle left
+// not immersed has intact bonds to particles not immersed whose sum n n^T passes
+// |det S| > 1e-6 (tr S / d)^d over the whole row, and every one peeled fails it (or lies in a
+// closed piece, or was held only by such particles).
+template <int D>
+void check_peeling() {
+  auto m = rift::pd::discretize<D>(rift::scene::parse_string(grown_crack_scene(D, "model = \"lps\"\n"), "grown.toml"));
+  grow_crack<D>(m, 0.012, 0.020);
+  rift::pd::update_fluid_network<D>(m);
+  auto& b = m.bonds;
+  std::uint64_t state = 12345;
+  auto coin = [&] {  // a fixed sequence (splitmix64)
+    std::uint64_t z = (state += 0x9e3779b97f4a7c15ULL);
+    z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
+    z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
+    return (z ^ (z >> 31)) % 100 < 94;
+  };
+  for (std::size_t i = 0; i < m.size(); ++i) {
+    if (std::abs(m.reference_position[i][1] - 0.008) > 0.003) continue;
+    for (auto k = b.offset[i]; k < b.offset[i + 1]; ++k) {
+      const auto j = static_cast<std::size_t>(b.neighbor[k]);
+      if (j < i || !coin()) continue;
+      b.intact.set(static_cast<std::size_t>(k), rift::pd::bond_broken);
+      for (auto r = b.offset[j]; r < b.offset[j + 1]; ++r)
+        if (static_cast<std::size_t>(b.neighbor[r]) == i) b.intact.set(static_cast<std::size_t>(r), rift::pd::bond_broken);
+    }
+  }
+  rift::pd::mark_immersed_fragments<D>(m);
+  const auto& f = m.fluid_network;
+  auto spans = [&](std::size_t i) {  // the definition, over the whole row
+    Eigen::Matrix<double, D, D> shape = Eigen::Matrix<double, D, D>::Zero();
+    for (auto k = b.offset[i]; k < b.offset[i + 1]; ++k) {
+      const auto j = static_cast<std::size_t>(b.neighbor[k]);
+      if (b.intact[static_cast<std::size_t>(k)] != rift::pd::bond_intact || f.immersed[j]) continue;
+      Eigen::Matrix<double, D, 1> n;
+      for (int q = 0; q < D; ++q) n[q] = m.reference_position[j][q] - m.reference_position[i][q];
+      n.normalize();
+      shape += n * n.transpose();
+    }
+    return std::abs(shape.determinant()) > 1e-6 * std::pow(shape.trace() / D, D);
+  };
+  long wet = 0, peeled = 0, left = 0;
+  for (std::size_t i = 0; i < m.size(); ++i) {
+    if (f.source[i] < 0) continue;
+    ++wet;
+    if (f.immersed[i]) {
+      peeled += spans(i) ? 0 : 1;
+    } else {
+      ++left;
+      EXPECT_TRUE(spans(i)) << "particle " << i << " is left though its bonds do not span " << D << " dimensions";
+    }
+  }
+  std::printf("%dD: %ld wet particles, %ld left, %ld immersed that fail the test\n", D, wet, left, peeled);
+  EXPECT_GT(left, 0);
+  EXPECT_GT(peeled, 0);
+}
+
+TEST(FluidNetwork, PeeledFragmentsFollowTheSpanningTestOverWholeRows) {
+  check_peeling<2>();
+  check_peeling<3>();
+}
+
+// Without the surface correction and interface laws, the ends' sums of the network load are made
+// without a branch on a bond's state (network_load.hpp uncorrected_network_end): the same bits as
+// the rows' form (network_end) at every particle, an end or not, after the crack grew and bonds
+// around it broke at random.
+template <int D>
+void check_uncorrected_ends(const std::string& material) {
+  auto m = rift::pd::discretize<D>(rift::scene::parse_string(grown_crack_scene(D, material), "grown.toml"));
+  grow_crack<D>(m, 0.012, 0.020);
+  auto& b = m.bonds;
+  for (std::size_t i = 0; i < m.size(); ++i)
+    for (auto k = b.offset[i]; k < b.offset[i + 1]; ++k)
+      if ((i * 7 + static_cast<std::size_t>(k)) % 5 == 0 && std::abs(m.reference_position[i][1] - 0.008) < 0.002)
+        b.intact.set(static_cast<std::size_t>(k), rift::pd::bond_broken);
+  rift::pd::update_fluid_network<D>(m);
+  ASSERT_TRUE(rift::pd::detail::load_by_runs<D>(m));
+  const auto terms = rift::pd::detail::family_terms<D>(m);
+  const auto& f = m.fluid_network;
+  long ends = 0;
+  for (std::size_t i = 0; i < m.size(); ++i) {
+    bool row_end = false, end = false;
+    auto z = rift::pd::detail::network_end<D>(
+        m, i, [&](std::size_t p, std::int64_t k) { return rift::pd::network_of_bond(f, b, p, k) == 0; }, row_end);
+    if (!row_end) z = {};
+    const auto u = rift::pd::detail::uncorrected_network_end<D>(m, i, 0, terms, end);
+    ASSERT_EQ(end, row_end) << "particle " << i;
+    EXPECT_EQ(u.theta, z.theta);
+    EXPECT_EQ(u.d_theta, z.d_theta);
+    EXPECT_EQ(u.held, z.held);
+    EXPECT_EQ(u.change, z.change);
+    if (end) {
+      EXPECT_EQ(u.a, z.a);
+    }
+    ends += end;
+  }
+  EXPECT_GT(ends, 20);
+}
+
+TEST(NetworkLoad, EndsWithoutTheCorrectionEqualTheRowsSums) {
+  for (const char* material : {"model = \"lps\"\nsurface_correction = false\n",
+                               "model = \"ves\"\nviscous_fraction = 0.5\nrelaxation_time = 1e-4\nsurface_correction = false\n"}) {
+    check_uncorrected_ends<2>(material);
+    check_uncorrected_ends<3>(material);
   }
 }
 
