@@ -625,8 +625,10 @@ bool same_bits(const A& a, const B& b) {
 }
 
 // (7) The passes over a deformed, partly broken plate of 17,000 particles (a team's size: the slabs
-// run on the team): PMB, LPS and VES forces, the bonds that break and the VES histories the same
-// bits on one, two and four threads (the slabs and their order depend on the bonds alone).
+// run on the team), three of them, stretched more before each (each breaks bonds): PMB, LPS and
+// VES forces, the bonds that break and the VES histories and row sums (the bonds each pass broke
+// taken out of both ends' sums by the team, ves.hpp) the same bits on one, two and four threads
+// (the slabs and their order depend on the bonds alone).
 TEST(BondRuns, PassesGiveTheSameBitsOnOneTwoAndFourThreads) {
   const int threads = omp_get_max_threads();
   for (const char* model : {"pmb", "lps", "ves"}) {
@@ -635,7 +637,10 @@ TEST(BondRuns, PassesGiveTheSameBitsOnOneTwoAndFourThreads) {
     auto pass = [&](int team) {
       omp_set_num_threads(team);
       auto m = deformed;
-      rift::pd::compute_forces<3>(m, nullptr, 1e-8);
+      for (int step = 0; step < 3; ++step) {
+        for (std::size_t i = 0; i < m.size(); ++i) m.position[i][0] += 2e-3 * m.reference_position[i][0] * m.reference_position[i][0];
+        rift::pd::compute_forces<3>(m, nullptr, 1e-8);
+      }
       return m;
     };
     const auto one = pass(1);
@@ -647,6 +652,9 @@ TEST(BondRuns, PassesGiveTheSameBitsOnOneTwoAndFourThreads) {
       EXPECT_TRUE(same_bits(many.force, one.force)) << model << " on " << team << " threads: forces";
       EXPECT_TRUE(same_bits(many.bonds.intact, one.bonds.intact)) << model << " on " << team << " threads: bond states";
       EXPECT_TRUE(same_bits(many.bonds.back_extension, one.bonds.back_extension)) << model << " on " << team << " threads: VES history";
+      EXPECT_TRUE(same_bits(many.bonds.deviatoric_sum, one.bonds.deviatoric_sum)) << model << " on " << team << " threads: VES sums";
+      EXPECT_TRUE(same_bits(many.bonds.back_sum, one.bonds.back_sum)) << model << " on " << team << " threads: VES sums";
+      EXPECT_TRUE(same_bits(many.bonds.summed_bonds, one.bonds.summed_bonds)) << model << " on " << team << " threads: VES sums";
     }
   }
   omp_set_num_threads(threads);

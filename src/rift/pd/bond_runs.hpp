@@ -11,6 +11,7 @@
 #pragma once
 #include <algorithm>
 #include <array>
+#include <atomic>
 #include <bit>
 #include <cstddef>
 #include <cstdint>
@@ -221,13 +222,20 @@ inline bool kept_row_count(const Bonds& b, const Bonds::KeptRows::Made& r, std::
 inline void refresh_rows(const Bonds& b, const BodyInfo& body, const RowStates& rows,
                          const std::vector<std::pair<std::size_t, std::int64_t>>& broken) {
   if (broken.empty()) return;
-  std::vector<std::size_t> ends;
-  ends.reserve(2 * broken.size());
-  for (const auto& [i, k] : broken) ends.push_back(i), ends.push_back(static_cast<std::size_t>(b.neighbor[static_cast<std::size_t>(k)]));
-  std::sort(ends.begin(), ends.end());
-  ends.erase(std::unique(ends.begin(), ends.end()), ends.end());
-#pragma omp parallel for if(rift::parallel::worth_a_team(ends.size() * 16)) schedule(static)
-  for (std::size_t q = 0; q < ends.size(); ++q) make_row_state(b, rows, ends[q]);
+  // both ends marked, then the body's marked rows made again, by the team (where a sorted list of
+  // the ends was made on one thread: a million at the thesis size)
+  static thread_local std::vector<std::uint8_t> marks;  // all 0 between calls; the calling thread's, the team's through the pointer
+  marks.resize(b.offset.size(), 0);
+  std::uint8_t* const marked = marks.data();
+#pragma omp parallel for if(rift::parallel::worth_a_team(broken.size())) schedule(static)
+  for (std::size_t q = 0; q < broken.size(); ++q) {
+    std::atomic_ref<std::uint8_t>(marked[broken[q].first]).store(1, std::memory_order_relaxed);
+    std::atomic_ref<std::uint8_t>(marked[static_cast<std::size_t>(b.neighbor[static_cast<std::size_t>(broken[q].second)])])
+        .store(1, std::memory_order_relaxed);
+  }
+#pragma omp parallel for if(rift::parallel::worth_a_team(body.last - body.first)) schedule(static)
+  for (std::size_t i = body.first; i < body.last; ++i)
+    if (marked[i]) make_row_state(b, rows, i), marked[i] = 0;
   for (auto& r : b.kept_rows.made)
     if (r.first == body.first && r.last == body.last && r.version == rows.version) r.version = b.intact.version();
 }

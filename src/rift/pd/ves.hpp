@@ -17,12 +17,17 @@
 #pragma once
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <limits>
+#include <utility>
+#include <vector>
 
 #include "rift/pd/bond_slabs.hpp"
 #include "rift/pd/influence.hpp"
 #include "rift/pd/lps.hpp"
 #include "rift/pd/model.hpp"
 #include "rift/pd/viscous_step.hpp"
+#include "rift/parallel/sort.hpp"
 #include "rift/parallel/team.hpp"
 
 namespace rift::pd {
@@ -81,21 +86,52 @@ void sum_viscous_history(Model<D>& m, const BodyInfo& body, std::size_t i, std::
 /// Takes the bonds the dilatation pass broke ((i, k) of the lower end's row) out of both ends'
 /// sums (sum_viscous_history), term by term, where a row summed again (its bonds' history scattered
 /// over the blocks: 6% of a thesis-size step at 7% broken bonds) would give them up to rounding.
-/// In the order of the bonds, so the sums do not depend on the order the pass found them in. A
-/// row whose intact bonds changed otherwise (an interface law) is still summed again.
+/// Each particle's terms go in the order of its row, so the sums do not depend on the order the
+/// pass found them in: first those where it is the upper end (neighbours below it), then those
+/// where it is the lower end. By the team, each thread a range of particles (a thesis-size step
+/// breaks half a million pairs, which one thread took out while the other waited). A row whose
+/// intact bonds changed otherwise (an interface law) is still summed again.
 template <int D, scene::Influence Omega>
 void take_out_of_viscous_sums(Model<D>& m, const BodyInfo& body, std::vector<std::pair<std::size_t, std::int64_t>>& broken) {
+  using Entry = std::pair<std::size_t, std::int64_t>;
   Bonds& b = m.bonds;
-  std::sort(broken.begin(), broken.end());
+  if (broken.empty()) return;
+  static thread_local std::vector<Entry> upper_ends;  // (j, k of j's row): the calling thread's, the team's through the reference
+  std::vector<Entry>& upper = upper_ends;
+  upper.resize(broken.size());
+  Entry* const up = upper.data();
+  const bool team = rift::parallel::worth_a_team(broken.size());
+#pragma omp parallel for if(team) schedule(static)
+  for (std::size_t q = 0; q < broken.size(); ++q) {
+    const auto [i, k] = broken[q];
+    up[q] = {static_cast<std::size_t>(b.neighbor[static_cast<std::size_t>(k)]), reverse_bond(b, body, i, k)};
+  }
+  rift::parallel::sort(broken);
+  rift::parallel::sort(upper);
   auto take_out = [&](std::size_t i, std::int64_t k) {
     if (b.summed_bonds[i] < 0) return;  // not summed yet
     const ViscousTerms t = viscous_terms<D, Omega>(b, body, i, k);
     b.deviatoric_sum[i] -= t.deviatoric, b.back_sum[i] -= t.back, b.intact_weighted_volume[i] -= t.weighted_volume;
     --b.summed_bonds[i];
   };
-  for (const auto& [i, k] : broken) {
-    take_out(i, k);
-    take_out(static_cast<std::size_t>(b.neighbor[static_cast<std::size_t>(k)]), reverse_bond(b, body, i, k));
+  // the particles split into ranges at equal counts of the lower ends' entries
+  constexpr std::size_t chunks = 64;
+  constexpr std::size_t none = std::numeric_limits<std::size_t>::max();
+  auto bound = [&](std::size_t c) { return c == 0 ? 0 : c == chunks ? none : broken[broken.size() * c / chunks].first; };
+  auto from = [](const std::vector<Entry>& list, std::size_t p) {
+    return std::lower_bound(list.begin(), list.end(), Entry{p, std::numeric_limits<std::int64_t>::min()});
+  };
+#pragma omp parallel for if(team) schedule(dynamic, 1)
+  for (std::size_t c = 0; c < chunks; ++c) {
+    const std::size_t first = bound(c), last = bound(c + 1);
+    if (first == last) continue;
+    auto a = from(broken, first), u = from(upper, first);
+    const auto a_end = from(broken, last), u_end = from(upper, last);
+    while (a != a_end || u != u_end) {
+      const std::size_t p = std::min(a != a_end ? a->first : none, u != u_end ? u->first : none);
+      for (; u != u_end && u->first == p; ++u) take_out(p, u->second);
+      for (; a != a_end && a->first == p; ++a) take_out(p, a->second);
+    }
   }
 }
 
