@@ -37,6 +37,7 @@
 #include <vector>
 
 #include "rift/pd/model.hpp"
+#include "rift/parallel/sort.hpp"
 #include "rift/parallel/team.hpp"
 
 namespace rift::pd {
@@ -283,7 +284,7 @@ std::vector<std::pair<std::int64_t, std::size_t>> patches_of_particles(const Mod
 #pragma omp critical(rift_found_patches)
     found.insert(found.end(), mine.begin(), mine.end());
   }
-  std::sort(found.begin(), found.end());
+  rift::parallel::sort(found);
   found.erase(std::unique(found.begin(), found.end()), found.end());
   return found;
 }

@@ -42,6 +42,7 @@
 #include "rift/pd/lps.hpp"
 #include "rift/pd/network_load_runs.hpp"
 #include "rift/pd/pmb.hpp"
+#include "rift/parallel/sort.hpp"
 #include "rift/parallel/team.hpp"
 
 #ifdef _OPENMP
@@ -459,7 +460,7 @@ void update_network_load(Model<D>& m) {
       for (std::size_t i = 0; i < n; ++i) changed[i] = i;
     } else {
       changed = f.load_changed;
-      std::sort(changed.begin(), changed.end());
+      rift::parallel::sort(changed);
       if (!by_runs) {  // the runs make g from the ends alone
         before.resize(changed.size());
         for (std::size_t q = 0; q < changed.size(); ++q) before[q] = ends[changed[q]];
