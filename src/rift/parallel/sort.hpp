@@ -1,8 +1,7 @@
 // A sort by the team: each thread sorts a chunk, then the chunks are merged pairwise (each round's
-// merges in parallel). The lists the passes sort after bonds break (a thesis-size step breaks half
-// a million pairs) were sorted on one thread while the other waited. For elements in a strict
-// weak order whose equal elements are the same (pairs of indices, say) the result is std::sort's
-// on any number of threads.
+// merges in parallel). The lists sorted after bonds break (a thesis-size step breaks half a million
+// pairs) took one thread while the other waited. For elements whose equal elements are the same
+// (pairs of indices, say) the result is std::sort's on any number of threads.
 #pragma once
 #include <algorithm>
 #include <cstddef>
@@ -11,8 +10,6 @@
 #ifdef _OPENMP
 #include <omp.h>
 #endif
-
-#include "rift/parallel/team.hpp"
 
 namespace rift::parallel {
 
