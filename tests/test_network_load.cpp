@@ -15,6 +15,7 @@
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
+#include <random>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -283,13 +284,8 @@ void check_peeling() {
   grow_crack<D>(m, 0.012, 0.020);
   rift::pd::update_fluid_network<D>(m);
   auto& b = m.bonds;
-  std::uint64_t state = 12345;
-  auto coin = [&] {  // a fixed sequence (splitmix64)
-    std::uint64_t z = (state += 0x9e3779b97f4a7c15ULL);
-    z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
-    z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
-    return (z ^ (z >> 31)) % 100 < 94;
-  };
+  std::mt19937_64 engine(12345);  // a fixed sequence (the standard's engine)
+  auto coin = [&] { return engine() % 100 < 94; };
   for (std::size_t i = 0; i < m.size(); ++i) {
     if (std::abs(m.reference_position[i][1] - 0.008) > 0.003) continue;
     for (auto k = b.offset[i]; k < b.offset[i + 1]; ++k) {

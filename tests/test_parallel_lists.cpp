@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <cstddef>
 #include <cstdint>
+#include <random>
 #include <utility>
 #include <vector>
 
@@ -18,13 +19,7 @@ namespace {
 
 TEST(ParallelLists, SortGivesTheOrderOfStdSortOnAnyTeam) {
   const int before = omp_get_max_threads();
-  std::uint64_t state = 7;
-  auto next = [&] {  // a fixed sequence (splitmix64)
-    std::uint64_t z = (state += 0x9e3779b97f4a7c15ULL);
-    z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
-    z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
-    return z ^ (z >> 31);
-  };
+  std::mt19937_64 next(7);  // a fixed sequence (the standard's engine)
   for (const std::size_t n : {std::size_t{0}, std::size_t{5}, std::size_t{40000}, std::size_t{100003}}) {
     // (particle, bond) pairs as the passes sort them: few particles, so many pairs share the first
     std::vector<std::pair<std::size_t, std::int64_t>> pairs(n);
