@@ -25,6 +25,9 @@
 //     intact and broken bonds (fluid_network.hpp count_bond_states) without its states;
 // (9) the one-loop form of a PMB run whose upper ends are lower ends further on adds each bond to
 //     its ends in the bonds' order, the bits of the bonds taken one at a time, on every clone.
+// (10) a history row's damage (forces.hpp summarize_and_update_damage) from the kept rows' bits
+//     equals Silling and Askari's (2005) eq. 25 summed over each row's bond states in the row's
+//     order, to the bit, and so does its count of broken bonds.
 #include <gtest/gtest.h>
 #include <omp.h>
 
@@ -866,5 +869,52 @@ TEST(BondRuns, RowsWithoutBitsGiveTheBitsOfRowsWithThem) {
     forces(with, true);
     forces(without, false);
     EXPECT_TRUE(same_bits(with.force, without.force)) << "surface correction " << corrected;
+  }
+}
+
+// (10) A block with LAMMPS's partial volumes (122 offsets, two words of bits) and with the default
+// (250, four words), bonds broken by hand and by a dilatation pass: every particle's damage from
+// summarize_and_update_damage equals 1 - sum(intact V) / sum(V) over its row in the row's order
+// (Silling and Askari 2005, eq. 25), the same bits, rows of the whole family and rows at the
+// surface alike; the broken directed bonds are those counted from the states.
+TEST(BondRuns, HistoryDamageFromTheKeptRowsEqualsTheRowsSums) {
+  for (const bool lammps : {true, false}) {
+    std::string scene = block_scene(3, false, "lps");
+    if (lammps) scene.replace(scene.find("horizon = 3.015\n"), 16, "horizon = 3.0\npartial_volume = \"lammps\"\n");
+    scene.replace(scene.find("max = [0.014, 0.011, 0.009]"), 27, "max = [0.016, 0.016, 0.016]");  // rows of the whole family
+    auto m = rift::pd::discretize<3>(rift::scene::parse_string(scene, "block.toml"));
+    deform_and_break(m);
+    auto& b = m.bonds;
+    for (auto k = b.offset[7]; k < b.offset[8]; ++k) {  // a row all broken, both entries of each bond
+      const auto j = static_cast<std::size_t>(b.neighbor[k]);
+      b.intact.set(k, rift::pd::bond_broken);
+      for (auto q = b.offset[j]; q < b.offset[j + 1]; ++q)
+        if (b.neighbor[q] == 7) b.intact.set(q, rift::pd::bond_broken);
+    }
+    const auto& body = m.bodies[0];
+    rift::pd::lps_dilatation<3, rift::scene::Influence::constant>(m, body);  // breaks more; the rows kept as it leaves them
+    ASSERT_EQ(b.kept_rows.made.size(), 1u);
+    ASSERT_EQ(b.kept_rows.made[0].version, b.intact.version());
+    std::vector<double> expected(m.size());
+    double failed = 0.0;
+    std::size_t partial_whole_family = 0, partial_surface = 0;
+    for (std::size_t i = 0; i < m.size(); ++i) {
+      double all = 0.0, intact = 0.0;
+      for (auto k = b.offset[i]; k < b.offset[i + 1]; ++k) {
+        const double v = b.families[b.family[static_cast<std::size_t>(k)]].volume;
+        all += v;
+        if (b.intact[static_cast<std::size_t>(k)] == rift::pd::bond_intact) intact += v;
+        else failed += 1.0;
+      }
+      expected[i] = 1.0 - intact / all;
+      if (expected[i] > 0.0 && expected[i] < 1.0)
+        ++(static_cast<std::size_t>(b.offset[i + 1] - b.offset[i]) == body.family_count ? partial_whole_family : partial_surface);
+    }
+    EXPECT_GT(partial_whole_family, 20u);
+    EXPECT_GT(partial_surface, 20u);
+    EXPECT_EQ(expected[7], 1.0);
+    const auto e = rift::pd::summarize_and_update_damage<3>(m, false);
+    EXPECT_EQ(e.failed_directed, failed) << "lammps " << lammps;
+    EXPECT_TRUE(same_bits(m.damage, expected)) << "lammps " << lammps;
   }
 }

@@ -1,8 +1,11 @@
 #include "rift/pd/forces.hpp"
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
+#include <cstdint>
 #include <limits>
+#include <vector>
 
 #include "rift/core/phase_times.hpp"
 #include "rift/pd/bond_runs.hpp"
@@ -89,6 +92,54 @@ inline double row_damage(const Bonds& b, std::size_t i, double& broken) {
   return all > 0.0 ? 1.0 - intact / all : 0.0;
 }
 
+/// What row_damage_from_bits reads of a body: its rows (bond_runs.hpp whole_rows, current at the
+/// states' version; no bits where its family has more offsets than they hold), the volume of each
+/// of its family offsets, and their sum in the order of the offsets (a whole row's bond volume).
+struct DamageRows {
+  RowStates rows;
+  const FamilyOffset* families = nullptr;  // the body's first
+  double whole_family_volume = 0.0;
+};
+
+template <int D>
+std::vector<DamageRows> damage_rows(const Model<D>& m) {
+  std::vector<DamageRows> out(m.bodies.size());
+  for (std::size_t a = 0; a < m.bodies.size(); ++a) {
+    const BodyInfo& body = m.bodies[a];
+    if (body.last <= body.first) continue;
+    DamageRows& d = out[a];
+    d.rows = whole_rows(m.bonds, body);
+    d.families = m.bonds.families.data() + body.first_family;
+    for (std::size_t f = 0; f < body.family_count; ++f) d.whole_family_volume += d.families[f].volume;
+  }
+  return out;
+}
+
+/// row_damage from the bits of the row's intact family offsets (d.rows): the same sums in the same
+/// order, so the same bits (a row holds its bonds by ascending family offset, discretize.cpp, and
+/// the intact volume adds the set bits' volumes from the lowest up), where row_damage reads every
+/// state of a row twice and each bond's family. A row of the whole family has the body's sum of
+/// volumes; a row at a surface sums its own.
+inline double row_damage_from_bits(const Bonds& b, const DamageRows& d, std::size_t i, double& broken) {
+  const RowStates& r = d.rows;
+  if (r.whole[i] == bond_intact) return 0.0;
+  const auto length = static_cast<std::size_t>(b.offset[i + 1] - b.offset[i]);
+  double all = d.whole_family_volume;
+  if (length != r.family_count) {
+    all = 0.0;
+    for (auto k = b.offset[i]; k < b.offset[i + 1]; ++k) all += b.volume(k);
+  }
+  double intact = 0.0;
+  std::size_t count = 0;
+  for (std::size_t w = 0; w < r.words; ++w) {
+    std::uint64_t bits = r.intact[w * r.stride + i];
+    count += static_cast<std::size_t>(std::popcount(bits));
+    for (; bits != 0; bits &= bits - 1) intact += d.families[64 * w + static_cast<std::size_t>(std::countr_zero(bits))].volume;
+  }
+  broken += static_cast<double>(length - count);  // whole numbers: as adding one per bond
+  return all > 0.0 ? 1.0 - intact / all : 0.0;
+}
+
 }  // namespace
 
 template <int D>
@@ -121,6 +172,8 @@ EnergySummary summarize_rows(const Model<D>& m, bool strain_energy, double* dama
   densities.resize(strain_energy ? m.size() : 0);
   double* const density = densities.data();
   if (strain_energy) strain_energy_densities<D>(m, density);
+  // each body's rows of bond states, where they hold its bits (row_damage_from_bits)
+  const std::vector<DamageRows> rows = damage_rows<D>(m);
   // over the owned particles of every rank, exact (the one-rank run's bits on any cut)
   const std::vector<IndexRange> owned = m.owned();
   auto sums = parallel::exact_sums<3>(ranks_of<D>(m), owned, line_of(m), [&](std::size_t i, std::array<double, 3>& acc) {
@@ -132,7 +185,11 @@ EnergySummary summarize_rows(const Model<D>& m, bool strain_energy, double* dama
       for (int k = 0; k < D; ++k)
         if (!std::isfinite(m.position[i][k])) acc[1] = std::numeric_limits<double>::quiet_NaN();
     }
-    if (damage) {
+    const DamageRows& r = rows[m.body[i]];
+    if (r.rows.intact) {
+      const double d = row_damage_from_bits(m.bonds, r, i, acc[2]);
+      if (damage) damage[i] = d;
+    } else if (damage) {
       damage[i] = row_damage(m.bonds, i, acc[2]);
     } else {
       for (auto k = m.bonds.offset[i]; k < m.bonds.offset[i + 1]; ++k) acc[2] += m.bonds.intact[k] != bond_intact;
