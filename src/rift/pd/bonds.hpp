@@ -226,6 +226,16 @@ struct NetworkEnd {
   double held = 0.0, change = 0.0;    // its p with the network held intact, and the network's share (times d / m without the surface correction)
 };
 
+/// What the network load's runs read of each particle for one source (network_load_runs.hpp): its
+/// terms as an end, from its NetworkEnd, and whether the source's fluid reached it (1 or 0), and per
+/// block of network_load_block particles whether one of them has a nonzero term. A cache kept with
+/// the ends (made again where they are), not state: empty, it is made from the ends.
+struct NetworkRunTerms {
+  std::vector<double> change, held, wet;
+  std::vector<std::uint8_t> block_has_end;
+};
+inline constexpr std::size_t network_load_block = 64;
+
 /// The fluid each pressure source has in the cracks grown from it (fluid_network.hpp); empty
 /// without pressure sources.
 struct FluidNetwork {
@@ -258,6 +268,7 @@ struct FluidNetwork {
   std::vector<std::vector<double>> network_load;         // per source: the force density on each particle per unit pressure (n x d, 1/m); empty: none (network_load.hpp)
   std::vector<std::vector<std::uint8_t>> is_end;         // per source, per particle: it has a bond in the network
   std::vector<std::vector<NetworkEnd>> network_ends;     // per source, per particle: an end's NetworkEnd as network_load was last made (zero: not an end)
+  std::vector<NetworkRunTerms> network_run_terms;       // per source: the runs' terms of its ends (a cache, network_load.hpp)
   // per pressure source (the scene's cracks, then its boreholes)
   std::vector<std::uint8_t> dry;         // a crack without pressure of its own: its cut bonds carry a fluid that reaches them
   std::vector<std::uint8_t> sealed;      // a borehole whose wall has not broken down yet: the dry pre-cracks stay shut to its fluid

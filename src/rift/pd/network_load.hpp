@@ -297,24 +297,40 @@ bool load_by_runs(const Model<D>& m) {
 /// `changed` (the ends made again) or a neighbour of one is made again (all of them where `all`):
 /// g_i reads i's bonds' states and the terms of i and its neighbours alone, so every other g is as
 /// it was. A block's g is made from every run that reaches the block, as the whole pass makes it,
-/// so it is the same bits as the pass over every run made from scratch.
+/// so it is the same bits as the pass over every run made from scratch. The runs' terms of the ends
+/// are kept in `cache` from call to call and made again for `changed` alone (they were made for
+/// every particle each call: a pass over 4 million NetworkEnd at the thesis size).
 /// `terms`: each family offset's omega (family_terms).
 template <int D>
 void network_load_by_runs(const Model<D>& m, int s, const std::vector<NetworkEnd>& ends, const std::vector<std::size_t>& changed, bool all,
-                          const FamilyTerms& terms, std::vector<double>& g) {
+                          const FamilyTerms& terms, NetworkRunTerms& cache, std::vector<double>& g) {
   const Bonds& b = m.bonds;
   const FluidNetwork& f = m.fluid_network;
   const std::size_t n = m.size();
-  constexpr std::size_t block = 64;
+  constexpr std::size_t block = network_load_block;
   const std::size_t blocks = (n + block - 1) / block;
-  // per block, whether its g is made again, and whether it holds an end (change or held nonzero):
-  // a run that reaches no block of either kind adds nothing to a g made again, and is skipped (at
-  // the thesis size a pass over every run was a tenth of an early step); the calling thread's, the
-  // team writes them through the pointers
-  static thread_local std::vector<std::uint8_t> remade, has_end;
-  remade.assign(blocks, all ? 1 : 0), has_end.assign(blocks, 0);
+  // the runs' terms of every particle where g is made from scratch, where the cache is new, or on N
+  // ranks (each call gives every ghost its owner's NetworkEnd again: refresh_ghost_ends)
+  const bool every = all || cache.change.size() != n || cache.block_has_end.size() != blocks || m.ghosts;
+  if (every) cache.change.resize(n), cache.held.resize(n), cache.wet.resize(n), cache.block_has_end.resize(blocks);
+  double* const change = cache.change.data();
+  double* const held = cache.held.data();
+  double* const wet = cache.wet.data();
+  auto terms_of = [&](std::size_t i) {
+    const NetworkEnd& z = ends[i];
+    change[i] = z.change - z.a * z.d_theta / D;
+    held[i] = z.held + z.a * (1.0 - z.theta / D);
+    wet[i] = f.source[i] == s ? 1.0 : 0.0;
+  };
+  const std::size_t count = every ? n : changed.size();
+#pragma omp parallel for if(rift::parallel::worth_a_team(count)) schedule(static)
+  for (std::size_t q = 0; q < count; ++q) terms_of(every ? q : changed[q]);
+  // per block, whether its g is made again: the calling thread's, the team writes it through the
+  // pointer
+  static thread_local std::vector<std::uint8_t> remade;
+  remade.assign(blocks, all ? 1 : 0);
   std::uint8_t* const block_remade = remade.data();
-  std::uint8_t* const block_has_end = has_end.data();
+  std::uint8_t* const block_has_end = cache.block_has_end.data();
   if (!all) {
 #pragma omp parallel for if(rift::parallel::worth_a_team(changed.size() * 16)) schedule(static)
     for (std::size_t q = 0; q < changed.size(); ++q) {
@@ -324,23 +340,21 @@ void network_load_by_runs(const Model<D>& m, int s, const std::vector<NetworkEnd
         std::atomic_ref<std::uint8_t>(block_remade[static_cast<std::size_t>(b.neighbor[k]) / block]).store(1, std::memory_order_relaxed);
     }
   }
+  // the sums of the blocks made again start at zero (the others' are not read); whether a block
+  // holds an end (change or held nonzero) changes only where an end was made again, in a block made
+  // again: a run that reaches no block of either kind adds nothing to a g made again, and is skipped
+  // (at the thesis size a pass over every run was a tenth of an early step)
   std::array<double*, 3> sum{};
   for (int q = 0; q < D; ++q) sum[static_cast<std::size_t>(q)] = pass_scratch(n, 5 + q);
-  double* const change = pass_scratch(n, 8);
-  double* const held = pass_scratch(n, 9);
-  double* const wet = pass_scratch(n, 10);
 #pragma omp parallel for if(rift::parallel::worth_a_team(n)) schedule(static)
   for (std::size_t first = 0; first < n; first += block) {
+    if (!every && !block_remade[first / block]) continue;
+    const std::size_t last = std::min(n, first + block);
     bool any = false;
-    for (std::size_t i = first; i < std::min(n, first + block); ++i) {
-      const NetworkEnd& z = ends[i];
-      change[i] = z.change - z.a * z.d_theta / D;
-      held[i] = z.held + z.a * (1.0 - z.theta / D);
-      wet[i] = f.source[i] == s ? 1.0 : 0.0;
-      for (int q = 0; q < D; ++q) sum[static_cast<std::size_t>(q)][i] = 0.0;
-      any |= change[i] != 0.0 || held[i] != 0.0;
-    }
+    for (std::size_t i = first; i < last; ++i) any |= change[i] != 0.0 || held[i] != 0.0;
     block_has_end[first / block] = any ? 1 : 0;
+    if (block_remade[first / block])
+      for (int q = 0; q < D; ++q) std::fill(sum[static_cast<std::size_t>(q)] + first, sum[static_cast<std::size_t>(q)] + last, 0.0);
   }
   // whether a block of [first, first + length) is so marked
   auto any_in = [&](const std::uint8_t* marked, std::size_t first, std::size_t length) {
@@ -369,11 +383,10 @@ void network_load_by_runs(const Model<D>& m, int s, const std::vector<NetworkEnd
         return;
       }
       alignas(64) double alive[max_run_length];
-      const bool masked = mask_run(b, run, rows, alive);
       static thread_local NetworkLoadRun a;  // the thread's: every run sets what its form reads
+      const bool masked = run_mask(b, run, rows, alive, a.mask);
       a.length = length;
       a.change_a = change + i, a.change_b = change + j, a.held_a = held + i, a.held_b = held + j, a.wet_a = wet + i, a.wet_b = wet + j;
-      a.alive = alive;
       a.kx = k[0], a.ky = k[1], a.kz = k[2];
       a.fxa = sum[0] + i, a.fya = sum[1] + i, a.fxb = sum[0] + j, a.fyb = sum[1] + j;
       if constexpr (D == 3) a.fza = sum[2] + i, a.fzb = sum[2] + j;
@@ -436,13 +449,13 @@ void update_network_load(Model<D>& m) {
   const std::size_t sources = f.dry.size();
   const detail::FamilyTerms terms = detail::family_terms<D>(m);
   const bool by_runs = detail::load_by_runs<D>(m);
-  f.network_load.resize(sources), f.is_end.resize(sources), f.network_ends.resize(sources);
+  f.network_load.resize(sources), f.is_end.resize(sources), f.network_ends.resize(sources), f.network_run_terms.resize(sources);
   for (std::size_t s = 0; s < sources; ++s) {
     auto& g = f.network_load[s];
     auto& is_end = f.is_end[s];
     auto& ends = f.network_ends[s];
     if (s >= f.has_network.size() || !f.has_network[s]) {
-      g.clear(), is_end.clear(), ends.clear();
+      g.clear(), is_end.clear(), ends.clear(), f.network_run_terms[s] = {};
       continue;
     }
     const bool all = scratch || g.empty();  // g made from scratch: every particle evaluated
@@ -479,7 +492,7 @@ void update_network_load(Model<D>& m) {
     detail::refresh_ghost_ends<D>(m, is_end, ends);
     // g by the runs on the blocks within reach of those made again, or of those made again and
     // their neighbours' changed by the changes of their ends
-    if (by_runs) detail::network_load_by_runs<D>(m, source, ends, changed, all, terms, g);
+    if (by_runs) detail::network_load_by_runs<D>(m, source, ends, changed, all, terms, f.network_run_terms[s], g);
     else detail::changed_rows_pass<D>(m, changed, before, is_end, ends, terms, f.load_changed_mark, in_network, g);
   }
   f.load_from_scratch = false;
