@@ -282,23 +282,65 @@ inline bool run_bond_intact(const Bonds& b, const BondRun& run, const RowStates&
   return b.intact[static_cast<std::size_t>(run_bond(b, run, t))] == bond_intact;
 }
 
-/// Whether the run has a row that is not whole (RowStates); then alive[t] is 1 for its intact
-/// bonds and 0 for the others, for the kernels' Masked form. The bits of the rows' intact offsets
-/// are read one row after the next; each row's own states (and where the rows do not share the
-/// bonds' place, its neighbours, to find it) would take a cache line per bond, in the damaged
-/// rows around the thesis-size perforation a fifth of the bond passes.
-inline bool mask_run(const Bonds& b, const BondRun& run, const RowStates& rows, double* alive) {
+/// Where a masked run's kernel finds which of its bonds are intact (mask_run): the bits of the
+/// rows' intact offsets, one word per bond of the run at the run's family offset's bit, with the
+/// rows' whole flags; or, where the rows hold no bits, `alive` made by the caller from the states.
+struct RunMask {
+  const std::uint64_t* words = nullptr;
+  const std::uint8_t* whole = nullptr;
+  unsigned bit = 0;
+  const double* alive = nullptr;
+};
+
+/// Whether the run has a row that is not whole (RowStates); then `mask` says where its intact bonds
+/// are read from: the bits of the rows' intact offsets, one row after the next; each row's own states
+/// (and where the rows do not share the bonds' place, its neighbours, to find it) would take a cache
+/// line per bond, in the damaged rows around the thesis-size perforation a fifth of the bond passes.
+/// Where the rows hold no bits, alive[t] is made here from the states (1 intact, 0 not).
+inline bool run_mask(const Bonds& b, const BondRun& run, const RowStates& rows, double* alive, RunMask& mask) {
   const std::uint8_t* const whole = rows.whole + run.i;
   if (whole_run(whole, run.length)) return false;
   if (rows.intact) {
-    const std::size_t f = run.family - rows.first_family, bit = f & 63;
-    const std::uint64_t* __restrict const words = rows.intact + (f >> 6) * rows.stride + static_cast<std::size_t>(run.i);
-    // without a branch (vector code): a whole row has every bit
-    for (std::size_t t = 0; t < run.length; ++t)
-      alive[t] = static_cast<double>(static_cast<std::int32_t>((static_cast<std::uint32_t>(words[t] >> bit) | whole[t]) & 1u));
+    const std::size_t f = run.family - rows.first_family;
+    mask = {rows.intact + (f >> 6) * rows.stride + static_cast<std::size_t>(run.i), whole, static_cast<unsigned>(f & 63), nullptr};
     return true;
   }
   for (std::size_t t = 0; t < run.length; ++t) alive[t] = b.intact[static_cast<std::size_t>(run_bond(b, run, t))] == bond_intact ? 1.0 : 0.0;
+  mask = {nullptr, nullptr, 0, alive};
+  return true;
+}
+
+/// The mask of a run (run_mask) as the kernels' Masked form reads it: alive[t] 1 for an intact bond
+/// and 0 for another, made from the bits into `buffer` (in the calling kernel's clone, so in its
+/// vectors, without a branch: a whole row has every bit), or the caller's. Returns whether any bond
+/// is intact (none: the run adds nothing).
+[[gnu::always_inline]] inline bool alive_from_mask(const RunMask& mask, std::size_t length, double* __restrict buffer, const double*& alive) {
+  if (!mask.words) {
+    alive = mask.alive;
+    std::uint64_t any = 0;
+    for (std::size_t t = 0; t < length; ++t) any |= mask.alive[t] != 0.0;
+    return any != 0;
+  }
+  const std::uint64_t* __restrict const words = mask.words;
+  const std::uint8_t* __restrict const whole = mask.whole;
+  const unsigned bit = mask.bit;
+  std::uint32_t any = 0;
+  for (std::size_t t = 0; t < length; ++t) {
+    const std::uint32_t on = (static_cast<std::uint32_t>(words[t] >> bit) | whole[t]) & 1u;
+    any |= on;
+    buffer[t] = static_cast<double>(static_cast<std::int32_t>(on));
+  }
+  alive = buffer;
+  return any != 0;
+}
+
+/// Whether the run has a row that is not whole (run_mask); then alive[t] is 1 for its intact bonds
+/// and 0 for the others, for the kernels' Masked form that take it made.
+inline bool mask_run(const Bonds& b, const BondRun& run, const RowStates& rows, double* alive) {
+  RunMask mask;
+  if (!run_mask(b, run, rows, alive, mask)) return false;
+  const double* made = nullptr;
+  alive_from_mask(mask, run.length, alive, made);
   return true;
 }
 

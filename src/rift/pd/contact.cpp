@@ -9,6 +9,7 @@
 
 #include <omp.h>
 
+#include "rift/parallel/sort.hpp"
 #include "rift/parallel/team.hpp"
 #include "rift/pd/ghost_fields.hpp"
 
@@ -63,23 +64,28 @@ void Contact<D>::rebuild(const Model<D>& m) {
   const std::size_t all = n + beyond_.size();
   auto position = [&](std::size_t i) -> const Vec<D>& { return i < n ? m.position[i] : beyond_.position[i - n]; };
   auto body = [&](std::size_t i) { return i < n ? m.body[i] : beyond_.body[i - n]; };
-  // the particles sorted by cell (x fastest) on a grid over their bounding box
+  // the particles sorted by cell (x fastest) on a grid over their bounding box, by the team (at the
+  // thesis size, 4 million particles, a rebuild in the breaking regime comes every few dozen steps)
+  const bool team = rift::parallel::worth_a_team(all);
   std::array<long, 3> low{0, 0, 0}, extent{1, 1, 1};
   std::vector<std::array<long, 3>> at(all);
   if (all > 0) {
-    std::array<long, 3> high{};
-    for (int k = 0; k < D; ++k) low[k] = std::numeric_limits<long>::max(), high[k] = std::numeric_limits<long>::min();
-    for (std::size_t i = 0; i < all; ++i)
-      for (int k = 0; k < D; ++k) {
-        at[i][k] = static_cast<long>(std::floor(position(i)[k] / cell));
-        low[k] = std::min(low[k], at[i][k]), high[k] = std::max(high[k], at[i][k]);
-      }
-    for (int k = 0; k < D; ++k) extent[k] = high[k] - low[k] + 1;
+    long lx = std::numeric_limits<long>::max(), ly = lx, lz = D == 3 ? lx : 0;
+    long hx = std::numeric_limits<long>::min(), hy = hx, hz = D == 3 ? hx : 0;
+#pragma omp parallel for if(team) schedule(static) reduction(min : lx, ly, lz) reduction(max : hx, hy, hz)
+    for (std::size_t i = 0; i < all; ++i) {
+      for (int k = 0; k < D; ++k) at[i][k] = static_cast<long>(std::floor(position(i)[k] / cell));
+      lx = std::min(lx, at[i][0]), hx = std::max(hx, at[i][0]), ly = std::min(ly, at[i][1]), hy = std::max(hy, at[i][1]);
+      if constexpr (D == 3) lz = std::min(lz, at[i][2]), hz = std::max(hz, at[i][2]);
+    }
+    low = {lx, ly, lz};
+    extent = {hx - lx + 1, hy - ly + 1, hz - lz + 1};
   }
   auto key = [&](const std::array<long, 3>& c) { return (c[2] - low[2]) * extent[1] * extent[0] + (c[1] - low[1]) * extent[0] + (c[0] - low[0]); };
   std::vector<std::pair<long, std::int32_t>> sorted(all);
+#pragma omp parallel for if(team) schedule(static)
   for (std::size_t i = 0; i < all; ++i) sorted[i] = {key(at[i]), static_cast<std::int32_t>(i)};
-  std::sort(sorted.begin(), sorted.end());
+  rift::parallel::sort(sorted);  // distinct elements: std::sort's order
   // per thread: the pairs within d + skin that no family holds (i < j, i of the window), then in rows
   std::vector<std::vector<std::pair<std::int32_t, std::int32_t>>> found(static_cast<std::size_t>(omp_get_max_threads()));
   const Bonds& b = m.bonds;

@@ -134,8 +134,8 @@ void dilatation_runs(Model<D>& m, const BodyInfo& body, const RowStates& rows, d
     const FamilyOffset& family = v.families[run.family];
     alignas(64) double alive[max_run_length], weight_a[max_run_length], weight_b[max_run_length], correction_a[max_run_length],
         correction_b[max_run_length], flagged[max_run_length];
-    const bool masked = mask_run(b, run, rows, alive);
-    if (masked && !any_set(alive, length)) return;  // every bond of the run broken: nothing to add
+    static thread_local DilatationRun a;  // the thread's: every run sets what its form reads (not zeroed each run)
+    const bool masked = run_mask(b, run, rows, alive, a.mask);  // the kernel skips a run whose bonds are all broken
     if constexpr (Corrected)
       for (std::size_t t = 0; t < length; ++t) {
         const BondFactors& own = v.factors[v.factor_row[i + t] + run.family];
@@ -144,14 +144,12 @@ void dilatation_runs(Model<D>& m, const BodyInfo& body, const RowStates& rows, d
         correction_a[t] = own.correction, correction_b[t] = other.correction;
       }
     const double* const pore = Wet ? wet.pore_stretch : nullptr;
-    static thread_local DilatationRun a;  // the thread's: every run sets what its form reads (not zeroed each run)
     a.length = length;
     a.xa = x[0] + i, a.ya = x[1] + i, a.xb = x[0] + j, a.yb = x[1] + j;
     if constexpr (D == 3) a.za = x[2] + i, a.zb = x[2] + j;
     a.limit_a = limits + i, a.limit_b = limits + j;
     if (pore) a.pore_a = pore + i, a.pore_b = pore + j;
     a.shift_scale = 1.0 + c.alpha;
-    a.alive = alive;
     a.weight_a = weight_a, a.weight_b = weight_b, a.correction_a = correction_a, a.correction_b = correction_b;
     a.bond_length = family.length, a.inverse_length = family.inverse_length, a.volume = family.volume;
     a.omega_length = influence(Omega, family.length, c.horizon) * family.length;
@@ -381,8 +379,8 @@ void state_based_forces(Model<D>& m, const BodyInfo& body, double history_dt, co
     const FamilyOffset& family = b.families[run.family];
     alignas(64) double alive[max_run_length], weight_a[max_run_length], weight_b[max_run_length], correction_a[max_run_length],
         correction_b[max_run_length];
-    const bool masked = mask_run(b, run, rows, alive);
-    if (masked && !any_set(alive, length)) return;  // every bond of the run broken: nothing to add
+    static thread_local StateForceRun a;  // the thread's: every run sets what its form reads (not zeroed each run)
+    const bool masked = run_mask(b, run, rows, alive, a.mask);  // the kernel skips a run whose bonds are all broken
     if constexpr (Corrected)
       for (std::size_t t = 0; t < length; ++t) {
         const BondFactors& own = b.factors[static_cast<std::size_t>(b.factor_row[i + t] + run.family)];
@@ -390,14 +388,12 @@ void state_based_forces(Model<D>& m, const BodyInfo& body, double history_dt, co
         weight_a[t] = own.dilatation_weight, weight_b[t] = other.dilatation_weight;
         correction_a[t] = own.correction, correction_b[t] = other.correction;
       }
-    static thread_local StateForceRun a;  // the thread's: every run sets what its form reads (not zeroed each run)
     a.length = length;
     a.xa = x[0] + i, a.ya = x[1] + i, a.xb = x[0] + j, a.yb = x[1] + j;
     a.fxa = f[0] + i, a.fya = f[1] + i, a.fxb = f[0] + j, a.fyb = f[1] + j;
     if constexpr (D == 3) a.za = x[2] + i, a.zb = x[2] + j, a.fza = f[2] + i, a.fzb = f[2] + j;
     a.pressure_a = pressure + i, a.pressure_b = pressure + j, a.coefficient_a = coefficient + i, a.coefficient_b = coefficient + j;
     a.theta_a = theta + i, a.theta_b = theta + j;
-    a.alive = alive;
     a.weight_a = weight_a, a.weight_b = weight_b, a.correction_a = correction_a, a.correction_b = correction_b;
     if constexpr (Viscous) {
       const std::size_t h = history_index(body, i, run.family, 0);  // both directions contiguous (bonds.hpp)

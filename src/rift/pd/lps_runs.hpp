@@ -18,12 +18,13 @@
 namespace rift::pd {
 
 /// One run of the dilatation pass: the lower ends' arrays start at a, the upper ends' at b.
-/// `alive` (Masked): 1 for an intact bond, 0 for another; Corrected: the dilatation weights b_ij,
+/// `mask` (Masked): which bonds are intact (bond_runs.hpp run_mask); Corrected: the dilatation weights b_ij,
 /// b_ji and the influence factors g_i, g_j of the run's bonds (bonds.hpp BondFactors).
 struct DilatationRun {
   std::size_t length = 0;
   const double *xa = nullptr, *ya = nullptr, *za = nullptr, *xb = nullptr, *yb = nullptr, *zb = nullptr;
-  const double *limit_a = nullptr, *limit_b = nullptr, *pore_a = nullptr, *pore_b = nullptr, *alive = nullptr;
+  const double *limit_a = nullptr, *limit_b = nullptr, *pore_a = nullptr, *pore_b = nullptr;
+  RunMask mask;  // Masked
   const double *weight_a = nullptr, *weight_b = nullptr, *correction_a = nullptr, *correction_b = nullptr;
   double shift_scale = 1.0, bond_length = 0.0, inverse_length = 0.0, volume = 0.0, omega_length = 0.0;  // omega |xi|
   double *theta_a = nullptr, *theta_b = nullptr, *coupling_a = nullptr, *coupling_b = nullptr;
@@ -104,14 +105,18 @@ template <int D, bool Corrected, bool Coupling, bool Shifted, bool Masked, class
 template <int D, bool Corrected, bool Coupling, bool Shifted, bool Masked>
 struct DilatationRunKernel {
   [[gnu::always_inline]] static bool run(const DilatationRun& a) {
+    alignas(64) double own_alive[max_run_length];
+    const double* alive = nullptr;
+    if constexpr (Masked)
+      if (!alive_from_mask(a.mask, a.length, own_alive, alive)) return false;  // every bond of the run broken: nothing to add
     if (a.ends_apart)  // in one loop (bond_runs.hpp ends_apart_in_vectors)
       return dilatation_run_terms<D, Corrected, Coupling, Shifted, Masked>(
-          a.length, a.xa, a.ya, a.za, a.xb, a.yb, a.zb, a.limit_a, a.limit_b, a.pore_a, a.pore_b, a.shift_scale, a.alive, a.weight_a,
+          a.length, a.xa, a.ya, a.za, a.xb, a.yb, a.zb, a.limit_a, a.limit_b, a.pore_a, a.pore_b, a.shift_scale, alive, a.weight_a,
           a.weight_b, a.correction_a, a.correction_b, a.bond_length, a.inverse_length, a.volume, a.omega_length, a.breakable,
           DilatationToEnds<Coupling>(a), a.may_break);
     alignas(64) double wa[max_run_length], wb[max_run_length], qa[max_run_length], qb[max_run_length], stretch[max_run_length];
     const bool may_break = dilatation_run_terms<D, Corrected, Coupling, Shifted, Masked>(
-        a.length, a.xa, a.ya, a.za, a.xb, a.yb, a.zb, a.limit_a, a.limit_b, a.pore_a, a.pore_b, a.shift_scale, a.alive, a.weight_a,
+        a.length, a.xa, a.ya, a.za, a.xb, a.yb, a.zb, a.limit_a, a.limit_b, a.pore_a, a.pore_b, a.shift_scale, alive, a.weight_a,
         a.weight_b, a.correction_a, a.correction_b, a.bond_length, a.inverse_length, a.volume, a.omega_length, a.breakable,
         DilatationToBuffers<Coupling>{wa, wb, qa, qb, stretch}, a.may_break);
     add_to_run_ends(a.theta_a, wa, a.length);
@@ -127,7 +132,7 @@ struct DilatationRunKernel {
 };
 
 /// One run of the force pass: the lower ends' arrays start at a, the upper ends' at b (positions,
-/// pressure factors p, a = A_dev / m, dilatations theta); `alive` (Masked); Corrected: b_ij, b_ji, g_i,
+/// pressure factors p, a = A_dev / m, dilatations theta); `mask` (Masked); Corrected: b_ij, b_ji, g_i,
 /// g_j; Viscous: the back extensions of both directions (ves.hpp; bonds.hpp), the pairs' extensions
 /// and the ends' dilatations of the step before (bonds.hpp last_extension, history_dilatation),
 /// lambda and the step's coefficients (viscous_step.hpp).
@@ -135,7 +140,8 @@ struct StateForceRun {
   std::size_t length = 0;
   const double *xa = nullptr, *ya = nullptr, *za = nullptr, *xb = nullptr, *yb = nullptr, *zb = nullptr;
   const double *pressure_a = nullptr, *pressure_b = nullptr, *coefficient_a = nullptr, *coefficient_b = nullptr;
-  const double *theta_a = nullptr, *theta_b = nullptr, *alive = nullptr;
+  const double *theta_a = nullptr, *theta_b = nullptr;
+  RunMask mask;  // Masked
   const double *weight_a = nullptr, *weight_b = nullptr, *correction_a = nullptr, *correction_b = nullptr;
   const double *last_theta_a = nullptr, *last_theta_b = nullptr;
   float *back_a = nullptr, *back_b = nullptr, *last_extension = nullptr;
@@ -211,6 +217,10 @@ template <int D, bool Corrected, bool Viscous, bool Advance, bool Masked, class 
 template <int D, bool Corrected, bool Viscous, bool Advance, bool Masked>
 struct StateForceRunKernel {
   [[gnu::always_inline]] static bool run(const StateForceRun& a) {
+    alignas(64) double own_alive[max_run_length];
+    const double* alive = nullptr;
+    if constexpr (Masked)
+      if (!alive_from_mask(a.mask, a.length, own_alive, alive)) return false;  // every bond of the run broken: nothing to add
     if constexpr (Viscous) {
       // the history of the runs one family offset on (bonds.hpp: the next history_block pairs of
       // either stream): hardware prefetching loses the streams between runs of a few cache lines
@@ -221,7 +231,7 @@ struct StateForceRunKernel {
     if (a.ends_apart) {  // in one loop (bond_runs.hpp ends_apart_in_vectors)
       state_force_run_terms<D, Corrected, Viscous, Advance, Masked>(
           a.length, a.xa, a.ya, a.za, a.xb, a.yb, a.zb, a.pressure_a, a.pressure_b, a.coefficient_a, a.coefficient_b, a.theta_a,
-          a.theta_b, a.alive, a.weight_a, a.weight_b, a.correction_a, a.correction_b, a.last_theta_a, a.last_theta_b, a.back_a,
+          a.theta_b, alive, a.weight_a, a.weight_b, a.correction_a, a.correction_b, a.last_theta_a, a.last_theta_b, a.back_a,
           a.back_b, a.last_extension, a.lambda, a.one_minus_decay, a.decay, a.beta, a.bond_length, a.omega, a.volume,
           PairForcesToEnds<D, false>(a));
       return false;
@@ -229,7 +239,7 @@ struct StateForceRunKernel {
     alignas(64) double g[3][max_run_length];
     state_force_run_terms<D, Corrected, Viscous, Advance, Masked>(
         a.length, a.xa, a.ya, a.za, a.xb, a.yb, a.zb, a.pressure_a, a.pressure_b, a.coefficient_a, a.coefficient_b, a.theta_a, a.theta_b,
-        a.alive, a.weight_a, a.weight_b, a.correction_a, a.correction_b, a.last_theta_a, a.last_theta_b, a.back_a, a.back_b,
+        alive, a.weight_a, a.weight_b, a.correction_a, a.correction_b, a.last_theta_a, a.last_theta_b, a.back_a, a.back_b,
         a.last_extension, a.lambda, a.one_minus_decay, a.decay, a.beta, a.bond_length, a.omega, a.volume,
         PairForcesToBuffers<D, false>{g[0], g[1], g[2], nullptr});
     add_pair_forces_to_run_ends<D>(a, g);

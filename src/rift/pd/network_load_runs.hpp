@@ -19,13 +19,14 @@
 namespace rift::pd {
 
 /// One run of the network load pass: the lower ends' arrays start at a, the upper ends' at b;
-/// `alive` (Masked): 1 for an intact bond, 0 for another; wet: 1 where the network's fluid reached
+/// `mask` (Masked: bond_runs.hpp run_mask): which bonds are intact; wet: 1 where the network's fluid reached
 /// the particle (FluidNetwork::source), else 0; k: -omega V xi of the run's family; g: the sums, per
 /// component.
 struct NetworkLoadRun {
   std::size_t length = 0;
   const double *change_a = nullptr, *change_b = nullptr, *held_a = nullptr, *held_b = nullptr;
-  const double *wet_a = nullptr, *wet_b = nullptr, *alive = nullptr;
+  const double *wet_a = nullptr, *wet_b = nullptr;
+  RunMask mask;  // Masked
   double kx = 0.0, ky = 0.0, kz = 0.0;
   double *fxa = nullptr, *fya = nullptr, *fza = nullptr, *fxb = nullptr, *fyb = nullptr, *fzb = nullptr;
   bool ends_apart = false;  // bond_runs.hpp ends_apart_in_vectors: the one-loop form
@@ -58,13 +59,16 @@ template <int D, bool Masked, class Out>
 template <int D, bool Masked>
 struct NetworkLoadRunKernel {
   [[gnu::always_inline]] static bool run(const NetworkLoadRun& a) {
+    alignas(64) double own_alive[max_run_length];
+    const double* alive = nullptr;
+    if constexpr (Masked) alive_from_mask(a.mask, a.length, own_alive, alive);  // a broken bond adds where it is the network's
     if (a.ends_apart) {  // in one loop (bond_runs.hpp ends_apart_in_vectors)
-      network_load_run_terms<D, Masked>(a.length, a.change_a, a.change_b, a.held_a, a.held_b, a.wet_a, a.wet_b, a.alive, a.kx, a.ky,
+      network_load_run_terms<D, Masked>(a.length, a.change_a, a.change_b, a.held_a, a.held_b, a.wet_a, a.wet_b, alive, a.kx, a.ky,
                                         a.kz, PairForcesToEnds<D, false>(a));
       return false;
     }
     alignas(64) double g[3][max_run_length];
-    network_load_run_terms<D, Masked>(a.length, a.change_a, a.change_b, a.held_a, a.held_b, a.wet_a, a.wet_b, a.alive, a.kx, a.ky, a.kz,
+    network_load_run_terms<D, Masked>(a.length, a.change_a, a.change_b, a.held_a, a.held_b, a.wet_a, a.wet_b, alive, a.kx, a.ky, a.kz,
                                       PairForcesToBuffers<D, false>{g[0], g[1], g[2], nullptr});
     add_pair_forces_to_run_ends<D>(a, g);
     return false;
