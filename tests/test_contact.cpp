@@ -3,7 +3,8 @@
 // r < d (Silling 2005, EMU theory manual p. 18; k = 15 c, d = 0.9 spacings, the defaults). The
 // contact reads the broken bonds only in the rows that may touch and looks at the rows again as the
 // particles move (a Verlet skin); the test moves the particles so that broken pairs come into reach
-// long after the rows were first looked at.
+// long after the rows were first looked at, then moves three particles alone, far from their
+// families, each pair they meet counted.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -100,6 +101,31 @@ void contact_is_the_sum_over_all_unbonded_pairs() {
               worst);
   EXPECT_GT(touching_most, m.size() / 10);  // the wave pressed many broken pairs into reach
   EXPECT_LT(worst, 1e-12);
+  // then three particles wander off, 0.15 spacings a step, the others held: every pair they meet
+  // counts
+  std::vector<std::size_t> wanderers;
+  for (std::size_t q = 0; q < 3; ++q) wanderers.push_back((q + 1) * m.size() / 4);
+  double worst_wandering = 0.0;
+  std::size_t met = 0;
+  for (int step = 1; step <= 40; ++step) {
+    for (const std::size_t i : wanderers)
+      for (int q = 0; q < D; ++q) m.position[i][q] += 0.15 * spacing * unit(rng);
+    for (auto& f : m.force) f = rift::Vec<D>{};
+    contact.add_forces(m);
+    const auto expected = all_pairs_contact<D>(m, distance, k);
+    double largest = 0.0, difference = 0.0;
+    for (std::size_t i = 0; i < m.size(); ++i) {
+      largest = std::max(largest, std::sqrt(rift::dot<D>(expected[i], expected[i])));
+      const rift::Vec<D> e = m.force[i] - expected[i];
+      difference = std::max(difference, std::sqrt(rift::dot<D>(e, e)));
+    }
+    for (const std::size_t i : wanderers) met += rift::dot<D>(expected[i], expected[i]) > 0.0;
+    if (largest > 0.0) worst_wandering = std::max(worst_wandering, difference / largest);
+  }
+  std::printf("%dD contact, three wandering: %zu of their steps touching, largest difference %.2e of the largest force\n", D, met,
+              worst_wandering);
+  EXPECT_GT(met, 10u);
+  EXPECT_LT(worst_wandering, 1e-12);
 }
 
 TEST(Contact, IsTheSumOverAllUnbondedPairsTwoD) { contact_is_the_sum_over_all_unbonded_pairs<2>(); }
