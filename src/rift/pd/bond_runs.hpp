@@ -335,7 +335,7 @@ inline bool run_mask(const Bonds& b, const BondRun& run, const RowStates& rows, 
 }
 
 /// Whether the run has a row that is not whole (run_mask); then alive[t] is 1 for its intact bonds
-/// and 0 for the others, for the kernels' Masked form that take it made.
+/// and 0 for the others, for the passes whose kernels take alive[] made (PMB, the energy sums).
 inline bool mask_run(const Bonds& b, const BondRun& run, const RowStates& rows, double* alive) {
   RunMask mask;
   if (!run_mask(b, run, rows, alive, mask)) return false;
