@@ -282,6 +282,18 @@ inline bool run_bond_intact(const Bonds& b, const BondRun& run, const RowStates&
   return b.intact[static_cast<std::size_t>(run_bond(b, run, t))] == bond_intact;
 }
 
+/// Whether any of the flags (1.0 or 0.0) is set; read as bits, so that the loop is vector code (a
+/// loop that compares the doubles is not).
+[[gnu::always_inline]] inline bool any_set(const double* __restrict flags, std::size_t length) {
+  std::uint64_t bits = 0;
+  for (std::size_t t = 0; t < length; ++t) {
+    std::uint64_t u;
+    std::memcpy(&u, flags + t, sizeof u);
+    bits |= u;
+  }
+  return bits != 0;
+}
+
 /// Where a masked run's kernel finds which of its bonds are intact (mask_run): the bits of the
 /// rows' intact offsets, one word per bond of the run at the run's family offset's bit, with the
 /// rows' whole flags; or, where the rows hold no bits, `alive` made by the caller from the states.
@@ -317,9 +329,7 @@ inline bool run_mask(const Bonds& b, const BondRun& run, const RowStates& rows, 
 [[gnu::always_inline]] inline bool alive_from_mask(const RunMask& mask, std::size_t length, double* __restrict buffer, const double*& alive) {
   if (!mask.words) {
     alive = mask.alive;
-    std::uint64_t any = 0;
-    for (std::size_t t = 0; t < length; ++t) any |= mask.alive[t] != 0.0;
-    return any != 0;
+    return any_set(mask.alive, length);
   }
   const std::uint64_t* __restrict const words = mask.words;
   const std::uint8_t* __restrict const whole = mask.whole;
@@ -404,18 +414,6 @@ void for_each_run_by_slabs(const BodyInfo& body, Run&& run) {
   for_each_slab(body.slab_runs.size() - 1, body.first_slab, rift::parallel::worth_a_team(body.last - body.first), [&](std::size_t slab) {
     for (std::size_t r = body.slab_runs[slab]; r < body.slab_runs[slab + 1]; ++r) run(body.runs[r]);
   });
-}
-
-/// Whether any of the flags (1.0 or 0.0) is set; read as bits, so that the loop is vector code (a
-/// loop that compares the doubles is not).
-[[gnu::always_inline]] inline bool any_set(const double* __restrict flags, std::size_t length) {
-  std::uint64_t bits = 0;
-  for (std::size_t t = 0; t < length; ++t) {
-    std::uint64_t u;
-    std::memcpy(&u, flags + t, sizeof u);
-    bits |= u;
-  }
-  return bits != 0;
 }
 
 /// What a run's pair forces add to its particles: f_i += g on the lower ends, f_j -= g on the upper
