@@ -10,6 +10,10 @@
 #include <algorithm>
 #include <cmath>
 #include <random>
+#include <string_view>
+#include <type_traits>
+#include <utility>
+#include <vector>
 
 #include "cases/homogeneous.hpp"
 #include "rift/pd/contact.hpp"
@@ -126,6 +130,46 @@ void contact_is_the_sum_over_all_unbonded_pairs() {
               worst_wandering);
   EXPECT_GT(met, 10u);
   EXPECT_LT(worst_wandering, 1e-12);
+  // the rows' near bonds as a contact made now finds them (on one rank, by the body's runs): in each
+  // row, the places of the bonds of any state shorter than d + s_f, ascending; a row with more than
+  // seven is read whole
+  rift::pd::Contact<D> fresh(s.contact, m);
+  for (auto& f : m.force) f = rift::Vec<D>{};
+  fresh.add_forces(m);
+  double skin = -1.0;
+  std::vector<std::pair<int, std::vector<int>>> found;  // per row: count, places
+  auto read = [&](const char* name, auto& member) {
+    using T = std::decay_t<decltype(member)>;
+    if constexpr (std::is_same_v<T, double>) {
+      if (std::string_view(name) == "contact.family_skin") skin = member;
+    } else if constexpr (requires { member[0].place; }) {
+      for (const auto& near : member) found.emplace_back(near.count, std::vector<int>(near.place.begin(), near.place.begin() + std::min<int>(near.count, 7)));
+    }
+  };
+  fresh.visit_state(read);
+  ASSERT_GT(skin, 0.0);
+  ASSERT_EQ(found.size(), m.size());
+  const double reach = distance + skin;
+  std::size_t rows_near = 0, rows_whole = 0;
+  for (std::size_t i = 0; i < m.size(); ++i) {
+    std::vector<int> places;
+    for (auto q = b.offset[i]; q < b.offset[i + 1]; ++q) {
+      const rift::Vec<D> eta = m.position[static_cast<std::size_t>(b.neighbor[q])] - m.position[i];
+      if (!(rift::dot<D>(eta, eta) >= reach * reach)) places.push_back(static_cast<int>(q - b.offset[i]));
+    }
+    if (places.size() > 7) {
+      EXPECT_EQ(found[i].first, 255) << "row " << i;
+      ++rows_whole;
+    } else {
+      EXPECT_EQ(found[i].first, static_cast<int>(places.size())) << "row " << i;
+      if (found[i].first == static_cast<int>(places.size())) {
+        EXPECT_EQ(found[i].second, places) << "row " << i;
+      }
+      rows_near += !places.empty();
+    }
+  }
+  std::printf("%dD contact: %zu rows with near bonds listed, %zu read whole\n", D, rows_near, rows_whole);
+  EXPECT_GT(rows_near, m.size() / 10);
 }
 
 TEST(Contact, IsTheSumOverAllUnbondedPairsTwoD) { contact_is_the_sum_over_all_unbonded_pairs<2>(); }

@@ -14,7 +14,8 @@
 // s_f / 2 (the same Verlet argument; Allen and Tildesley, Computer Simulation of Liquids, section
 // 5.3). A broken bond is stretched, so around a crack hardly a row is read: reading every broken
 // bond was a tenth of a step at a third broken, and reading every broken bond of a row with one
-// near was a tenth of a step once the thesis example's block had shattered.
+// near was a tenth of a step once the thesis example's block had shattered. On one rank the look
+// goes by the bodies' runs of forward bonds (bond_runs.hpp), each noting a near bond in both rows.
 // A distributed run's list reaches the particles of other ranks beyond the window (another body's,
 // or fragments'): contact_beyond_window.hpp.
 #pragma once
@@ -52,6 +53,7 @@ class Contact {
  private:
   void rebuild(const Model<D>& m);
   void look_at_family_rows(const Model<D>& m);
+  void look_at_family_runs(const Model<D>& m);
   bool enabled_ = false;
   double skin_ = 0.0, max_distance_ = 0.0;
   std::vector<double> distance_;  // per body
@@ -69,6 +71,18 @@ class Contact {
     static constexpr std::uint8_t whole_row = 255;
     std::uint8_t count = 0;
     std::array<std::uint8_t, 7> place{};
+    /// Notes the bond at `at` in the row, its places kept ascending (add_forces merges the bonds
+    /// with the listed pairs in the order of their neighbours); past seven, the whole row is read.
+    void add(std::uint8_t at) {
+      if (count == whole_row) return;
+      if (count == place.size()) {
+        count = whole_row;
+        return;
+      }
+      std::size_t q = count++;
+      for (; q > 0 && place[q - 1] > at; --q) place[q] = place[q - 1];
+      place[q] = at;
+    }
   };
   std::vector<NearBonds> family_near_;
   BeyondWindow<D> beyond_;  // a distributed run's particles beyond the window within reach; not state
