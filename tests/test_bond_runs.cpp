@@ -28,6 +28,7 @@
 // (10) a history row's damage (forces.hpp summarize_and_update_damage) from the kept rows' bits
 //     equals Silling and Askari's (2005) eq. 25 summed over each row's bond states in the row's
 //     order, to the bit, and so does its count of broken bonds.
+// (11) the VES force kernel's skipping of spans of broken bonds gives the bits of every bond taken.
 #include <gtest/gtest.h>
 #include <omp.h>
 
@@ -661,6 +662,88 @@ TEST(BondRuns, PassesGiveTheSameBitsOnOneTwoAndFourThreads) {
     }
   }
   omp_set_num_threads(threads);
+}
+
+// (11) The VES force kernel skips the spans of a masked run whose bonds are all broken (bond_runs.hpp
+// RunSpans, cut at the history's cache lines, which a dead span then leaves unread and unwritten):
+// over three passes of a plate stretched more before each, with bands across it whose every bond is
+// broken (so runs along x hold long dead spans beside intact bonds) and bonds broken by the passes,
+// forces, dilatations, stretch limits, bond states, VES histories and row sums are the bits of the
+// kernel taking every bond; 3D without the surface correction and 2D with it (LPS, which takes every
+// bond either way, as a check of the test).
+template <int D>
+void check_broken_spans_skipped(const char* model) {
+  rift::pd::Model<D> start = [&]() -> rift::pd::Model<D> {
+    if constexpr (D == 3) {
+      return deformed_plate(model);
+    } else {
+      auto m = block<2>(true, model);
+      deform_and_break(m);
+      return m;
+    }
+  }();
+  // a part of the deformation (the 2D block is half as long), so that the bonds along x break in
+  // the passes only on the right
+  const double share = D == 3 ? 0.3 : 0.6;
+  for (std::size_t i = 0; i < start.size(); ++i)
+    for (int q = 0; q < D; ++q) start.position[i][q] = start.reference_position[i][q] + share * (start.position[i][q] - start.reference_position[i][q]);
+  auto& b = start.bonds;
+  // bands across x, every bond of their particles broken (both directions)
+  const double period = 0.030, width = 0.020;  // 20 particles along x, at least one whole span of 16
+  auto in_band = [&](std::size_t i) { return std::fmod(start.reference_position[i][0] + 0.004, period) < width; };
+  for (std::size_t i = 0; i < start.size(); ++i)
+    for (auto k = b.offset[i]; k < b.offset[i + 1]; ++k) {
+      const auto j = static_cast<std::size_t>(b.neighbor[k]);
+      if (in_band(i) || in_band(j)) b.intact.set(static_cast<std::size_t>(k), rift::pd::bond_broken);
+    }
+  // the runs with both a span of broken bonds and intact bonds, as the first pass finds them
+  std::size_t mixed = 0, mixed_overlapping = 0;  // the latter: runs whose ends overlap (through buffers)
+  const auto& body = start.bodies[0];
+  const rift::pd::RowStates rows = rift::pd::whole_rows(start.bonds, body);
+  for (const auto& run : body.runs) {
+    alignas(64) double alive[rift::pd::max_run_length];
+    if (!rift::pd::mask_run(start.bonds, run, rows, alive)) continue;
+    rift::pd::RunSpans spans;
+    rift::pd::cut_run_spans(alive, run.length, 16, 16, spans);
+    mixed += spans.count > 1;
+    mixed_overlapping += spans.count > 1 && !rift::pd::ends_apart_in_vectors(run);
+  }
+  auto passes = [&](bool skip) {
+    const bool before = rift::pd::skip_broken_spans();
+    rift::pd::skip_broken_spans() = skip;
+    auto m = start;
+    for (int step = 0; step < 3; ++step) {
+      for (std::size_t i = 0; i < m.size(); ++i) m.position[i][0] += 2e-3 * m.reference_position[i][0] * m.reference_position[i][0];
+      rift::pd::compute_forces<D>(m, nullptr, 1e-8);
+    }
+    rift::pd::skip_broken_spans() = before;
+    return m;
+  };
+  const auto skipped = passes(true), every = passes(false);
+  std::size_t broke = 0;
+  for (std::size_t k = 0; k < b.intact.size(); ++k) broke += skipped.bonds.intact[k] != b.intact[k];
+  std::printf("%s %dD: %zu runs with spans of broken bonds beside intact ones (%zu with overlapping ends), %zu bonds broken by the passes\n",
+              model, D, mixed, mixed_overlapping, broke);
+  EXPECT_GT(mixed, 100u);
+  EXPECT_GT(mixed_overlapping, 5u);
+  EXPECT_GT(broke, 0u);
+  const std::string what = std::string(model) + " " + std::to_string(D) + "D: ";
+  EXPECT_TRUE(same_bits(skipped.force, every.force)) << what << "forces";
+  EXPECT_TRUE(same_bits(skipped.bonds.intact, every.bonds.intact)) << what << "bond states";
+  EXPECT_TRUE(same_bits(skipped.dilatation, every.dilatation)) << what << "dilatations";
+  EXPECT_TRUE(same_bits(skipped.dilatation_coupling, every.dilatation_coupling)) << what << "P";
+  EXPECT_TRUE(same_bits(skipped.next_stretch_limit, every.next_stretch_limit)) << what << "stretch limits";
+  EXPECT_TRUE(same_bits(skipped.bonds.back_extension, every.bonds.back_extension)) << what << "VES history";
+  EXPECT_TRUE(same_bits(skipped.bonds.last_extension, every.bonds.last_extension)) << what << "VES history";
+  EXPECT_TRUE(same_bits(skipped.bonds.deviatoric_sum, every.bonds.deviatoric_sum)) << what << "VES sums";
+  EXPECT_TRUE(same_bits(skipped.bonds.back_sum, every.bonds.back_sum)) << what << "VES sums";
+}
+
+TEST(BondRuns, SpansOfBrokenBondsSkippedGiveTheBitsOfEveryBondTaken) {
+  for (const char* model : {"lps", "ves"}) {
+    check_broken_spans_skipped<3>(model);
+    check_broken_spans_skipped<2>(model);
+  }
 }
 
 // (8) Four steps of a plate stretched more each time (each pass breaks bonds), with every bond of one

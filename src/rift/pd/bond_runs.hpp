@@ -344,6 +344,37 @@ inline bool run_mask(const Bonds& b, const BondRun& run, const RowStates& rows, 
   return any != 0;
 }
 
+/// Whether the VES force kernel takes only the spans of a masked run that hold an intact bond
+/// (RunSpans, lps_runs.hpp): on, but for tests, which compare with every bond taken.
+inline bool& skip_broken_spans() {
+  static bool skip = true;
+  return skip;
+}
+
+/// A masked run's bonds [0, length) cut at `first` and then every `width` bonds, the consecutive
+/// pieces that hold an intact bond merged, and so those that hold none: span c is [at[c], at[c + 1]),
+/// live[c] whether it holds an intact bond. A kernel may take the live spans alone: a broken bond adds
+/// nothing (and keeps its VES history), so a dead span's bonds need neither their arithmetic nor their
+/// memory (in a shattered block most runs that are not all broken have such spans). Only the VES
+/// force kernel does, for its history: in the dilatation kernel, whose memory is the particles',
+/// the spans gained nothing.
+struct RunSpans {
+  static constexpr std::size_t most = max_run_length / 8 + 2;  // width at least 8
+  std::size_t count = 0;
+  std::size_t at[most + 1];
+  bool live[most];
+};
+[[gnu::always_inline]] inline void cut_run_spans(const double* __restrict alive, std::size_t length, std::size_t first, std::size_t width,
+                                                 RunSpans& spans) {
+  spans.count = 0;
+  spans.at[0] = 0;
+  for (std::size_t s = 0, e = first < length ? first : length; s < length; s = e, e = e + width < length ? e + width : length) {
+    const bool live = any_set(alive + s, e - s);
+    if (spans.count == 0 || spans.live[spans.count - 1] != live) spans.live[spans.count++] = live;
+    spans.at[spans.count] = e;
+  }
+}
+
 /// Whether the run has a row that is not whole (run_mask); then alive[t] is 1 for its intact bonds
 /// and 0 for the others, for the passes whose kernels take alive[] made (PMB, the energy sums).
 inline bool mask_run(const Bonds& b, const BondRun& run, const RowStates& rows, double* alive) {
