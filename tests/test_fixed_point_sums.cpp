@@ -55,6 +55,52 @@ TEST(FixedPointSums, KeepsWhatADoubleSumLosesToCancellation) {
   EXPECT_EQ(sum_of(terms, 1e16), 1.0);
 }
 
+// A term's grid integer (on_grid: a product by the power of two and a conversion in two halves) is
+// the library's, static_cast<__int128>(nearbyint(ldexp(term, scale))), bit for bit: terms of either
+// sign from the largest down to 1e-30 of it and below the grid, around the two halves' seam (2^62,
+// 2^64 on the grid) and at the largest itself, for largest terms from 1e-300 (scale past a double's
+// exponent: ldexp) to 1e300 (a negative scale).
+TEST(FixedPointSums, GridIntegersAreTheLibrarysConversion) {
+  std::mt19937_64 random(7);
+  std::uniform_real_distribution<double> unit(-1.0, 1.0);
+  for (const double largest : {1e-300, 3e-200, 1e-9, 0.7, 1.0, 123.456, 6.02e23, 1e300}) {
+    FixedPointSums s(1, largest);
+    int exponent = 0;
+    std::frexp(largest, &exponent);
+    const int scale = 125 - FixedPointSums::max_terms_log2 - exponent;
+    std::vector<double> terms{largest, -largest, 0.0, -0.0};
+    for (const double seam : {0x1p62, 0x1p63, 0x1p64})
+      for (const double near : {-2.0, -1.0, -0.5, 0.5, 1.0, 2.0}) terms.push_back(std::ldexp(seam + near * 0x1p10, -scale));
+    for (int t = 0; t < 20000; ++t) terms.push_back(largest * unit(random) * std::pow(10.0, -30.0 * std::abs(unit(random))));
+    for (int t = 0; t < 1000; ++t) terms.push_back(largest * unit(random) * 1e-27);  // about the grid's spacing
+    std::size_t differ = 0;
+    for (const double term : terms) {
+      if (std::abs(term) > largest) continue;
+      const auto expected = static_cast<FixedPointSums::Integer>(std::nearbyint(std::ldexp(term, scale)));
+      differ += s.on_grid(term) != expected;
+    }
+    EXPECT_EQ(differ, 0u) << "largest " << largest;
+  }
+}
+
+// Threads' partial sums merged give the one sum's bits.
+TEST(FixedPointSums, MergedPartsGiveTheWholeSum) {
+  std::mt19937_64 random(11);
+  std::uniform_real_distribution<double> unit(-1.0, 1.0);
+  std::vector<double> terms(30000);
+  for (auto& t : terms) t = unit(random) * std::pow(10.0, 6.0 * unit(random));
+  double largest = 0.0;
+  for (const double t : terms) largest = std::max(largest, std::abs(t));
+  FixedPointSums whole(4, largest), first(4, largest), second(4, largest);
+  for (std::size_t t = 0; t < terms.size(); ++t) {
+    whole.add(t % 3, terms[t]);  // the fourth sum stays empty
+    (t % 5 < 2 ? first : second).add(t % 3, terms[t]);
+  }
+  first.merge(second);
+  for (std::size_t k = 0; k < 4; ++k) EXPECT_EQ(first[k], whole[k]) << k;
+  EXPECT_NE(whole[0], 0.0);
+}
+
 TEST(FixedPointSums, ANonFiniteTermMakesTheSumNaN) {
   EXPECT_TRUE(std::isnan(sum_of({1.0, std::numeric_limits<double>::infinity(), 2.0}, 2.0)));
   EXPECT_EQ(sum_of({}, 0.0), 0.0);

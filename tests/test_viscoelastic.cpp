@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <sstream>
 
 #include "rift/pd/bond_slabs.hpp"
@@ -180,6 +181,46 @@ TEST(Viscoelastic, CouplingFromSumsEqualsTheSumOverTheHistories) {
     std::printf("bonds broken: %zu by hand, %zu by the pass\n", broken_by_hand, failed - broken_by_hand);
     EXPECT_GT(broken_by_hand, 0u);
     EXPECT_GT(failed, broken_by_hand);  // the pass broke some too
+  }
+}
+
+// While the history is held (dt = 0: the in-situ stage, dynamic relaxation) and every back extension
+// is zero as made, forces.cpp takes the LPS force pass, which does not read the history: the
+// deviatoric extension less lambda times zero is the same double, so the forces are the VES pass's to
+// the bit (tolerance: none), on the surface-corrected lattice and on LAMMPS's. The first step that
+// advances the history ends it; with a history that is not zero the two passes differ.
+TEST(Viscoelastic, HeldHistoryAtRestTakesTheElasticPassToTheBit) {
+  for (const bool lammps_lattice : {false, true}) {
+    auto m = rift::pd::discretize<3>(rift::scene::parse_string(ves_scene(9, 0.4, 2e-7, lammps_lattice), "ves.toml"));
+    ASSERT_TRUE(m.bonds.back_extension_at_rest);
+    for (std::size_t i = 0; i < m.size(); ++i) {
+      const auto u = displacement(m.reference_position[i], 1);
+      for (int k = 0; k < 3; ++k) m.position[i][k] = m.reference_position[i][k] + u[k];
+    }
+    auto forces = [&](bool at_rest) {
+      m.bonds.back_extension_at_rest = at_rest;
+      rift::pd::compute_forces<3>(m, nullptr, 0.0);
+      return m.force;
+    };
+    const auto elastic = forces(true), viscous = forces(false);
+    std::size_t differ = 0;
+    for (std::size_t i = 0; i < m.size(); ++i)
+      for (int k = 0; k < 3; ++k) differ += std::memcmp(&elastic[i][k], &viscous[i][k], sizeof(double)) != 0;
+    EXPECT_EQ(differ, 0u) << (lammps_lattice ? "LAMMPS" : "corrected") << " lattice";
+    double largest = 0.0;
+    for (const auto& f : elastic) largest = std::max({largest, std::abs(f[0]), std::abs(f[1]), std::abs(f[2])});
+    EXPECT_GT(largest, 0.0);
+    // a history that is not zero: the VES pass reads it, and the forces change
+    std::fill(m.bonds.back_extension.begin(), m.bonds.back_extension.end(), 1e-5f);
+    const auto moved = forces(false);
+    double change = 0.0;
+    for (std::size_t i = 0; i < m.size(); ++i)
+      for (int k = 0; k < 3; ++k) change = std::max(change, std::abs(moved[i][k] - elastic[i][k]));
+    EXPECT_GT(change, 1e-3 * largest);
+    // a step that advances the history ends the rest
+    m.bonds.back_extension_at_rest = true;
+    rift::pd::compute_forces<3>(m, nullptr, 1e-7);
+    EXPECT_FALSE(m.bonds.back_extension_at_rest);
   }
 }
 

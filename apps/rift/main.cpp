@@ -125,6 +125,10 @@ int rift_main(int argc, char** argv) {
     std::printf("rift: loop time %.6g s (%.4g s per step, %d thread%s; %s)\n", r.loop_seconds, r.loop_seconds / double(std::max(1L, steps_run)),
                 threads, threads == 1 ? "" : "s", rate.c_str());
     if (!r.phases.empty()) std::printf("rift: by phase: %s\n", r.phases.c_str());
+    if (scene.method != rift::scene::Method::mpm) {
+      const std::string in_situ = r.in_situ_seconds > 0.0 ? fmt::format(", in-situ stage {:.4g} s", r.in_situ_seconds) : std::string();
+      std::printf("rift: before the loop: set-up %.4g s%s\n", r.setup_seconds, in_situ.c_str());
+    }
     // peak resident memory of the process (getrusage: kilobytes on Linux), for the memory targets
     rusage usage{};
     getrusage(RUSAGE_SELF, &usage);

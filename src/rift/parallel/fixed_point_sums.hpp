@@ -27,12 +27,29 @@ class FixedPointSums {
     int exponent = 0;  // largest < 2^exponent
     if (largest > 0.0 && std::isfinite(largest)) std::frexp(largest, &exponent);
     scale_ = 125 - max_terms_log2 - exponent;
+    if (scale_ >= -1022 && scale_ <= 1023) unit_ = std::ldexp(1.0, scale_);
   }
   /// A term that is not finite makes every sum NaN.
   void add(std::size_t k, double term) {
-    if (std::isfinite(term)) sums_[k] += static_cast<Integer>(std::nearbyint(std::ldexp(term, scale_)));
+    if (std::isfinite(term)) sums_[k] += on_grid(term);
     else finite_ = false;
     first_ = std::min(first_, k), last_ = std::max(last_, k + 1);
+  }
+  /// Adds another's sums (of the same count and largest term: a thread's share of the terms), exactly.
+  void merge(const FixedPointSums& other) {
+    for (std::size_t k = other.first_; k < other.last_; ++k) sums_[k] += other.sums_[k];
+    finite_ = finite_ && other.finite_;
+    first_ = std::min(first_, other.first_), last_ = std::max(last_, other.last_);
+  }
+  /// A finite term on the grid: term 2^scale rounded to the nearest integer. A product by the power
+  /// of two is ldexp's correctly rounded result, and the integer (under 2^87 in magnitude) is
+  /// converted exactly in two halves, without the library's conversion to 128 bits.
+  Integer on_grid(double term) const {
+    const double r = std::nearbyint(unit_ > 0.0 ? term * unit_ : std::ldexp(term, scale_));
+    if (std::abs(r) < 0x1p62) return static_cast<std::int64_t>(r);
+    const double high = std::trunc(r * 0x1p-32);  // exact: a power of two, then an integer under 2^56
+    const double low = r - high * 0x1p32;          // exact: an integer under 2^32 in magnitude
+    return static_cast<Integer>(static_cast<std::int64_t>(high)) * (Integer{1} << 32) + static_cast<std::int64_t>(low);
   }
   /// Adds every rank's sums into every rank's (exact: the same bits in any rank order). A rank sends
   /// the range of sums it added to, from the first to the last (the coarse space's aggregates are
@@ -56,6 +73,7 @@ class FixedPointSums {
  private:
   std::vector<Integer> sums_;
   int scale_ = 0;
+  double unit_ = 0.0;  // 2^scale_ where a normal double holds it
   bool finite_ = true;
   std::size_t first_ = static_cast<std::size_t>(-1), last_ = 0;  // the sums added to: [first_, last_)
 };

@@ -98,6 +98,11 @@ struct Bonds {
   // over the history (ves.hpp ves_dilatation).
   std::vector<double> deviatoric_sum, back_sum, intact_weighted_volume;
   std::vector<std::int32_t> summed_bonds;
+  // VES only: every back extension is zero, as made (ves.hpp prepare_viscous_history), until a force
+  // pass first advances them. While the history is held (dt = 0: the in-situ stage, dynamic
+  // relaxation) the viscous terms then vanish, and the force pass need not read the history
+  // (forces.cpp). A cache, not state: false after a checkpoint's restore and in a window.
+  bool back_extension_at_rest = false;
   // The rows made from `intact` for the passes (bond_runs.hpp whole_rows), kept while the states
   // stay as they were: per particle, whether its row is whole and the bits of its intact offsets,
   // and which particles' rows [first, last) were made at which version of the states. A cache, not

@@ -19,8 +19,9 @@ namespace rift::pd {
 static_assert(sizeof(FamilyOffset) == 7 * 8, "a member was added to FamilyOffset: list it in pd/checkpoint_state.hpp");
 static_assert(sizeof(MaterialConstants) == 3 * 4 + 4 + 12 * 8 + 2 * 8, "a member was added to MaterialConstants: list it in pd/checkpoint_state.hpp");
 static_assert(sizeof(InterfaceOutcome) == 8 + 2 * 8, "a member was added to InterfaceOutcome: list it in pd/checkpoint_state.hpp");
-// (the states carry a count of their changes, and the kept rows are a cache: neither is saved)
-static_assert(sizeof(Bonds) == 14 * 24 + 8 + sizeof(Bonds::KeptRows), "a member was added to Bonds: list it in pd/checkpoint_state.hpp");
+// (the states carry a count of their changes, and the kept rows and whether the back extensions are
+// at rest are caches: none is saved)
+static_assert(sizeof(Bonds) == 14 * 24 + 8 + 8 + sizeof(Bonds::KeptRows), "a member was added to Bonds: list it in pd/checkpoint_state.hpp");
 static_assert(sizeof(CrackBonds) == 7 * 24, "a member was added to CrackBonds: list it in pd/checkpoint_state.hpp");
 static_assert(sizeof(InterfaceLaw) == 12 * 8 + 24 + 8 * 5 + 8, "a member was added to InterfaceLaw: list it in pd/checkpoint_state.hpp");
 static_assert(sizeof(InterfaceBonds) == 8 * 24, "a member was added to InterfaceBonds: list it in pd/checkpoint_state.hpp");
@@ -71,6 +72,7 @@ void visit(A& a, Bonds& b) {
   a("bonds.back_extension", b.back_extension), a("bonds.last_extension", b.last_extension);
   a("bonds.history_dilatation", b.history_dilatation), a("bonds.deviatoric_sum", b.deviatoric_sum), a("bonds.back_sum", b.back_sum);
   a("bonds.intact_weighted_volume", b.intact_weighted_volume), a("bonds.summed_bonds", b.summed_bonds);
+  b.back_extension_at_rest = false;  // a cache (bonds.hpp): a restored history need not be zero
 }
 
 template <class A>

@@ -29,6 +29,7 @@
 #include "rift/core/vec.hpp"
 #include "rift/parallel/communicator.hpp"
 #include "rift/parallel/fixed_point_sums.hpp"
+#include "rift/parallel/team.hpp"
 
 namespace rift::pd {
 
@@ -210,24 +211,39 @@ class CoarseSpace {
     return of_cell_[grid_index(c)] == none ? -1 : slot;
   }
   /// sum_{i in aggregate a, counts(i)} value(i) over every rank's owned particles, per aggregate and
-  /// axis (D values per aggregate), in fixed point.
+  /// axis (D values per aggregate), in fixed point. The threads add their shares of the particles
+  /// into sums of their own, merged after (integers: the same bits on any number of threads).
   template <class Counts, class Value>
   std::vector<double> sum_over_aggregates(Counts&& counts, Value&& value) const {
-    std::vector<Vec<D>> values(aggregate_.size());
+    std::vector<Vec<D>>& values = values_;  // read below only where written
+    values.resize(aggregate_.size());
     double largest = 0.0;
-    for (const IndexRange& r : owned_)
+    for (const IndexRange& r : owned_) {
+#pragma omp parallel for if(rift::parallel::worth_a_team(r.last - r.first)) schedule(static) reduction(max : largest)
       for (std::size_t i = r.first; i < r.last; ++i) {
         if (aggregate_[i] == none || !counts(i)) continue;
         const Vec<D> v = value(i);
         values[i] = v;
         for (int k = 0; k < D; ++k) largest = std::max(largest, std::abs(v[k]));
       }
-    parallel::FixedPointSums sums(cell_.size() * D, comm_->max(largest));
-    for (const IndexRange& r : owned_)
-      for (std::size_t i = r.first; i < r.last; ++i) {
-        if (aggregate_[i] == none || !counts(i)) continue;
-        for (int k = 0; k < D; ++k) sums.add(std::size_t{aggregate_[i]} * D + static_cast<std::size_t>(k), values[i][k]);
+    }
+    largest = comm_->max(largest);
+    parallel::FixedPointSums sums(cell_.size() * D, largest);
+    std::size_t particles = 0;
+    for (const IndexRange& r : owned_) particles += r.last - r.first;
+#pragma omp parallel if(rift::parallel::worth_a_team(particles))
+    {
+      parallel::FixedPointSums share(cell_.size() * D, largest);
+      for (const IndexRange& r : owned_) {
+#pragma omp for schedule(static) nowait
+        for (std::size_t i = r.first; i < r.last; ++i) {
+          if (aggregate_[i] == none || !counts(i)) continue;
+          for (int k = 0; k < D; ++k) share.add(std::size_t{aggregate_[i]} * D + static_cast<std::size_t>(k), values[i][k]);
+        }
       }
+#pragma omp critical(rift_coarse_space_sums)
+      sums.merge(share);
+    }
     sums.add_over(*comm_);
     std::vector<double> out(sums.size());
     for (std::size_t q = 0; q < out.size(); ++q) out[q] = sums[q];
@@ -243,6 +259,7 @@ class CoarseSpace {
   std::vector<std::uint32_t> aggregate_, of_cell_;
   std::vector<std::array<std::int64_t, D>> cell_;
   std::vector<double> blocks_;  // per aggregate, neighbour slot: the D x D block of K_c
+  mutable std::vector<Vec<D>> values_;  // sum_over_aggregates's terms per particle, kept between calls
   const parallel::Communicator* comm_ = &parallel::Communicator::one();
   std::vector<IndexRange> owned_;  // the particles whose terms this rank adds
   Eigen::SparseMatrix<double> matrix_;

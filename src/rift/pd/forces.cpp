@@ -58,10 +58,14 @@ void compute_forces(Model<D>& m, Contact<D>* contact, double history_dt) {
     m.refresh_ghosts(m.dilatation);
     m.refresh_ghosts(m.dilatation_coupling);
   }
+  // VES with its history held (history_dt 0) and every back extension zero (bonds.hpp
+  // back_extension_at_rest): the deviatoric extension less lambda times zero is the LPS's, to the
+  // bit, so the LPS pass serves without reading the history (the in-situ stage's evaluations)
+  const bool viscous = history_dt > 0.0 || !m.bonds.back_extension_at_rest;
   for (std::size_t a = 0; a < m.bodies.size(); ++a) {
     const auto& body = m.bodies[a];
     const auto& c = body.constants;
-    if (c.model == scene::ModelKind::lps) {
+    if (c.model == scene::ModelKind::lps || (c.model == scene::ModelKind::ves && !viscous)) {
       if (c.influence == I::constant) state_based_forces<D, I::constant, false>(m, body, 0.0, &rows[a]);
       else state_based_forces<D, I::inverse_distance, false>(m, body, 0.0, &rows[a]);
     } else if (c.model == scene::ModelKind::ves) {
@@ -69,6 +73,7 @@ void compute_forces(Model<D>& m, Contact<D>* contact, double history_dt) {
       else state_based_forces<D, I::inverse_distance, true>(m, body, history_dt, &rows[a]);
     }
   }
+  if (history_dt > 0.0) m.bonds.back_extension_at_rest = false;  // the VES pass advanced the history
   add_interface_contact<D>(m, history_dt > 0.0);  // failed bonds across pre-existing fractures
   if (contact) {
     PhaseClock contact_clock(Phase::contact);

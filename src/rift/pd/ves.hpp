@@ -53,6 +53,7 @@ void prepare_viscous_history(Model<D>& m) {
   m.bonds.back_sum.assign(m.size(), 0.0);
   m.bonds.intact_weighted_volume.assign(m.size(), 0.0);
   m.bonds.summed_bonds.assign(m.size(), -1);
+  m.bonds.back_extension_at_rest = true;
 }
 
 /// Bond k of row i's terms in its row's sums (sum_viscous_history): g omega |xi| V times e_d(n),

@@ -235,6 +235,7 @@ std::string load_balance(const parallel::Communicator& comm, const pd::Model<D>&
 
 template <int D>
 Result run_dim(const scene::Scene& s, const Options& o) {
+  const auto run_start = std::chrono::steady_clock::now();
   Simulation<D> p(s);  // every scene error is raised here, before anything is written
   const auto probes = probe_particles<D>(s, p.model);
   // mpirun -np N: each rank keeps its window of the model (pd/window.hpp); rank 0 writes the outputs
@@ -350,7 +351,9 @@ Result run_dim(const scene::Scene& s, const Options& o) {
   };
 
   if (s.in_situ.enabled && !restarted) {
+    const auto in_situ_start = std::chrono::steady_clock::now();
     const auto r = p.equilibrate_in_situ(s.in_situ);
+    res.in_situ_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - in_situ_start).count();
     const bool cg = p.uses_conjugate_gradients(s.in_situ);
     const std::string how = !(r.density_factor > 0.0) ? std::string("force evaluations of preconditioned conjugate gradients")
                             : fmt::format("{} (fictitious density {:.3g} times the row-sum bound, measured)",
@@ -386,6 +389,7 @@ Result run_dim(const scene::Scene& s, const Options& o) {
     }
   }
   const auto loop_start = std::chrono::steady_clock::now();
+  res.setup_seconds = std::chrono::duration<double>(loop_start - run_start).count() - res.in_situ_seconds;
   const double mpi_at_start = parallel::seconds_in_mpi();
   PhaseTimes::run().reset();
   Progress progress(p.steps, s.solver.end_time, o.quiet || !comm.root());

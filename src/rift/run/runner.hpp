@@ -42,6 +42,9 @@ struct Result {
   long steps = 0;
   double time = 0.0;
   double loop_seconds = 0.0;  // wall time of the step loop (with outputs)
+  // PD: wall time before the loop, the in-situ stage's equilibrium and the rest (the model made or
+  // read from a checkpoint, the first forces)
+  double setup_seconds = 0.0, in_situ_seconds = 0.0;
   std::string phases;         // PD: the loop's time by phase (core/phase_times.hpp)
   /// Work done in the loop: PD, directed bonds times force evaluations (steps, or dynamic relaxation
   /// iterations); MPM, material points times steps.
