@@ -254,3 +254,66 @@ type = "dynamic_relaxation"
 }
 
 }  // namespace
+
+namespace {
+
+// K_c is factored in nested dissection order (coarse_space.hpp dissection_order). On a 2D body of
+// 11 x 7 aggregates with a notch of empty cells, from a nearest-neighbour spring lattice (springs
+// between particles a spacing apart, and a soft tie of each particle to its place so that K is
+// definite): the order holds every aggregate once, the halves of the first cut (across x, the longest
+// axis, at its middle column of cells) come before that column (so no aggregate of one half
+// neighbours one of the other); the coarse solution equals a dense solve of K_c to 1e-10.
+TEST(StaticEquilibrium, CoarseSpaceInDissectionOrderSolvesAsTheDenseFactorization) {
+  const double h = 1.0, edge = 3.0;  // three particles across an aggregate
+  std::vector<rift::Vec<2>> x;
+  for (int j = 0; j < 21; ++j)
+    for (int i = 0; i < 33; ++i)
+      if (!(i >= 15 && i < 18 && j < 9)) x.push_back(rift::Vec<2>{i * h, j * h});  // the notch: cells (5, 0..2) empty
+  const std::size_t n = x.size();
+  rift::pd::CoarseSpace<2> coarse;
+  ASSERT_TRUE(coarse.make_aggregates(x, edge));
+  const std::size_t A = coarse.aggregates();
+  ASSERT_EQ(A, 11u * 7u - 3u);
+  auto cell = [&](std::uint32_t a) {
+    for (std::size_t i = 0; i < n; ++i)
+      if (coarse.aggregate_of(i) == a) return std::array<int, 2>{int(x[i][0] / edge), int(x[i][1] / edge)};
+    return std::array<int, 2>{-1, -1};
+  };
+  const auto order = coarse.dissection_order();
+  ASSERT_EQ(order.size(), A);
+  std::vector<int> seen(A, 0);
+  for (const auto a : order) ++seen[a];
+  EXPECT_EQ(std::count(seen.begin(), seen.end(), 1), static_cast<std::ptrdiff_t>(A));
+  const int middle = 5;  // cells 0..10 across x
+  std::size_t k = 0;
+  for (; k < order.size() && cell(order[k])[0] < middle; ++k) {}
+  for (; k < order.size() && cell(order[k])[0] > middle; ++k) {}
+  for (; k < order.size() && cell(order[k])[0] == middle; ++k) {}
+  EXPECT_EQ(k, order.size()) << "the first cut's halves, then its column";
+  // K u: springs of stiffness 1 along the lattice's axes, and 0.01 to each particle's place
+  auto K_times = [&](auto direction) {
+    std::vector<rift::Vec<2>> f(n, rift::Vec<2>{});
+    for (std::size_t i = 0; i < n; ++i) {
+      const rift::Vec<2> u_i = direction(i);
+      for (int q = 0; q < 2; ++q) f[i][q] += 0.01 * u_i[q];
+      for (std::size_t j = 0; j < n; ++j) {
+        const double d = std::hypot(x[j][0] - x[i][0], x[j][1] - x[i][1]);
+        if (d > 1.01 * h || j == i) continue;
+        const rift::Vec<2> u_j = direction(j);
+        for (int q = 0; q < 2; ++q) f[i][q] += u_i[q] - u_j[q];
+      }
+    }
+    return [f](std::size_t i) { return f[i]; };
+  };
+  ASSERT_TRUE(coarse.assemble([](std::size_t, int) { return false; }, K_times));
+  std::vector<rift::Vec<2>> y(n);
+  for (std::size_t i = 0; i < n; ++i) y[i] = rift::Vec<2>{std::sin(0.37 * double(i)), std::cos(0.11 * double(i) * double(i % 7))};
+  const Eigen::VectorXd solution = coarse.solve([&](std::size_t i) { return y[i]; });
+  Eigen::VectorXd rhs = Eigen::VectorXd::Zero(static_cast<Eigen::Index>(2 * A));
+  for (std::size_t i = 0; i < n; ++i)
+    for (int q = 0; q < 2; ++q) rhs[static_cast<Eigen::Index>(2 * coarse.aggregate_of(i) + static_cast<std::size_t>(q))] += y[i][q];
+  const Eigen::VectorXd dense = Eigen::MatrixXd(coarse.matrix()).ldlt().solve(rhs);
+  EXPECT_LT((solution - dense).cwiseAbs().maxCoeff(), 1e-10 * dense.cwiseAbs().maxCoeff());
+}
+
+}  // namespace
