@@ -248,42 +248,62 @@ void close_pieces(Model<D>& m, const std::vector<std::size_t>& starts, std::vect
   FluidNetwork& f = m.fluid_network;
   const Bonds& b = m.bonds;
   const std::size_t n = m.size();
-  // per particle: 0 not yet reached, -1 joined to more than a family, else the search that reached
-  // it; the calling thread's, kept between calls and left all 0
-  static thread_local std::vector<std::int64_t> label;
-  label.resize(n, 0);
-  std::vector<std::size_t> piece, reached;
-  std::int64_t search = 0;
-  for (const std::size_t start : starts) {
-    if (f.source[start] < 0 || f.immersed[start] || label[start] != 0) continue;
-    // a search over intact bonds that stops once the piece holds more than a whole family, or
-    // meets a particle an earlier search found so joined
-    const std::size_t family = m.bodies[m.body[start]].family_count;
-    label[start] = ++search;
-    piece.assign(1, start);
-    bool closed = true;
-    for (std::size_t q = 0; q < piece.size() && closed; ++q)
-      for (auto k = b.offset[piece[q]]; k < b.offset[piece[q] + 1]; ++k) {
-        const auto j = static_cast<std::size_t>(b.neighbor[k]);
-        if (b.intact[k] != bond_intact || label[j] == search) continue;
-        if (label[j] == -1 || piece.size() >= family || any_contains(m.cut_rows, j)) {
-          closed = false;
-          break;
+  // Whether a search from a start finds a closed piece depends on the bonds alone (a piece closes
+  // where it holds no more than a family), so the starts are searched by the team, each thread with
+  // labels of its own, and the closed pieces are marked after, in the order of the starts that found
+  // them: the marks and candidates of one thread going through the starts in order (a start in a
+  // piece marked before is passed over, and so is a piece found twice).
+  struct Closed {
+    std::size_t start;  // place in starts
+    std::vector<std::size_t> piece;
+  };
+  std::vector<Closed> closed;
+#pragma omp parallel if(rift::parallel::worth_a_team(starts.size()))
+  {
+    // per particle: 0 not yet reached, -1 joined to more than a family, else the search that reached
+    // it; the thread's, kept between calls and left all 0
+    static thread_local std::vector<std::int64_t> label;
+    label.resize(n, 0);
+    std::vector<std::size_t> piece, reached;
+    std::vector<Closed> mine;
+    std::int64_t search = 0;
+#pragma omp for schedule(dynamic, 64) nowait
+    for (std::size_t q = 0; q < starts.size(); ++q) {
+      const std::size_t start = starts[q];
+      if (f.source[start] < 0 || f.immersed[start] || label[start] != 0) continue;
+      // a search over intact bonds that stops once the piece holds more than a whole family, or
+      // meets a particle an earlier search found so joined
+      const std::size_t family = m.bodies[m.body[start]].family_count;
+      label[start] = ++search;
+      piece.assign(1, start);
+      bool is_closed = true;
+      for (std::size_t r = 0; r < piece.size() && is_closed; ++r)
+        for (auto k = b.offset[piece[r]]; k < b.offset[piece[r] + 1]; ++k) {
+          const auto j = static_cast<std::size_t>(b.neighbor[k]);
+          if (b.intact[k] != bond_intact || label[j] == search) continue;
+          if (label[j] == -1 || piece.size() >= family || any_contains(m.cut_rows, j)) {
+            is_closed = false;
+            break;
+          }
+          label[j] = search;
+          piece.push_back(j);
         }
-        label[j] = search;
-        piece.push_back(j);
-      }
-    for (std::size_t i : piece) {
-      reached.push_back(i);
-      if (!closed) {
-        label[i] = -1;
-      } else if (f.source[i] >= 0 && !f.immersed[i]) {
+      reached.insert(reached.end(), piece.begin(), piece.end());
+      if (is_closed) mine.push_back({q, piece});
+      else
+        for (const std::size_t i : piece) label[i] = -1;
+    }
+    for (const std::size_t i : reached) label[i] = 0;
+#pragma omp critical(rift_close_pieces)
+    closed.insert(closed.end(), std::make_move_iterator(mine.begin()), std::make_move_iterator(mine.end()));
+  }
+  std::sort(closed.begin(), closed.end(), [](const Closed& a, const Closed& c) { return a.start < c.start; });
+  for (const Closed& c : closed)
+    for (const std::size_t i : c.piece)
+      if (f.source[i] >= 0 && !f.immersed[i]) {
         f.immersed[i] = 1;
         for (auto k = b.offset[i]; k < b.offset[i + 1]; ++k) candidates.push_back(static_cast<std::size_t>(b.neighbor[k]));
       }
-    }
-  }
-  for (const std::size_t i : reached) label[i] = 0;
 }
 
 template <int D>
