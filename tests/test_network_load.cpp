@@ -368,6 +368,48 @@ void check_uncorrected_ends(const std::string& material) {
   EXPECT_GT(ends, 20);
 }
 
+// The bonds that broke across the crack are recorded step by step (crack_crossing.hpp
+// record_crossing_breaks): the latest kept apart, in a short list merged into the whole one once it
+// is a 32nd of its length. Over 60 steps of a crack grown across y = 8 mm a sixtieth of its length
+// at a time, every recorded bond's both entries (the reverse found by bond_slabs.hpp reverse_bond)
+// read as crossed and no other entry does, the two lists together are the sorted list of them all,
+// and the short list has been merged in along the way.
+TEST(FluidNetwork, CrossingBreaksRecordedStepByStepAreTheWholeSortedList) {
+  constexpr int D = 2;
+  auto m = rift::pd::discretize<D>(rift::scene::parse_string(grown_crack_scene(D, "model = \"lps\"\n"), "grown.toml"));
+  auto& b = m.bonds;
+  const auto& f = m.fluid_network;
+  std::vector<std::int64_t> expected;
+  std::size_t merged = 0, kept_apart = 0;
+  for (int step = 0; step < 60; ++step) {
+    const auto before = b.intact;
+    grow_crack<D>(m, 0.012 + 0.0002 * step, 0.012 + 0.0002 * (step + 1));
+    std::vector<std::pair<std::size_t, std::int64_t>> crossed;
+    for (std::size_t i = 0; i < m.size(); ++i)
+      for (auto k = b.offset[i]; k < b.offset[i + 1]; ++k)
+        if (before[static_cast<std::size_t>(k)] != b.intact[static_cast<std::size_t>(k)] && static_cast<std::size_t>(b.neighbor[k]) > i) {
+          crossed.emplace_back(i, k);
+          expected.push_back(k), expected.push_back(rift::pd::reverse_bond(b, m.bodies[0], i, k));
+        }
+    rift::pd::record_crossing_breaks<D>(m, crossed);
+    merged += !crossed.empty() && f.crossing_recent.empty();
+    kept_apart += !f.crossing_recent.empty();
+  }
+  std::sort(expected.begin(), expected.end());
+  ASSERT_GT(expected.size(), 100u);
+  EXPECT_EQ(f.crossing_broken_whole(), expected);
+  std::size_t wrong = 0;
+  for (std::int64_t k = 0; k < b.size(); ++k)
+    wrong += f.crossed_when_broken(k) != std::binary_search(expected.begin(), expected.end(), k);
+  EXPECT_EQ(wrong, 0u);
+  EXPECT_GT(merged, 1u);
+  EXPECT_GT(kept_apart, 0u);
+  EXPECT_LE(f.crossing_recent.size(), f.crossing_broken.size() / 32 + 1);
+  m.fluid_network.settle_crossing_broken();
+  EXPECT_EQ(f.crossing_broken, expected);
+  EXPECT_TRUE(f.crossing_recent.empty());
+}
+
 TEST(NetworkLoad, EndsWithoutTheCorrectionEqualTheRowsSums) {
   for (const char* material : {"model = \"lps\"\nsurface_correction = false\n",
                                "model = \"ves\"\nviscous_fraction = 0.5\nrelaxation_time = 1e-4\nsurface_correction = false\n"}) {

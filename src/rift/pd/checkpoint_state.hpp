@@ -28,8 +28,8 @@ static_assert(sizeof(InterfaceBonds) == 8 * 24, "a member was added to Interface
 static_assert(sizeof(ViscousFluid) == 6 * 8 + 2 * 24, "a member was added to ViscousFluid: list it in pd/checkpoint_state.hpp");
 static_assert(sizeof(CrackSurface) == 8 + 9 * 24 + 2 * 8, "a member was added to CrackSurface: list it in pd/checkpoint_state.hpp");
 // (the bond states' version its counts were made at, and the network load's run terms, are caches:
-// not saved)
-static_assert(sizeof(FluidNetwork) == 27 * 24 + 2 * 8 + 2 * 8 + sizeof(CrackSurface), "a member was added to FluidNetwork: list it in pd/checkpoint_state.hpp");
+// not saved; the recent crossing breaks are saved merged into crossing_broken)
+static_assert(sizeof(FluidNetwork) == 28 * 24 + 2 * 8 + 2 * 8 + sizeof(CrackSurface), "a member was added to FluidNetwork: list it in pd/checkpoint_state.hpp");
 static_assert(sizeof(Platen) == 8 + 24, "a member was added to Platen: list it in pd/checkpoint_state.hpp");
 static_assert(sizeof(BodyInfo) == 32 + 9 * 8 + 2 * 24 + sizeof(MaterialConstants), "a member was added to BodyInfo: list it in pd/checkpoint_state.hpp");
 // (Contact's beyond_ is not state: a distributed run gathers it at each rebuild of the pairs)
@@ -114,6 +114,7 @@ void visit(A& a, CrackSurface& c) {
 
 template <class A>
 void visit(A& a, FluidNetwork& f) {
+  f.settle_crossing_broken();  // the recent ones saved in the one list (and none left beside a restored one)
   f.network_run_terms.clear();  // a cache of the network ends' terms (network_load.hpp): made again from the ends saved
   a("fluid.source", f.source), a("fluid.relabel", f.relabel), a("fluid.pressure_bonds", f.pressure_bonds), a("fluid.bond_counts", f.bond_counts);
   a("fluid.outer_surface", f.outer_surface), a("fluid.in_crack", f.in_crack), a("fluid.immersed", f.immersed);

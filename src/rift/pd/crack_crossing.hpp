@@ -204,7 +204,7 @@ bool on_borehole_wall(const Model<D>& m, std::size_t i, double short_bond) {
 template <int D>
 bool makes_patch(const Model<D>& m, std::size_t i, std::size_t j, std::int64_t k, double short_bond) {
   const FluidNetwork& f = m.fluid_network;
-  if (!f.crack_surface.made || std::binary_search(f.crossing_broken.begin(), f.crossing_broken.end(), k)) return true;
+  if (!f.crack_surface.made || f.crossed_when_broken(k)) return true;
   return on_borehole_wall<D>(m, i, short_bond) || on_borehole_wall<D>(m, j, short_bond);
 }
 
@@ -490,7 +490,8 @@ template <int D>
 void record_crossing_breaks(Model<D>& m, const std::vector<std::pair<std::size_t, std::int64_t>>& crossed) {
   if (crossed.empty()) return;
   const Bonds& b = m.bonds;
-  auto& kept = m.fluid_network.crossing_broken;
+  FluidNetwork& f = m.fluid_network;
+  auto& kept = f.crossing_recent;
   const std::size_t before = kept.size();
   for (const auto& [i, k] : crossed) {
     const auto j = static_cast<std::size_t>(b.neighbor[static_cast<std::size_t>(k)]);
@@ -501,6 +502,7 @@ void record_crossing_breaks(Model<D>& m, const std::vector<std::pair<std::size_t
   std::sort(kept.begin() + static_cast<std::ptrdiff_t>(before), kept.end());
   std::inplace_merge(kept.begin(), kept.begin() + static_cast<std::ptrdiff_t>(before), kept.end());
   kept.erase(std::unique(kept.begin(), kept.end()), kept.end());
+  if (kept.size() > f.crossing_broken.size() / 32) f.settle_crossing_broken();
 }
 
 }  // namespace rift::pd

@@ -47,6 +47,7 @@ template <int D>
 void refresh_ghost_bond_states(Model<D>& m) {
   if (!m.ghosts) return;
   Bonds& b = m.bonds;
+  m.fluid_network.settle_crossing_broken();
   std::vector<std::int64_t>& crossing = m.fluid_network.crossing_broken;
   const std::size_t n = m.size();
   const std::vector<IndexRange> owned = m.owned();

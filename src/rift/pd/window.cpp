@@ -220,7 +220,7 @@ void window_pressure_bonds(const Model<D>& m, const Numbering& window, Model<D>&
     }
     return out;  // ascending: rows and their neighbours keep their order in the window
   };
-  f.crossing_broken = window_bonds(g.crossing_broken);
+  f.crossing_broken = window_bonds(g.crossing_broken_whole()), f.crossing_recent.clear();
   f.open_interface_bonds.assign(g.dry.size(), {});
   for (std::size_t s = 0; s < g.open_interface_bonds.size() && s < g.dry.size(); ++s) f.open_interface_bonds[s] = window_bonds(g.open_interface_bonds[s]);
   f.crack_surface.made = g.crack_surface.made;

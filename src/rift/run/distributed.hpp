@@ -137,7 +137,8 @@ void gather_fluid(const parallel::Communicator& comm, const pd::Model<D>& m, pd:
     for (std::size_t q = 0; q + 1 < all.size(); q += 2) into->push_back(whole->bonds.offset[static_cast<std::size_t>(all[q])] + all[q + 1]);
     std::sort(into->begin(), into->end());
   };
-  gather_bonds(f.crossing_broken, g ? &g->crossing_broken : nullptr);
+  gather_bonds(f.crossing_broken_whole(), g ? &g->crossing_broken : nullptr);
+  if (g) g->crossing_recent.clear();
   if (g) g->open_interface_bonds.assign(f.open_interface_bonds.size(), {});
   for (std::size_t s = 0; s < f.open_interface_bonds.size(); ++s) gather_bonds(f.open_interface_bonds[s], g ? &g->open_interface_bonds[s] : nullptr);
   if (!g) return;
