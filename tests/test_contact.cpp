@@ -130,6 +130,26 @@ void contact_is_the_sum_over_all_unbonded_pairs() {
               worst_wandering);
   EXPECT_GT(met, 10u);
   EXPECT_LT(worst_wandering, 1e-12);
+  // one of them flung a thousand spacings off, another set half a spacing from the first particle
+  // (a corner, outside the body): the grid of cells then far outnumbers the particles, and the list
+  // is made by a sort and a search instead of a count (contact.cpp rebuild); still the direct sum
+  m.position[wanderers[0]][0] += 1000.0 * spacing;
+  m.position[wanderers[1]] = m.position[0];
+  m.position[wanderers[1]][0] -= 0.5 * spacing;
+  for (auto& f : m.force) f = rift::Vec<D>{};
+  contact.add_forces(m);
+  {
+    const auto expected = all_pairs_contact<D>(m, distance, k);
+    double largest = 0.0, difference = 0.0;
+    for (std::size_t i = 0; i < m.size(); ++i) {
+      largest = std::max(largest, std::sqrt(rift::dot<D>(expected[i], expected[i])));
+      const rift::Vec<D> e = m.force[i] - expected[i];
+      difference = std::max(difference, std::sqrt(rift::dot<D>(e, e)));
+    }
+    EXPECT_GT(rift::dot<D>(expected[wanderers[1]], expected[wanderers[1]]), 0.0);
+    ASSERT_GT(largest, 0.0);
+    EXPECT_LT(difference / largest, 1e-12) << "with a particle flung far off";
+  }
   // the rows' near bonds as a contact made now finds them (on one rank, by the body's runs): in each
   // row, the places of the bonds of any state shorter than d + s_f, ascending; a row with more than
   // seven is read whole

@@ -84,9 +84,32 @@ void Contact<D>::rebuild(const Model<D>& m) {
   }
   auto key = [&](const std::array<long, 3>& c) { return (c[2] - low[2]) * extent[1] * extent[0] + (c[1] - low[1]) * extent[0] + (c[0] - low[0]); };
   std::vector<std::pair<long, std::int32_t>> sorted(all);
+  // Where the grid has not many more cells than particles, a counting sort by cell (Knuth, TAOCP
+  // vol. 3, 5.2, algorithm D), whose table of where each cell's particles start then finds a row of
+  // cells without a search; else (fragments flown far off) a sort and a binary search a row
+  const auto cells = static_cast<std::size_t>(extent[0] * extent[1] * extent[2]);
+  const bool counted = cells <= 2 * all + 1024;
+  std::vector<std::uint32_t> cell_start(counted ? cells + 1 : 0, 0);
+  if (counted) {
+    for (std::size_t i = 0; i < all; ++i) ++cell_start[static_cast<std::size_t>(key(at[i])) + 1];
+    for (std::size_t c = 0; c < cells; ++c) cell_start[c + 1] += cell_start[c];
+    std::vector<std::uint32_t> next(cell_start.begin(), cell_start.end() - 1);
+    for (std::size_t i = 0; i < all; ++i) {
+      const long k = key(at[i]);
+      sorted[next[static_cast<std::size_t>(k)]++] = {k, static_cast<std::int32_t>(i)};  // a cell's particles ascending: std::sort's order
+    }
+  } else {
 #pragma omp parallel for if(team) schedule(static)
-  for (std::size_t i = 0; i < all; ++i) sorted[i] = {key(at[i]), static_cast<std::int32_t>(i)};
-  rift::parallel::sort(sorted);  // distinct elements: std::sort's order
+    for (std::size_t i = 0; i < all; ++i) sorted[i] = {key(at[i]), static_cast<std::int32_t>(i)};
+    rift::parallel::sort(sorted);  // distinct elements: std::sort's order
+  }
+  // the particles of the cells [first, last] of a row, in sorted
+  auto row_of_cells = [&](long first, long last) {
+    if (counted)
+      return std::pair{sorted.begin() + cell_start[static_cast<std::size_t>(first)], sorted.begin() + cell_start[static_cast<std::size_t>(last) + 1]};
+    const auto from = std::lower_bound(sorted.begin(), sorted.end(), std::pair<long, std::int32_t>{first, 0});
+    return std::pair{from, std::upper_bound(from, sorted.end(), std::pair<long, std::int32_t>{last, std::numeric_limits<std::int32_t>::max()})};
+  };
   // per thread: the pairs within d + skin that no family holds (i < j, i of the window), then in rows
   std::vector<std::vector<std::pair<std::int32_t, std::int32_t>>> found(static_cast<std::size_t>(omp_get_max_threads()));
   const Bonds& b = m.bonds;
@@ -102,8 +125,8 @@ void Contact<D>::rebuild(const Model<D>& m) {
           if (c[1] < low[1] || c[1] >= low[1] + extent[1] || c[2] < low[2] || c[2] >= low[2] + extent[2]) continue;
           // the cells of a row along x are one range of keys
           const long first = key(c), last = first + std::min(at[i][0] + 1, low[0] + extent[0] - 1) - c[0];
-          for (auto it = std::lower_bound(sorted.begin(), sorted.end(), std::pair<long, std::int32_t>{first, 0});
-               it != sorted.end() && it->first <= last; ++it) {
+          const auto [from, to] = row_of_cells(first, last);
+          for (auto it = from; it != to; ++it) {
             const auto j = static_cast<std::size_t>(it->second);
             if (j <= i) continue;
             const double d = 0.5 * (distance_[m.body[i]] + distance_[body(j)]) + skin_;
