@@ -34,6 +34,7 @@
 #include <array>
 #include <atomic>
 #include <cstdint>
+#include <limits>
 #include <vector>
 
 #include "rift/pd/fluid_network.hpp"
@@ -312,15 +313,13 @@ void network_load_by_runs(const Model<D>& m, int s, const std::vector<NetworkEnd
   // the runs' terms of every particle where g is made from scratch, where the cache is new, or on N
   // ranks (each call gives every ghost its owner's NetworkEnd again: refresh_ghost_ends)
   const bool every = all || cache.change.size() != n || cache.block_has_end.size() != blocks || m.ghosts;
-  if (every) cache.change.resize(n), cache.held.resize(n), cache.wet.resize(n), cache.block_has_end.resize(blocks);
+  if (every) cache.change.resize(n), cache.held.resize(n), cache.block_has_end.resize(blocks);
   double* const change = cache.change.data();
   double* const held = cache.held.data();
-  double* const wet = cache.wet.data();
   auto terms_of = [&](std::size_t i) {
     const NetworkEnd& z = ends[i];
     change[i] = z.change - z.a * z.d_theta / D;
-    held[i] = z.held + z.a * (1.0 - z.theta / D);
-    wet[i] = f.source[i] == s ? 1.0 : 0.0;
+    held[i] = f.source[i] == s ? z.held + z.a * (1.0 - z.theta / D) : std::numeric_limits<double>::quiet_NaN();  // NaN: dry
   };
   const std::size_t count = every ? n : changed.size();
 #pragma omp parallel for if(rift::parallel::worth_a_team(count)) schedule(static)
@@ -341,9 +340,9 @@ void network_load_by_runs(const Model<D>& m, int s, const std::vector<NetworkEnd
     }
   }
   // the sums of the blocks made again start at zero (the others' are not read); whether a block
-  // holds an end (change or held nonzero) changes only where an end was made again, in a block made
-  // again: a run that reaches no block of either kind adds nothing to a g made again, and is skipped
-  // (at the thesis size a pass over every run was a tenth of an early step)
+  // holds an end (change nonzero, or held a nonzero number) changes only where an end was made
+  // again, in a block made again: a run that reaches no block of either kind adds nothing to a g
+  // made again, and is skipped (at the thesis size a pass over every run was a tenth of an early step)
   std::array<double*, 3> sum{};
   for (int q = 0; q < D; ++q) sum[static_cast<std::size_t>(q)] = pass_scratch(n, 5 + q);
 #pragma omp parallel for if(rift::parallel::worth_a_team(n)) schedule(static)
@@ -351,7 +350,7 @@ void network_load_by_runs(const Model<D>& m, int s, const std::vector<NetworkEnd
     if (!every && !block_remade[first / block]) continue;
     const std::size_t last = std::min(n, first + block);
     bool any = false;
-    for (std::size_t i = first; i < last; ++i) any |= change[i] != 0.0 || held[i] != 0.0;
+    for (std::size_t i = first; i < last; ++i) any |= change[i] != 0.0 || (held[i] == held[i] && held[i] != 0.0);
     block_has_end[first / block] = any ? 1 : 0;
     if (block_remade[first / block])
       for (int q = 0; q < D; ++q) std::fill(sum[static_cast<std::size_t>(q)] + first, sum[static_cast<std::size_t>(q)] + last, 0.0);
@@ -376,8 +375,7 @@ void network_load_by_runs(const Model<D>& m, int s, const std::vector<NetworkEnd
       for (int q = 0; q < D; ++q) k[static_cast<std::size_t>(q)] = scale * family.xi[static_cast<std::size_t>(q)];
       if (length < short_run) {  // bond by bond
         for (std::size_t t = 0; t < length; ++t) {
-          const double w = network_bond_sum(run_bond_intact(b, run, rows, t), change[i + t], change[j + t], held[i + t], held[j + t],
-                                            wet[i + t], wet[j + t]);
+          const double w = network_bond_sum(run_bond_intact(b, run, rows, t), change[i + t], change[j + t], held[i + t], held[j + t]);
           for (std::size_t q = 0; q < static_cast<std::size_t>(D); ++q) sum[q][i + t] += w * k[q], sum[q][j + t] -= w * k[q];
         }
         return;
@@ -386,7 +384,7 @@ void network_load_by_runs(const Model<D>& m, int s, const std::vector<NetworkEnd
       static thread_local NetworkLoadRun a;  // the thread's: every run sets what its form reads
       const bool masked = run_mask(b, run, rows, alive, a.mask);
       a.length = length;
-      a.change_a = change + i, a.change_b = change + j, a.held_a = held + i, a.held_b = held + j, a.wet_a = wet + i, a.wet_b = wet + j;
+      a.change_a = change + i, a.change_b = change + j, a.held_a = held + i, a.held_b = held + j;
       a.kx = k[0], a.ky = k[1], a.kz = k[2];
       a.fxa = sum[0] + i, a.fya = sum[1] + i, a.fxb = sum[0] + j, a.fyb = sum[1] + j;
       if constexpr (D == 3) a.fza = sum[2] + i, a.fzb = sum[2] + j;
