@@ -233,8 +233,8 @@ struct NetworkEnd {
 
 /// What the network load's runs read of each particle for one source (network_load_runs.hpp): its
 /// terms as an end, from its NetworkEnd (its held term NaN where the source's fluid did not reach
-/// it), and per block of network_load_block particles whether one of them has a nonzero term. A cache kept with
-/// the ends (made again where they are), not state: empty, it is made from the ends.
+/// it), and per block of network_load_block particles whether one of them has a nonzero term. A
+/// cache kept with the ends (made again where they are), not state: empty, it is made from the ends.
 struct NetworkRunTerms {
   std::vector<double> change, held;  // held: NaN where the source's fluid is not (network_load_runs.hpp)
   std::vector<std::uint8_t> block_has_end;

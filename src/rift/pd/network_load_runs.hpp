@@ -6,12 +6,12 @@
 //   an intact bond: t_e = omega |xi| change_e, change_e = z.change - z.a z.d_theta / d,
 // both zero where e has no network bond (z zero). A broken bond is the network's where the fluid
 // reached both ends: held_e is kept as NaN where it did not, so a broken bond's sum held_i + held_j
-// is a number exactly where it is the network's, and no array says which ends are wet. The pair force of F - F^s along xi is
-// -(t_i + t_j) V / |xi|, so a bond adds -omega V (s_i + s_j) xi to g_i (and the opposite to g_j),
-// s the ends' change or held by the bond's state: per run (one family offset) a constant vector
-// times a sum of two numbers read contiguously at both ends, a loop of a few vector instructions
-// where the rows' pass (changed_rows_pass) gathered every neighbour's NetworkEnd (a fifth of a
-// thesis-size step in the breaking regime).
+// is a number exactly where it is the network's, and no array says which ends are wet. The pair
+// force of F - F^s along xi is -(t_i + t_j) V / |xi|, so a bond adds -omega V (s_i + s_j) xi to g_i
+// (and the opposite to g_j), s the ends' change or held by the bond's state: per run (one family
+// offset) a constant vector times a sum of two numbers read contiguously at both ends, a loop of a
+// few vector instructions where the rows' pass (changed_rows_pass) gathered every neighbour's
+// NetworkEnd (a fifth of a thesis-size step in the breaking regime).
 #pragma once
 #include <cstddef>
 
