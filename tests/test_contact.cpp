@@ -47,6 +47,18 @@ std::vector<rift::Vec<D>> all_pairs_contact(const rift::pd::Model<D>& m, double 
   return force;
 }
 
+// The largest force of the direct sum, and the largest difference of the contact's from it.
+template <int D>
+std::pair<double, double> largest_and_difference(const std::vector<rift::Vec<D>>& force, const std::vector<rift::Vec<D>>& expected) {
+  double largest = 0.0, difference = 0.0;
+  for (std::size_t i = 0; i < force.size(); ++i) {
+    largest = std::max(largest, std::sqrt(rift::dot<D>(expected[i], expected[i])));
+    const rift::Vec<D> e = force[i] - expected[i];
+    difference = std::max(difference, std::sqrt(rift::dot<D>(e, e)));
+  }
+  return {largest, difference};
+}
+
 template <int D>
 void contact_is_the_sum_over_all_unbonded_pairs() {
   const auto s = rift::scene::parse_string(
@@ -90,14 +102,9 @@ void contact_is_the_sum_over_all_unbonded_pairs() {
     }
     contact.add_forces(m);
     const auto expected = all_pairs_contact<D>(m, distance, k);
-    double largest = 0.0, difference = 0.0;
+    const auto [largest, difference] = largest_and_difference<D>(m.force, expected);
     std::size_t touching = 0;
-    for (std::size_t i = 0; i < m.size(); ++i) {
-      largest = std::max(largest, std::sqrt(rift::dot<D>(expected[i], expected[i])));
-      const rift::Vec<D> e = m.force[i] - expected[i];
-      difference = std::max(difference, std::sqrt(rift::dot<D>(e, e)));
-      touching += rift::dot<D>(expected[i], expected[i]) > 0.0;
-    }
+    for (std::size_t i = 0; i < m.size(); ++i) touching += rift::dot<D>(expected[i], expected[i]) > 0.0;
     touching_most = std::max(touching_most, touching);
     if (largest > 0.0) worst = std::max(worst, difference / largest);
   }
@@ -117,12 +124,7 @@ void contact_is_the_sum_over_all_unbonded_pairs() {
     for (auto& f : m.force) f = rift::Vec<D>{};
     contact.add_forces(m);
     const auto expected = all_pairs_contact<D>(m, distance, k);
-    double largest = 0.0, difference = 0.0;
-    for (std::size_t i = 0; i < m.size(); ++i) {
-      largest = std::max(largest, std::sqrt(rift::dot<D>(expected[i], expected[i])));
-      const rift::Vec<D> e = m.force[i] - expected[i];
-      difference = std::max(difference, std::sqrt(rift::dot<D>(e, e)));
-    }
+    const auto [largest, difference] = largest_and_difference<D>(m.force, expected);
     for (const std::size_t i : wanderers) met += rift::dot<D>(expected[i], expected[i]) > 0.0;
     if (largest > 0.0) worst_wandering = std::max(worst_wandering, difference / largest);
   }
@@ -140,12 +142,7 @@ void contact_is_the_sum_over_all_unbonded_pairs() {
   contact.add_forces(m);
   {
     const auto expected = all_pairs_contact<D>(m, distance, k);
-    double largest = 0.0, difference = 0.0;
-    for (std::size_t i = 0; i < m.size(); ++i) {
-      largest = std::max(largest, std::sqrt(rift::dot<D>(expected[i], expected[i])));
-      const rift::Vec<D> e = m.force[i] - expected[i];
-      difference = std::max(difference, std::sqrt(rift::dot<D>(e, e)));
-    }
+    const auto [largest, difference] = largest_and_difference<D>(m.force, expected);
     EXPECT_GT(rift::dot<D>(expected[wanderers[1]], expected[wanderers[1]]), 0.0);
     ASSERT_GT(largest, 0.0);
     EXPECT_LT(difference / largest, 1e-12) << "with a particle flung far off";
