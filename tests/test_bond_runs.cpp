@@ -505,7 +505,7 @@ void check_same_bits(bool surface_correction, const char* model = "pmb") {
     rift::set_vector_isa(before);
     return m;
   };
-  const auto best = rift::vector_isa();
+  const auto best = rift::widest_vector_isa();
   const auto wide = run(best), narrow = run(rift::VectorIsa::sse2);
   ASSERT_EQ(wide.bonds.intact, narrow.bonds.intact);
   ASSERT_EQ(0, std::memcmp(wide.force.data(), narrow.force.data(), wide.force.size() * sizeof(wide.force[0])));
@@ -519,12 +519,17 @@ void check_same_bits(bool surface_correction, const char* model = "pmb") {
   }
 }
 
+const char* isa_name(rift::VectorIsa isa) {
+  return isa == rift::VectorIsa::avx512 ? "AVX-512" : isa == rift::VectorIsa::avx2 ? "AVX2" : "SSE2";
+}
+
 TEST(BondRuns, VectorClonesGiveTheSameBits) {
-  std::printf("vector instructions here: %s\n",
-              rift::vector_isa() == rift::VectorIsa::avx512 ? "AVX-512" : rift::vector_isa() == rift::VectorIsa::avx2 ? "AVX2" : "SSE2");
+  std::printf("vector instructions here: %s, the kernels' %s\n", isa_name(rift::widest_vector_isa()), isa_name(rift::vector_isa()));
+  const auto chosen = rift::vector_isa();
   for (const char* model : {"pmb", "lps", "ves"}) {
     check_same_bits<3>(false, model);
     check_same_bits<2>(true, model);
+    ASSERT_EQ(rift::vector_isa(), chosen) << "set_vector_isa sets the one before back";
   }
 }
 
@@ -815,7 +820,7 @@ TEST(BondRuns, RowsKeptFromPassToPassGiveTheBitsOfRowsMadeAfresh) {
 TEST(BondRuns, OneLoopFormAddsToOverlappingEndsInTheBondsOrder) {
   constexpr std::size_t length = 64;
   const double spacing = 1e-3, coefficient = 2.5e20, volume = 1e-9;
-  const rift::VectorIsa best = rift::vector_isa();
+  const rift::VectorIsa best = rift::widest_vector_isa();
   for (std::size_t distance : {8u, 9u, 13u}) {
     const std::size_t n = length + distance;
     const double bond_length = distance * spacing, inverse_length = 1.0 / bond_length;

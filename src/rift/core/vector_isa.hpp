@@ -4,9 +4,12 @@
 // has. The AVX-512 clone keeps to vectors of four doubles (AVX-512VL: its masks and 32 registers on
 // 256-bit vectors): on a Xeon (Sapphire Rapids) the cube's runs, a few dozen bonds each, ran 5-10%
 // slower in vectors of eight than in vectors of four (bench/README.md, session of 2026-12-01,
-// twenty-fifth). Every clone does the same IEEE operations in the same order (no fused multiply-add:
-// -ffp-contract=off; square roots and divisions are correctly rounded at every width), so results
-// are the same bits whichever runs (tests/test_bond_runs.cpp).
+// twenty-fifth). On an AMD processor with AVX-512 (an EPYC of the Zen 4 family) the AVX2 clone is
+// taken: the cube's loop ran 7% (PMB) and 8% (LPS) faster in it than in the AVX-512 clone, VES alike
+// (bench/README.md, session of 2026-12-04, thirty-first). Every clone does the same IEEE operations
+// in the same order (no fused multiply-add: -ffp-contract=off; square roots and divisions are
+// correctly rounded at every width), so results are the same bits whichever runs
+// (tests/test_bond_runs.cpp).
 #pragma once
 
 namespace rift {
@@ -14,26 +17,42 @@ namespace rift {
 enum class VectorIsa { sse2, avx2, avx512 };
 
 namespace detail {
-inline VectorIsa& chosen_vector_isa() {
-  static VectorIsa isa = [] {
+inline VectorIsa processor_vector_isa() {
+  static const VectorIsa isa = [] {
 #if defined(__x86_64__) && defined(__GNUC__)
     __builtin_cpu_init();
-    if (__builtin_cpu_supports("avx512f")) return VectorIsa::avx512;
+    if (__builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512vl")) return VectorIsa::avx512;
     if (__builtin_cpu_supports("avx2")) return VectorIsa::avx2;
 #endif
     return VectorIsa::sse2;
   }();
   return isa;
 }
+
+inline VectorIsa& chosen_vector_isa() {
+  static VectorIsa isa = [] {
+    const VectorIsa widest = processor_vector_isa();
+#if defined(__x86_64__) && defined(__GNUC__)
+    if (widest == VectorIsa::avx512 && __builtin_cpu_is("amd")) return VectorIsa::avx2;  // faster there (above)
+#endif
+    return widest;
+  }();
+  return isa;
+}
 }  // namespace detail
 
-/// The widest vector instructions the processor has (or the narrower ones set below).
+/// The widest vector instructions the processor has: the clones that can run here.
+inline VectorIsa widest_vector_isa() { return detail::processor_vector_isa(); }
+
+/// The vector instructions the kernels use: the widest the processor has, AVX2 on an AMD processor
+/// with AVX-512 (above), or the set chosen below.
 inline VectorIsa vector_isa() { return detail::chosen_vector_isa(); }
 
-/// Makes the kernels use `isa` (a narrower set than the processor's, for tests); returns the one before.
+/// Makes the kernels use `isa` where the processor has it (tests; otherwise nothing changes);
+/// returns the one before, to be set back.
 inline VectorIsa set_vector_isa(VectorIsa isa) {
   const VectorIsa before = detail::chosen_vector_isa();
-  if (static_cast<int>(isa) < static_cast<int>(before) || isa == VectorIsa::sse2) detail::chosen_vector_isa() = isa;
+  if (static_cast<int>(isa) <= static_cast<int>(widest_vector_isa())) detail::chosen_vector_isa() = isa;
   return before;
 }
 
