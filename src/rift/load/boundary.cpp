@@ -7,6 +7,7 @@
 #include "rift/load/time_function.hpp"
 #include "rift/load/traction_layer.hpp"
 #include "rift/parallel/exact_sum.hpp"
+#include "rift/parallel/team.hpp"
 #include "rift/pd/crack_pressure.hpp"
 #include "rift/pd/network_load.hpp"
 #include "rift/pd/viscous_fluid.hpp"
@@ -98,7 +99,12 @@ void Boundaries<D>::add_in_situ_tractions(const scene::InSituStress& in_situ, pd
 template <int D>
 void Boundaries<D>::apply_body_forces(pd::Model<D>& m, double t) const {
   using K = scene::BoundaryKind;
-  for (auto& b : m.body_force) b = Vec<D>{};
+  // cleared by the team as kick splits the particles, so that each core clears the lines it reads
+  // next: cleared by one thread, every line the other core's kick read came from this core's cache
+  // (2% of a PMB step on a VM whose two CPUs sat on different L3 caches, 2026-12-05)
+  const std::size_t n = m.size();
+#pragma omp parallel for if(rift::parallel::worth_a_team(n)) schedule(static)
+  for (std::size_t i = 0; i < n; ++i) m.body_force[i] = Vec<D>{};
   for (const auto& a : applied_) {
     if (a.def.kind != K::traction && a.def.kind != K::body_force) continue;
     const double amp = evaluate(a.def.time, t);

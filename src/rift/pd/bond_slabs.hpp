@@ -7,6 +7,8 @@
 // bonds alone, not on the threads, so every sum is made in the same order on any thread count.
 // An odd slab waits only for its two even neighbours, not for every even slab (for_each_slab).
 #pragma once
+#include <omp.h>
+
 #include <algorithm>
 #include <atomic>
 #include <cstddef>
@@ -130,37 +132,64 @@ inline std::size_t slab_length(const Bonds& b, std::size_t first, std::size_t la
 /// (BodyInfo::first_slab): slab q writes its own particles and the next slab's, so it must not run
 /// beside q - 1 or q + 1. Each even slab (whole-body parity) comes before its odd neighbours, as one
 /// sweep of the even slabs and then one of the odd ones would do: each particle gets its sums in the
-/// same order on any thread count. A team takes the even slabs and then the odd ones from one
-/// counter, and an odd slab waits only until its two even neighbours are done, not for every even
-/// slab: a thread that ends its even slabs early goes on with odd ones where the other thread has
-/// ended both neighbours, where a barrier between the two sweeps kept it waiting (13% of a PMB step's
-/// thread time was spent in such barriers, perf, 2026-11-30).
+/// same order on any thread count. An odd slab waits only until its two even neighbours are done, not
+/// for every even slab: a barrier between the two sweeps kept a thread that ended its even slabs
+/// early waiting (13% of a PMB step's thread time was spent in such barriers, perf, 2026-11-30).
+/// A team's thread t owns the t-th of equal blocks of consecutive slabs, as a static schedule over
+/// the particles splits them (kick, drift, the passes' copies), and takes its own even slabs, then
+/// what is left of the others' even ones, then its odd ones and the others'. So a slab runs where
+/// its particles were last moved and summed, and where the next pass finds them: handed out from
+/// one counter, every other slab went to the other core, and on a VM whose two CPUs sat on
+/// different L3 caches (a cache line between them 170 ns, not 25) that cost a PMB step on two
+/// threads 25% (2026-12-05). A thread slowed by the rest of the machine still holds the other back
+/// for at most a slab: the other takes what is left of its block.
 template <class Slab>
 void for_each_slab(std::size_t count, std::size_t first_slab, bool team, Slab&& slab) {
-  const std::size_t skip = first_slab % 2;           // local number of the first even slab
-  const std::size_t evens = (count + 1 - skip) / 2;  // how many even slabs
-  // the t-th slab of the order: the even slabs ascending, then the odd ones
-  const auto nth = [&](std::size_t t) { return t < evens ? 2 * t + skip : 2 * (t - evens) + 1 - skip; };
+  const std::size_t skip = first_slab % 2;  // local number of the first even slab
   if (!team || count < 3) {
-    for (std::size_t t = 0; t < count; ++t) slab(nth(t));
+    for (std::size_t q = skip; q < count; q += 2) slab(q);
+    for (std::size_t q = 1 - skip; q < count; q += 2) slab(q);
     return;
   }
   const auto done = std::make_unique<std::atomic<bool>[]>(count);
   for (std::size_t q = 0; q < count; ++q) done[q].store(false, std::memory_order_relaxed);
-  std::atomic<std::size_t> next{0};
   const auto wait_for = [&](std::size_t q) {
     for (int spins = 0; !done[q].load(std::memory_order_acquire); ++spins)
       if (spins > 1000) std::this_thread::yield();  // its thread may be descheduled (a shared CPU)
   };
-#pragma omp parallel
-  for (std::size_t t; (t = next.fetch_add(1, std::memory_order_relaxed)) < count;) {
-    const std::size_t q = nth(t);
-    if (t >= evens) {  // an odd slab: after its even neighbours, which were taken before it
+  const auto take = [&](std::size_t q) {
+    if ((q + skip) % 2 == 1) {  // an odd slab: after its even neighbours, every one handed out before it
       if (q > 0) wait_for(q - 1);
       if (q + 1 < count) wait_for(q + 1);
     }
     slab(q);
     done[q].store(true, std::memory_order_release);
+  };
+  // the blocks: [count t / threads, count (t + 1) / threads), each handing out its even and its odd
+  // slabs ascending
+  struct alignas(64) Block {
+    std::atomic<std::size_t> next[2];  // the block's next even and next odd slab
+    std::size_t end = 0;
+  };
+  const auto threads = static_cast<std::size_t>(omp_get_max_threads());
+  const auto blocks = std::make_unique<Block[]>(threads);
+  for (std::size_t t = 0; t < threads; ++t) {
+    const std::size_t first = count * t / threads;
+    const bool odd_first = (first + skip) % 2 == 1;
+    blocks[t].next[0].store(first + odd_first, std::memory_order_relaxed);
+    blocks[t].next[1].store(first + !odd_first, std::memory_order_relaxed);
+    blocks[t].end = count * (t + 1) / threads;
+  }
+#pragma omp parallel num_threads(static_cast<int>(threads))
+  {
+    // a thread goes on to the odd slabs once every even one is handed out: the even slabs an odd one
+    // waits for are being done
+    const auto t = static_cast<std::size_t>(omp_get_thread_num());
+    for (std::size_t parity = 0; parity < 2; ++parity)
+      for (std::size_t k = 0; k < threads; ++k) {
+        Block& b = blocks[(t + k) % threads];
+        for (std::size_t q; (q = b.next[parity].fetch_add(2, std::memory_order_relaxed)) < b.end;) take(q);
+      }
   }
 }
 
