@@ -14,9 +14,15 @@
 //               floating-point units busy: it reads how much of them the thread gets, which a
 //               virtual CPU shares with whatever runs on the same physical core);
 //   cache:      sweeps of a multiply-add over 256 KiB of private array per thread (L2-resident).
+// Then what a cache line takes to go from one thread's core to the other's (line_ns, one way: two
+// threads hand a counter back and forth). Near 25 ns the two CPUs share an L3 cache; a VM whose
+// two CPUs the host puts on different L3 caches (a chiplet apart, about 170 ns) gains less from two
+// threads on every loop whose threads read what the other wrote, and the three ratios above do not
+// show it: they share nothing.
 #include <omp.h>
 
 #include <algorithm>
+#include <atomic>
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
@@ -81,6 +87,43 @@ double median_speedup(Kernel kernel, long total, int repeats) {
   return one[one.size() / 2] / two[two.size() / 2];
 }
 
+// The counter the two threads hand back and forth, alone in its pair of cache lines (a processor
+// may fetch lines in pairs): on the stack, beside the calling thread's locals, it read twice the time.
+struct alignas(128) Turn {
+  std::atomic<long> value{0};
+};
+Turn shared_turn;
+
+// Nanoseconds for a cache line to pass from one thread's core to the other's: the median of
+// `repeats` runs of 100,000 round trips.
+double line_ns(int repeats) {
+  std::vector<double> one_way;
+  for (int r = 0; r < repeats; ++r) {
+    std::atomic<long>& turn = shared_turn.value;
+    turn.store(0);
+    constexpr long trips = 100'000;
+    double elapsed = 0.0;
+#pragma omp parallel num_threads(2)
+    {
+      const long me = omp_get_thread_num();  // thread 0 takes the even turns, thread 1 the odd ones
+      if (omp_get_num_threads() == 2) {
+#pragma omp barrier
+        const auto start = std::chrono::steady_clock::now();
+        for (long k = 0; k < 2 * trips; k += 2) {
+          const long mine = k + me;
+          while (turn.load(std::memory_order_acquire) != mine) {
+          }
+          turn.store(mine + 1, std::memory_order_release);
+        }
+        if (me == 0) elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+      }
+    }
+    one_way.push_back(elapsed / (2 * trips) * 1e9);
+  }
+  std::sort(one_way.begin(), one_way.end());
+  return one_way[one_way.size() / 2];
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -88,5 +131,6 @@ int main(int argc, char** argv) {
   std::printf("compute %.2f\n", median_speedup(compute_kernel, 200'000'000L, repeats));
   std::printf("throughput %.2f\n", median_speedup(throughput_kernel, 40'000'000L, repeats));
   std::printf("cache %.2f\n", median_speedup(cache_kernel, 4'000L, repeats));
+  std::printf("line_ns %.0f\n", line_ns(repeats));
   return 0;
 }
