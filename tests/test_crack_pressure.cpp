@@ -15,6 +15,7 @@
 #include "rift/pd/discretize.hpp"
 #include "rift/pd/dynamic_relaxation.hpp"
 #include "rift/pd/fluid_network.hpp"
+#include "rift/pd/lumped_fluid.hpp"
 #include "rift/run/runner.hpp"
 #include "rift/run/simulation.hpp"
 #include "rift/scene/parse.hpp"
@@ -426,6 +427,41 @@ TEST(EffectiveStretch, OnlyBondsAcrossTheCrackOrItsExtensionAreShifted) {
 }  // namespace
 
 namespace {
+
+// The lumped fluid's mass balance (pd/lumped_fluid.hpp) where the cavity's linear measure passes
+// below zero, as it did after breakthrough in the thesis-size example (-4.09e-6 m^3 at step 1800,
+// V0 = 3.17e-6 m^3). Shut, p = K_f (V_fluid / V - 1) exactly; vented, the pressure stays zero and
+// no more escapes than was injected while the measure falls below zero and rises back (the room is
+// max(V, 0)). Unclamped, the second point set the escaped volume to V_fluid + 4.09e-6 m^3, and the
+// third gave K_f (-4.09 / -0.92 - 1) = 7.6 GPa with the cavity open to the outside.
+TEST(InjectedFluid, LumpedCavityHoldsNoLessThanNothing) {
+  const double v0 = 3.17e-6, k_f = 2.2e9;
+  const double fluid = v0 * (1.0 + 1e-3);  // the fluid's volume at zero pressure
+  const auto shut = rift::pd::lumped_fluid_state(v0, 0.0, 0.0, fluid, false, 0.0, k_f);
+  EXPECT_NEAR(shut.pressure / (k_f * 1e-3), 1.0, 1e-12);
+  EXPECT_EQ(shut.cavity_volume, v0);
+  EXPECT_EQ(shut.escaped_volume, 0.0);
+  double escaped = 0.0;
+  for (const double change : {-1e-6, -7.26e-6, -4.09e-6, -1e-6}) {
+    const auto vented = rift::pd::lumped_fluid_state(v0, change, 0.0, fluid, true, escaped, k_f);
+    EXPECT_EQ(vented.pressure, 0.0) << change;
+    EXPECT_EQ(vented.cavity_volume, std::max(0.0, v0 + change)) << change;
+    EXPECT_GE(vented.escaped_volume, escaped) << change;  // what escaped stays out
+    EXPECT_LE(vented.escaped_volume, fluid) << change;
+    escaped = vented.escaped_volume;
+  }
+  EXPECT_EQ(escaped, fluid);  // the measure went to zero room: every drop left
+  // shut again with 3e-6 m^3 more injected into a room of 2.17e-6 m^3: p = K_f (3 / 2.17 - 1)
+  const auto refilled = rift::pd::lumped_fluid_state(v0, -1e-6, 0.0, fluid + 3e-6, false, escaped, k_f);
+  EXPECT_NEAR(refilled.pressure / (k_f * (3e-6 / 2.17e-6 - 1.0)), 1.0, 1e-9);
+  // no room at all, shut: no finite pressure holds the fluid; zero, not an infinity or a NaN
+  const auto closed = rift::pd::lumped_fluid_state(v0, -2.0 * v0, 0.0, fluid, false, 0.0, k_f);
+  EXPECT_EQ(closed.pressure, 0.0);
+  EXPECT_EQ(closed.cavity_volume, 0.0);
+  // the injection system's volume holds fluid whatever the cavity's measure says
+  const auto system = rift::pd::lumped_fluid_state(v0, -2.0 * v0, 1e-5, (v0 + 1e-5) * (1.0 + 1e-3), false, 0.0, k_f);
+  EXPECT_NEAR(system.pressure / (k_f * ((v0 + 1e-5) * (1.0 + 1e-3) / 1e-5 - 1.0)), 1.0, 1e-12);
+}
 
 // Breakthrough (pd/fluid_network.hpp): a 50 mm block with a 5 mm borehole fed at a constant rate
 // and a dry pre-crack from its wall toward the right face. Reaching the face, the crack opens the

@@ -9,6 +9,7 @@
 #include "rift/parallel/exact_sum.hpp"
 #include "rift/parallel/team.hpp"
 #include "rift/pd/crack_pressure.hpp"
+#include "rift/pd/lumped_fluid.hpp"
 #include "rift/pd/network_load.hpp"
 #include "rift/pd/viscous_fluid.hpp"
 
@@ -143,16 +144,14 @@ void Boundaries<D>::apply_body_forces(pd::Model<D>& m, double t) const {
       fluid.pressure[c] = pd::viscous_fluid_pressure<D>(m, c, t, src.injection_rate, src.fluid_bulk_modulus, src.pressure, src.system_volume);
       continue;
     }
-    // mass balance of a lumped compressible fluid: the fluid's volume at zero pressure, (V0 + V_s) (1 +
-    // p0 / K_f) + Q t, less what escaped, fills the cavity V and the injection system's V_s at p = K_f
-    // (V_fluid / (V + V_s) - 1); no tension (the fluid cavitates). Open to the outer surface, the
-    // cavity keeps the fluid it holds at zero pressure and the rest escapes.
-    const double reference = fluid.reference_volume[c] + src.system_volume;
-    const double volume = reference + pd::cavity_volume_change<D>(m, static_cast<int>(c));
-    const double injected = reference * (1.0 + src.pressure / src.fluid_bulk_modulus) + src.injection_rate * t;
-    if (c < fluid.vented.size() && fluid.vented[c]) fluid.escaped_volume[c] = std::max(fluid.escaped_volume[c], injected - volume);
-    fluid.cavity_volume[c] = volume - src.system_volume;
-    fluid.pressure[c] = std::max(0.0, src.fluid_bulk_modulus * ((injected - fluid.escaped_volume[c]) / volume - 1.0));
+    // mass balance of a lumped compressible fluid (pd/lumped_fluid.hpp)
+    const double injected = (fluid.reference_volume[c] + src.system_volume) * (1.0 + src.pressure / src.fluid_bulk_modulus) + src.injection_rate * t;
+    const pd::LumpedFluidState state =
+        pd::lumped_fluid_state(fluid.reference_volume[c], pd::cavity_volume_change<D>(m, static_cast<int>(c)), src.system_volume, injected,
+                               c < fluid.vented.size() && fluid.vented[c], fluid.escaped_volume[c], src.fluid_bulk_modulus);
+    fluid.cavity_volume[c] = state.cavity_volume;
+    fluid.escaped_volume[c] = state.escaped_volume;
+    fluid.pressure[c] = state.pressure;
   }
   // a wall breaks down once its fluid's pressure first reaches the breakdown pressure: from the next
   // evaluation on, its fluid enters the dry pre-cracks that start in it (the network is made again)

@@ -158,7 +158,9 @@ double viscous_fluid_pressure(Model<D>& m, std::size_t s, double t, double injec
   }
   std::vector<double> volume(nodes, 0.0);
   const double borehole_change = cavity_volume_change<D>(m, static_cast<int>(s), true);
-  volume[0] = f.reference_volume[s] + system_volume + borehole_change;
+  // the borehole's room is no less than nothing (its measure is linear in the displacements, as the
+  // lumped fluid's, lumped_fluid.hpp)
+  volume[0] = std::max(0.0, f.reference_volume[s] + borehole_change) + system_volume;
   // the bonds' volumes, scaled to the work conjugate of the network's load (see the top)
   double opened = 0.0;
   for (const auto& b : bonds) opened += b.volume;
