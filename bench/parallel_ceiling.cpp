@@ -75,6 +75,12 @@ double seconds(Kernel kernel, long total, int threads) {
   return elapsed;
 }
 
+// The middle value (the upper of the two middle ones of an even count).
+double median(std::vector<double> values) {
+  std::sort(values.begin(), values.end());
+  return values[values.size() / 2];
+}
+
 template <class Kernel>
 double median_speedup(Kernel kernel, long total, int repeats) {
   std::vector<double> one, two;
@@ -82,9 +88,7 @@ double median_speedup(Kernel kernel, long total, int repeats) {
     one.push_back(seconds(kernel, total, 1));
     two.push_back(seconds(kernel, total, 2));
   }
-  std::sort(one.begin(), one.end());
-  std::sort(two.begin(), two.end());
-  return one[one.size() / 2] / two[two.size() / 2];
+  return median(one) / median(two);
 }
 
 // The counter the two threads hand back and forth, alone in its pair of cache lines (a processor
@@ -120,8 +124,7 @@ double line_ns(int repeats) {
     }
     one_way.push_back(elapsed / (2 * trips) * 1e9);
   }
-  std::sort(one_way.begin(), one_way.end());
-  return one_way[one_way.size() / 2];
+  return median(one_way);
 }
 
 }  // namespace
