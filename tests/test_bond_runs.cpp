@@ -29,6 +29,7 @@
 //     equals Silling and Askari's (2005) eq. 25 summed over each row's bond states in the row's
 //     order, to the bit, and so does its count of broken bonds.
 // (11) the VES force kernel's skipping of spans of broken bonds gives the bits of every bond taken.
+// (12) the slabs: no row's forward bonds past the next slab, and the last slab as heavy as the others.
 #include <gtest/gtest.h>
 #include <omp.h>
 
@@ -111,15 +112,15 @@ void check_runs_cover_forward_bonds(const rift::pd::Model<D>& m) {
   const auto& b = m.bonds;
   for (const auto& body : m.bodies) {
     std::set<std::int64_t> seen;
-    ASSERT_EQ(body.slab_runs.size(), (body.last - body.first + body.slab_length - 1) / body.slab_length + 1);
+    ASSERT_EQ(body.slab_runs.size(), body.slab_count + 1);
     for (std::size_t q = 0; q + 1 < body.slab_runs.size(); ++q)
       for (std::size_t r = body.slab_runs[q]; r < body.slab_runs[q + 1]; ++r) {
         const auto& run = body.runs[r];
         ASSERT_GE(run.length, 1u);
         ASSERT_LE(run.length, rift::pd::max_run_length);
         // inside slab q
-        ASSERT_EQ((static_cast<std::size_t>(run.i) - body.first) / body.slab_length, q);
-        ASSERT_EQ((static_cast<std::size_t>(run.i) + run.length - 1 - body.first) / body.slab_length, q);
+        ASSERT_EQ(rift::pd::slab_of(body, static_cast<std::size_t>(run.i)), q);
+        ASSERT_EQ(rift::pd::slab_of(body, static_cast<std::size_t>(run.i) + run.length - 1), q);
         for (std::size_t t = 0; t < run.length; ++t) {
           const auto k = rift::pd::run_bond(b, run, t);
           const auto i = static_cast<std::size_t>(run.i) + t;
@@ -163,6 +164,52 @@ void check_runs_cover_owned_ends(const rift::pd::Model<3>& w) {
 TEST(BondRuns, EveryForwardBondInExactlyOneRun) {
   check_runs_cover_forward_bonds(block<3>(false));
   check_runs_cover_forward_bonds(block<2>(true));
+}
+
+// The slabs (bond_slabs.hpp cut_into_slabs): every row's forward bonds end in its own slab or the
+// next, which keeps the passes' even and odd slabs apart, and the last slab, which takes the rest of
+// the body, has the forward bonds of an average other within 2% (its rows lose theirs past the
+// body's end: cut equally, the last of the bench cube had two thirds of the others'), unless the
+// others are as short as the farthest forward reach allows, and then it has fewer.
+template <int D>
+void check_slabs_balanced(const rift::pd::Model<D>& m, bool shortest) {
+  const auto& b = m.bonds;
+  const auto& body = m.bodies[0];
+  ASSERT_GE(body.slab_count, 2u);
+  std::vector<double> forward(body.slab_count, 0.0);
+  std::size_t reach = 0;
+  for (std::size_t i = body.first; i < body.last; ++i) {
+    const std::size_t q = rift::pd::slab_of(body, i);
+    ASSERT_EQ(q, std::min((i - body.first) / body.slab_length, body.slab_count - 1));
+    for (auto k = b.offset[i]; k < b.offset[i + 1]; ++k) {
+      const auto j = static_cast<std::size_t>(b.neighbor[k]);
+      if (j <= i) continue;
+      forward[q] += 1.0;
+      reach = std::max(reach, j - i);
+      ASSERT_LE(rift::pd::slab_of(body, j), q + 1) << "bond " << i << "-" << j << " reaches past the next slab";
+    }
+  }
+  const double others = std::accumulate(forward.begin(), forward.end() - 1, 0.0) / double(body.slab_count - 1);
+  EXPECT_EQ(body.slab_length == reach, shortest);
+  if (shortest) EXPECT_LT(forward.back(), others);
+  else EXPECT_NEAR(forward.back() / others, 1.0, 0.02);
+}
+
+TEST(BondSlabs, LastSlabTakesTheRestAndHasTheForwardBondsOfAnAverageOther) {
+  // the bench cube's lattice, smaller (bench/run: horizon 3.015 spacings, LAMMPS's partial volumes):
+  // 30^3 particles, the reach 2,793 (3 planes, 3 lines and 3 sites on), 9.7 reaches: 8 slabs
+  const auto cube = rift::pd::discretize<3>(rift::scene::parse_string(
+      "[scene]\ndimension = 3\n[materials.glass]\nmodel = \"pmb\"\ndensity = 2440.0\nbulk_modulus = 48e9\nshear_modulus = 28.8e9\n"
+      "critical_stretch = 0.0005\n[regions.cube]\nshape = \"box\"\nmin = [-0.0005, -0.0005, -0.0005]\nmax = [0.0295, 0.0295, 0.0295]\n"
+      "[bodies.cube]\nmaterial = \"glass\"\nregion = \"cube\"\nspacing = 0.001\nhorizon = 3.015\n"
+      "lattice_origin = [-0.0005, -0.0005, -0.0005]\npartial_volume = \"lammps\"\n[solver]\nend_time = 1e-7\n",
+      "cube.toml"));
+  ASSERT_EQ(cube.size(), 30u * 30u * 30u);
+  EXPECT_EQ(cube.bodies[0].slab_count, 8u);
+  EXPECT_LT(cube.bodies[0].slab_length, 27000u / 8u);  // shorter than equal slabs
+  check_slabs_balanced(cube, false);
+  check_slabs_balanced(block<3>(false), true);  // the block's three slabs as short as they may be
+  check_slabs_balanced(block<2>(true), false);
 }
 
 // A rank's window starts inside one of the whole body's slabs (BodyInfo::origin < 0, its first slab

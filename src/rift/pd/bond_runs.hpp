@@ -51,9 +51,8 @@ inline void make_bond_runs(const Bonds& b, BodyInfo& body, const Numbering& numb
   body.runs.clear();
   body.slab_runs.clear();
   if (body.last <= body.first) return;
-  const std::size_t length = body.slab_length;
   // the slabs are the whole body's (BodyInfo::whole_first)
-  auto slab = [&](std::size_t i) { return (numbering.whole(i) - body.whole_first) / length; };
+  auto slab = [&](std::size_t i) { return slab_of(body, numbering.whole(i)); };
   // and inside one block of the VES history (bonds.hpp), which holds max_run_length particles: the
   // whole body's blocks too (a window's history holds whole blocks, BodyInfo::origin)
   auto block = [&](std::size_t i) { return (numbering.whole(i) - body.whole_first) / max_run_length; };

@@ -13,6 +13,7 @@
 #include <atomic>
 #include <cstddef>
 #include <cstdint>
+#include <cstdlib>
 #include <limits>
 #include <memory>
 #include <thread>
@@ -102,10 +103,16 @@ void next_stretch_limits(Model<D>& m, const BodyInfo& body, const double* smalle
     if (smallest[i] < std::numeric_limits<double>::max()) m.next_stretch_limit[i] = c.critical_stretch - c.alpha * smallest[i];
 }
 
-/// The slab length for the particles [first, last): at least the farthest forward reach, and more
-/// slabs than a few threads need for balance on large bodies. Found once, when the bonds are made
-/// (BodyInfo::slab_length): scanned in every pass, it took 4% of a PMB step.
-inline std::size_t slab_length(const Bonds& b, std::size_t first, std::size_t last) {
+/// How the particles [first, last) of a body are cut into slabs (BodyInfo::slab_length, slab_count).
+struct SlabCut {
+  std::size_t length = 1, count = 1;
+};
+
+/// The slabs of the particles [first, last): `count` slabs, each but the last `length` long, at
+/// least the farthest forward reach, and more slabs than a few threads need for balance on large
+/// bodies; the last takes the rest. Found once, when the bonds are made (BodyInfo): scanned in every
+/// pass, it took 4% of a PMB step.
+inline SlabCut cut_into_slabs(const Bonds& b, std::size_t first, std::size_t last) {
   std::size_t reach = 1;
   for (std::size_t i = first; i < last; ++i)
     if (b.offset[i + 1] > b.offset[i]) {
@@ -122,10 +129,36 @@ inline std::size_t slab_length(const Bonds& b, std::size_t first, std::size_t la
   // thread and parity on two threads instead of two, and a thread slowed for a while by the rest of
   // the machine holds the other back for less: its PMB pass on two threads 9% faster, LPS and VES
   // 4-5% (alternating runs, 2026-11-30). A team of four then gets two slabs or one a parity, not one.
-  const std::size_t slabs = (count + length - 1) / length;
+  std::size_t slabs = (count + length - 1) / length;
   const std::size_t multiple = slabs >= 16 ? 8 : 4;
-  if (slabs >= multiple && slabs % multiple != 0) length = (count + slabs / multiple * multiple - 1) / (slabs / multiple * multiple);
-  return length;
+  if (slabs >= multiple && slabs % multiple != 0) {
+    slabs = slabs / multiple * multiple;
+    length = (count + slabs - 1) / slabs;
+  }
+  if (slabs < 2) return {std::max<std::size_t>(length, 1), 1};
+  // A slab's work is its rows' forward bonds, and the rows of the last slab lose theirs past the
+  // body's end: in equal slabs the bench cube's last had two thirds of the others' forward bonds,
+  // and the thread that took it waited for the other in every pass of odd slabs (libgomp's spin,
+  // 2.4-4.6% of a step on two threads). So the others are made shorter, down to the reach, until the
+  // last, which takes the rest, has the forward bonds of an average other (the cube's slabs 5,590
+  // particles, not 5,744, its last 7,431: every pass on two threads about 2% faster, 2026-12-05).
+  // `forward[p]`: the forward bonds of the first p particles.
+  std::vector<std::int64_t> forward(count + 1, 0);
+  for (std::size_t i = first; i < last; ++i) forward[i - first + 1] = forward[i - first] + (b.offset[i + 1] - first_forward_bond(b, i));
+  const auto shortfall = [&](std::size_t l) {  // the last slab's forward bonds less an average other's, times (slabs - 1)
+    const std::size_t cut = (slabs - 1) * l;
+    return (forward[count] - forward[cut]) * static_cast<std::int64_t>(slabs - 1) - forward[cut];
+  };
+  for (; length > reach && shortfall(length) < 0; --length) {
+  }
+  // the length whose last slab comes nearer an average other: this one or the one above
+  if (length < (count + slabs - 1) / slabs && std::abs(shortfall(length + 1)) < std::abs(shortfall(length))) ++length;
+  return {length, slabs};
+}
+
+/// The whole body's slab of its particle with whole-run number `whole` (Numbering::whole).
+inline std::size_t slab_of(const BodyInfo& body, std::size_t whole) {
+  return std::min((whole - body.whole_first) / body.slab_length, body.slab_count - 1);
 }
 
 /// Calls slab(q) for the local slabs q = 0 ... count - 1, whose whole-body numbers are first_slab + q
@@ -200,10 +233,11 @@ void for_each_row_by_slabs(const BodyInfo& body, const Numbering& numbering, Row
   const std::size_t first = body.first, last = body.last, length = body.slab_length;
   if (last <= first) return;
   // the whole body's slabs (BodyInfo::whole_first): the first here may be cut short, and start
-  // before the window's first particle (a distributed run's window, pd/window.hpp)
-  const auto start = [&](std::size_t slab) { return numbering.first_from(body.whole_first + slab * length); };
-  const std::size_t first_slab = (numbering.whole(first) - body.whole_first) / length;
-  const std::size_t end_slab = (numbering.whole(last - 1) - body.whole_first) / length + 1;
+  // before the window's first particle (a distributed run's window, pd/window.hpp); the last takes
+  // the rest of the body
+  const auto start = [&](std::size_t slab) { return slab < body.slab_count ? numbering.first_from(body.whole_first + slab * length) : last; };
+  const std::size_t first_slab = slab_of(body, numbering.whole(first));
+  const std::size_t end_slab = slab_of(body, numbering.whole(last - 1)) + 1;
   for_each_slab(end_slab - first_slab, first_slab, rift::parallel::worth_a_team(last - first), [&](std::size_t q) {
     const std::size_t slab = first_slab + q;
     const std::size_t from = std::max(first, start(slab)), to = std::min(last, start(slab + 1));

@@ -31,7 +31,7 @@ static_assert(sizeof(CrackSurface) == 8 + 9 * 24 + 2 * 8, "a member was added to
 // not saved; the recent crossing breaks are saved merged into crossing_broken)
 static_assert(sizeof(FluidNetwork) == 28 * 24 + 2 * 8 + 2 * 8 + sizeof(CrackSurface), "a member was added to FluidNetwork: list it in pd/checkpoint_state.hpp");
 static_assert(sizeof(Platen) == 8 + 24, "a member was added to Platen: list it in pd/checkpoint_state.hpp");
-static_assert(sizeof(BodyInfo) == 32 + 9 * 8 + 2 * 24 + sizeof(MaterialConstants), "a member was added to BodyInfo: list it in pd/checkpoint_state.hpp");
+static_assert(sizeof(BodyInfo) == 32 + 10 * 8 + 2 * 24 + sizeof(MaterialConstants), "a member was added to BodyInfo: list it in pd/checkpoint_state.hpp");
 // (Contact's beyond_ is not state: a distributed run gathers it at each rebuild of the pairs)
 static_assert(sizeof(Contact<3>) == 8 + 2 * 8 + 5 * 24 + 8 + 2 * 24 + sizeof(BeyondWindow<3>),
               "a member was added to Contact: list it in its visit_state");
@@ -137,7 +137,7 @@ void visit(A& a, Platen& p) {
 template <class A>
 void visit(A& a, BodyInfo& b) {
   a("body.name", b.name), a("body.first", b.first), a("body.last", b.last), a("body.first_family", b.first_family);
-  a("body.family_count", b.family_count), a("body.slab_length", b.slab_length), a("body.runs", b.runs), a("body.slab_runs", b.slab_runs);
+  a("body.family_count", b.family_count), a("body.slab_length", b.slab_length), a("body.slab_count", b.slab_count), a("body.runs", b.runs), a("body.slab_runs", b.slab_runs);
   a("body.history_base", b.history_base), a("body.origin", b.origin), a("body.whole_first", b.whole_first);
   a("body.first_slab", b.first_slab);
   a("body.constants", b.constants);

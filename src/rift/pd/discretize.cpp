@@ -317,7 +317,8 @@ void build_bonds(const scene::Scene& s, Model<D>& m, const std::vector<std::arra
     b.family.resize(static_cast<std::size_t>(b.offset[info.last]));
 #pragma omp parallel for if(rift::parallel::worth_a_team(info.last - info.first)) schedule(dynamic, 256)
     for (std::size_t i = info.first; i < info.last; ++i) row(i, true);
-    info.slab_length = slab_length(b, info.first, info.last);
+    const SlabCut slabs = cut_into_slabs(b, info.first, info.last);
+    info.slab_length = slabs.length, info.slab_count = slabs.count;
     make_bond_runs(b, info);
   }
   parallel_fill(b.intact.replace(), b.neighbor.size(), bond_intact);

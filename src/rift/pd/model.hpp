@@ -21,7 +21,9 @@ struct BodyInfo {
   std::string name;
   std::size_t first = 0, last = 0;  // particle range [first, last)
   std::size_t first_family = 0, family_count = 0;  // its family offsets in Bonds::families
-  std::size_t slab_length = 1;  // of the passes that visit each bond once (bond_slabs.hpp), set with the bonds
+  // the slabs of the passes that visit each bond once (bond_slabs.hpp), set with the bonds: the whole
+  // body's slab_count slabs, each slab_length long but the last, which takes the rest
+  std::size_t slab_length = 1, slab_count = 1;
   std::vector<BondRun> runs;    // its forward bonds as runs (bond_runs.hpp), slab after slab
   std::vector<std::size_t> slab_runs;  // the runs of slab q: [slab_runs[q], slab_runs[q + 1])
   std::int64_t history_base = 0;  // VES: its first slot in Bonds::back_extension (bond_slabs.hpp history_slot)
