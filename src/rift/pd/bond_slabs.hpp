@@ -139,8 +139,10 @@ inline SlabCut cut_into_slabs(const Bonds& b, std::size_t first, std::size_t las
   std::size_t slabs = (count + length - 1) / length;
   const std::size_t multiple = slabs >= 16 ? 8 : 4;
   if (slabs >= multiple && slabs % multiple != 0) {
-    slabs = slabs / multiple * multiple;
-    length = (count + slabs - 1) / slabs;
+    length = (count + slabs / multiple * multiple - 1) / (slabs / multiple * multiple);
+    // the slabs of that length: fewer than the multiple where a slab holds fewer particles than there
+    // are slabs (a strip three particles wide and 1,000 long has 231 of 13, not 248)
+    slabs = (count + length - 1) / length;
   }
   if (slabs < 2) return {std::max<std::size_t>(length, 1), 1};
   // A slab's work is its rows' forward bonds, and the rows of the last slab lose theirs past the
@@ -154,10 +156,11 @@ inline SlabCut cut_into_slabs(const Bonds& b, std::size_t first, std::size_t las
     const std::size_t cut = (slabs - 1) * l;
     return (forward[count] - forward[cut]) * static_cast<std::int64_t>(slabs - 1) - forward[cut];
   };
+  const std::size_t equal = length;  // (slabs - 1) equal < count: the last slab holds a particle or more
   for (; length > reach && shortfall(length) < 0; --length) {
   }
   // the length whose last slab comes nearer an average other: this one or the one above
-  if (length < (count + slabs - 1) / slabs && std::abs(shortfall(length + 1)) < std::abs(shortfall(length))) ++length;
+  if (length < equal && std::abs(shortfall(length + 1)) < std::abs(shortfall(length))) ++length;
   return {length, slabs};
 }
 
