@@ -203,7 +203,7 @@ void check_slabs_balanced(const rift::pd::Model<D>& m, SlabBalance balance) {
 
 TEST(BondSlabs, LastSlabTakesTheRestAndHasTheForwardBondsOfAnAverageOther) {
   // the bench cube's lattice, smaller (bench/run: horizon 3.015 spacings, LAMMPS's partial volumes):
-  // 30^3 particles, the reach 2,793 (3 planes, 3 lines and 3 sites on), 9.7 reaches: 8 slabs
+  // 30^3 particles, the reach 2,700 (three planes on), 10 reaches: 8 slabs
   const auto cube = rift::pd::discretize<3>(rift::scene::parse_string(
       "[scene]\ndimension = 3\n[materials.glass]\nmodel = \"pmb\"\ndensity = 2440.0\nbulk_modulus = 48e9\nshear_modulus = 28.8e9\n"
       "critical_stretch = 0.0005\n[regions.cube]\nshape = \"box\"\nmin = [-0.0005, -0.0005, -0.0005]\nmax = [0.0295, 0.0295, 0.0295]\n"
@@ -216,8 +216,8 @@ TEST(BondSlabs, LastSlabTakesTheRestAndHasTheForwardBondsOfAnAverageOther) {
   check_slabs_balanced(cube, SlabBalance::near_average);
   check_slabs_balanced(block<3>(false), SlabBalance::shortest);  // the block's three slabs as short as they may be
   check_slabs_balanced(block<2>(true), SlabBalance::near_average);
-  // a strip three particles wide and 1,000 long: the reach 9 (two lines and two sites on), 256 slabs
-  // of 12 rounded to 248 make slabs of 13, and only 231 of those. The last slab's start once lay
+  // a strip three particles wide and 1,000 long: the reach 9 (three lines on), 250 slabs of 12
+  // rounded to 248 make slabs of 13, and only 231 of those. The last slab's start once lay
   // past the body's end (the 231st slab taken as the 248th).
   const auto strip = rift::pd::discretize<2>(rift::scene::parse_string(
       "[scene]\ndimension = 2\nplane = \"strain\"\nthickness = 0.001\n[materials.glass]\nmodel = \"pmb\"\ndensity = 2440.0\n"

@@ -3,8 +3,9 @@
 // Row i's bonds to higher-numbered neighbours are its forward bonds (rows are sorted by neighbour).
 // The particles are cut into index ranges, slabs, no shorter than the farthest forward reach
 // max(j - i) (the last takes the rest): a row's forward bonds end in its own slab or the next. Even
-// slabs run in parallel, then odd ones, so no two slabs running at once write the same particle. The slabs depend on the
-// bonds alone, not on the threads, so every sum is made in the same order on any thread count.
+// slabs run in parallel, then odd ones, so no two slabs running at once write the same particle. The
+// slabs depend on the bonds alone, not on the threads, so every sum is made in the same order on
+// any thread count.
 // An odd slab waits only for its two even neighbours, not for every even slab (for_each_slab).
 #pragma once
 #include <omp.h>
