@@ -24,6 +24,7 @@
 #include <vector>
 
 #include "rift/core/error.hpp"
+#include "rift/core/stop_signal.hpp"
 #include "rift/io/checkpoint.hpp"
 #include "rift/run/runner.hpp"
 #include "rift/scene/parse.hpp"
@@ -160,6 +161,74 @@ file = "ck_*.rift"
 )";
 }
 
+// Quasi-static hydraulic fracture in a 2D rock block: in-situ stage, a borehole fed at a rate with a
+// viscous fluid (cubic law), a pre-crack, a pre-existing interface, bonds breaking at each
+// equilibrium; four load steps, a checkpoint after each.
+std::string injection_with_interface() {
+  return rift::test::plane_strain_rock("fracture_energy = 50.0\n") + R"([regions.block]
+shape = "box"
+min = [-0.03, -0.03]
+max = [0.03, 0.03]
+[regions.hole]
+shape = "cylinder"
+center = [0.0, 0.0]
+radius = 0.003
+[bodies.rock]
+material = "rock"
+region = "block"
+spacing = 0.002
+horizon = 3.015
+lattice_origin = [-0.001, -0.001]
+[[cracks]]
+points = [[-0.008, 0.001], [0.008, 0.001]]
+[[boreholes]]
+region = "hole"
+injection_rate = 3e-9
+fluid_bulk_modulus = 2.2e9
+fluid_viscosity = 0.1
+[[interfaces]]
+points = [[0.013, -0.03], [0.013, 0.03]]
+tensile_strength = 1.0e6
+friction_coefficient = 0.89
+[in_situ_stress]
+sigma_H = -6e6
+sigma_h = -3e6
+[solver]
+type = "dynamic_relaxation"
+breaking = "at_equilibrium"
+end_time = 1.0
+load_steps = 4
+tolerance = 1e-4
+[output]
+snapshots = 4
+history = ["broken_bonds", "max_damage"]
+[checkpoint]
+every_steps = 1
+file = "ck_*.rift"
+)";
+}
+
+/// The `column` of each row of a history file.
+std::vector<double> history_column(const fs::path& csv, const std::string& column) {
+  std::ifstream in(csv);
+  std::string header, line;
+  std::getline(in, header);
+  std::stringstream h(header);
+  std::string name;
+  int at = -1;
+  for (int k = 0; std::getline(h, name, ','); ++k)
+    if (name == column) at = k;
+  EXPECT_GE(at, 0) << "no column " << column << " in " << csv;
+  std::vector<double> out;
+  while (std::getline(in, line)) {
+    std::stringstream v(line);
+    std::string value;
+    for (int k = 0; std::getline(v, value, ','); ++k)
+      if (k == at) out.push_back(std::stod(value));
+  }
+  return out;
+}
+
 double last_history_value(const fs::path& csv, const std::string& column) {
   std::ifstream in(csv);
   std::string header, line, last;
@@ -245,52 +314,69 @@ TEST(Checkpoint, ExplicitVesRunContinuesBitForBit) {
 // load step 2 of 4, and the fracture and its fluid go on growing after it; the in-situ stage is
 // not run again.
 TEST(Checkpoint, InjectionWithInterfaceContinuesBitForBit) {
-  const std::string text = rift::test::plane_strain_rock("fracture_energy = 50.0\n") + R"([regions.block]
-shape = "box"
-min = [-0.03, -0.03]
-max = [0.03, 0.03]
-[regions.hole]
-shape = "cylinder"
-center = [0.0, 0.0]
-radius = 0.003
-[bodies.rock]
-material = "rock"
-region = "block"
-spacing = 0.002
-horizon = 3.015
-lattice_origin = [-0.001, -0.001]
-[[cracks]]
-points = [[-0.008, 0.001], [0.008, 0.001]]
-[[boreholes]]
-region = "hole"
-injection_rate = 3e-9
-fluid_bulk_modulus = 2.2e9
-fluid_viscosity = 0.1
-[[interfaces]]
-points = [[0.013, -0.03], [0.013, 0.03]]
-tensile_strength = 1.0e6
-friction_coefficient = 0.89
-[in_situ_stress]
-sigma_H = -6e6
-sigma_h = -3e6
-[solver]
-type = "dynamic_relaxation"
-breaking = "at_equilibrium"
-end_time = 1.0
-load_steps = 4
-tolerance = 1e-4
-[output]
-snapshots = 4
-history = ["broken_bonds", "max_damage"]
-[checkpoint]
-every_steps = 1
-file = "ck_*.rift"
-)";
+  const std::string text = injection_with_interface();
   const auto r = expect_restart_bit_identical("injection", text, 2);
   const fs::path whole = fs::temp_directory_path() / "rift_checkpoint_injection_whole";
   EXPECT_GT(last_history_value(whole / "history.csv", "broken_bonds"), 0.0) << "the fracture grew";
   EXPECT_GT(last_history_value(whole / "history.csv", "pressure_borehole_0"), 0.0);
   (void)r;
+}
+
+// A stop within a load step of relaxation (issue 81: SIGTERM inside a solve), in a breaking pass
+// after the first of load step 3: the checkpoint holds the two load steps done and load step 3's
+// pass, iterations, velocities and previous forces, and the restart goes on from that iteration to
+// the whole run's bits (its checkpoints, history and fields). The stop is the runner's, after a
+// given count of iterations, through the same stop flag SIGTERM sets.
+TEST(Checkpoint, RelaxationStoppedWithinALoadStepContinuesBitForBit) {
+  const auto scene = rift::scene::parse_string(injection_with_interface(), "injection.toml");
+  const fs::path whole = fresh_directory("within_whole"), parts = fresh_directory("within_parts");
+  const auto r = rift::run::run(scene, quiet_in(whole));
+  ASSERT_FALSE(r.stopped);
+  // the iterations and breaking passes of each load step (rows 1 to 4: the history's first row is the in-situ state)
+  const auto iterations = history_column(whole / "history.csv", "iterations");
+  const auto passes = history_column(whole / "history.csv", "breaking_passes");
+  ASSERT_EQ(iterations.size(), 4u);
+  ASSERT_GT(passes[2], 1.0) << "load step 3 breaks bonds at an equilibrium and relaxes again";
+  auto first = quiet_in(parts);
+  first.stop_after_iterations = static_cast<long>(iterations[0] + iterations[1] + iterations[2] - 10);
+  const auto stopped = rift::run::run(scene, first);
+  ASSERT_TRUE(stopped.stopped);
+  EXPECT_EQ(stopped.steps, 2);
+  EXPECT_NE(stopped.stopped_in.find("in load step 3 at iteration"), std::string::npos) << stopped.stopped_in;
+  EXPECT_EQ(stopped.checkpoint, (parts / "ck_3.rift").string()) << "named after the load step it holds part of";
+  {
+    rift::io::CheckpointReader checkpoint(stopped.checkpoint);
+    EXPECT_EQ(checkpoint.header().step, 2) << "as after load step 2";
+  }
+  auto second = quiet_in(parts);
+  second.restart = stopped.checkpoint;
+  const auto continued = rift::run::run(scene, second);
+  EXPECT_FALSE(continued.stopped);
+  EXPECT_EQ(continued.first_step, 3);
+  expect_same_outputs(whole, parts);
+}
+
+// A stop in the in-situ stage (its conjugate gradients): the checkpoint holds no state, and the
+// restart runs the scene from its start to the whole run's bits.
+TEST(Checkpoint, StopInTheInSituStageStartsTheRunAgain) {
+  const auto scene = rift::scene::parse_string(injection_with_interface(), "injection.toml");
+  const fs::path whole = fresh_directory("in_situ_whole"), parts = fresh_directory("in_situ_parts");
+  const auto r = rift::run::run(scene, quiet_in(whole));
+  rift::set_stop_signal(SIGTERM);  // as the handler would: the stage reads it at its first iteration
+  const auto stopped = rift::run::run(scene, quiet_in(parts));
+  rift::set_stop_signal(0);
+  ASSERT_TRUE(stopped.stopped);
+  EXPECT_EQ(stopped.steps, 0);
+  EXPECT_EQ(stopped.stop_signal, SIGTERM);
+  EXPECT_NE(stopped.stopped_in.find("in-situ stage"), std::string::npos) << stopped.stopped_in;
+  auto second = quiet_in(parts);
+  second.restart = stopped.checkpoint;
+  const auto continued = rift::run::run(scene, second);
+  EXPECT_FALSE(continued.stopped);
+  EXPECT_EQ(continued.first_step, 1);
+  EXPECT_EQ(continued.steps, r.steps);
+  fs::remove(parts / "ck_0.rift");  // the stop's, which the whole run never wrote
+  expect_same_outputs(whole, parts);
 }
 
 // MPM with an explicit crack that grows (CRAMP, maximum hoop stress): the material points and

@@ -52,7 +52,14 @@ grep -q "damage   $tmp/out/damage.png" "$tmp/run.log"
 grep -q "M bonds/s)" "$tmp/run.log"  # throughput at the end of the run
 test -s "$tmp/out/fields_000000.h5" && test -s "$tmp/out/fields_000003.h5"  # a file per snapshot
 test ! -e "$tmp/out/fields_000004.h5"
-! ls "$tmp/out" | grep -q '\.tmp$'  # every file renamed into place
+no_tmp_files() {  # (a negated pipeline never stops a `set -e` script: tested with if)
+  if ls "$1" | grep -q '\.tmp$'; then echo "FAIL: a .tmp file in $1"; exit 1; fi
+}
+no_tmp_files "$tmp/out"  # every file renamed into place
+# a snapshot's file left half-written by a run killed while it wrote (*.h5.tmp) is removed at the next start
+touch "$tmp/out/fields_000007.h5.tmp" "$tmp/out/checkpoint.rift.tmp"
+"$rift" run "$tmp/plate.toml" -o "$tmp/out" --threads 2 -q > /dev/null
+no_tmp_files "$tmp/out"
 test -s "$tmp/out/damage.png"
 test "$(wc -l < "$tmp/out/history.csv")" -eq 7  # header, initial state, 5 rows
 head -1 "$tmp/out/history.csv" | grep -q 'reaction_left_x'
@@ -141,6 +148,73 @@ test -s "$tmp/long/checkpoint.rift"
 "$rift" run "$tmp/long.toml" -o "$tmp/long" --threads 1 --restart "$tmp/long/checkpoint.rift" > "$tmp/long2.log"
 grep -q "rift: continued from $tmp/long/checkpoint.rift at step" "$tmp/long2.log"
 cmp "$tmp/long/history.csv" "$tmp/long_whole/history.csv"
+# SIGTERM inside a relaxation solve (issue 81): the run stops at the iteration it is in, even with a
+# second SIGTERM on the heels of the first, writes a checkpoint of the unfinished load step, and the
+# restart goes on from that iteration to the bytes of a run never stopped. Its log has progress lines.
+cat > "$tmp/relax.toml" <<'SCENE'
+[scene]
+dimension = 2
+plane = "strain"
+thickness = 0.001
+[materials.rock]
+model = "lps"
+density = 2500.0
+youngs_modulus = 10e9
+poisson_ratio = 0.25
+fracture_energy = 20.0
+[regions.block]
+shape = "box"
+min = [0.0, 0.0]
+max = [0.04, 0.04]
+[regions.bottom]
+shape = "box"
+min = [0.0, 0.0]
+max = [0.04, 0.001]
+[regions.top]
+shape = "box"
+min = [0.0, 0.039]
+max = [0.04, 0.04]
+[bodies.block]
+material = "rock"
+region = "block"
+spacing = 0.001
+horizon = 3.015
+[[cracks]]
+points = [[0.0, 0.02], [0.015, 0.02]]
+[[boundaries]]
+region = "bottom"
+type = "fixed"
+[[boundaries]]
+region = "top"
+type = "traction"
+y = 2e6
+[solver]
+type = "dynamic_relaxation"
+max_iterations = 8000
+tolerance = 1e-14
+[output]
+history = ["broken_bonds"]
+damage_image = false
+damage_histogram = false
+SCENE
+"$rift" run "$tmp/relax.toml" -o "$tmp/relax_whole" --threads 1 > /dev/null 2> "$tmp/relax_whole.err"
+grep -q "rift: load step 1/1, iteration 1 (at most 8000), residual" "$tmp/relax_whole.err"
+set +e
+"$rift" run "$tmp/relax.toml" -o "$tmp/relax" --threads 1 -q > "$tmp/relax.log" &
+pid=$!
+until [ -e "$tmp/relax/fields_000000.h5" ]; do sleep 0.02; done  # written before the solve
+sleep 0.3
+kill -TERM "$pid"
+sleep 0.05
+kill -TERM "$pid" 2> /dev/null
+wait "$pid"
+status=$?
+set -e
+test "$status" -eq 143
+grep -q "rift: stopped by signal 15 in load step 1 at iteration" "$tmp/relax.log"
+"$rift" run "$tmp/relax.toml" -o "$tmp/relax" --threads 1 -q --restart "$tmp/relax/checkpoint.rift" > /dev/null
+cmp "$tmp/relax/history.csv" "$tmp/relax_whole/history.csv"
+cmp "$tmp/relax/fields_000001.h5" "$tmp/relax_whole/fields_000001.h5"
 # a checkpoint of another scene is refused (exit status 2), the run's files unchanged
 cp "$tmp/long/history.csv" "$tmp/history_before.csv"
 exits_2 "cannot restart from this checkpoint: it was written for another scene" \

@@ -569,6 +569,30 @@ for case in "plate 20" "impact 100" "ves_bar 20" "insitu_platens 20" "borehole 1
   echo "ok: $scene: a checkpoint of 2 ranks continues on $(compared_on 1 3) ranks, the same bytes as the run never stopped"
 done
 
+# SIGTERM to the ranks inside a relaxation solve (issue 81): every rank stops at the same iteration,
+# rank 0 writes the checkpoint of the unfinished load step (its previous forces gathered), and it
+# continues on 3 ranks and on 1 to the bytes of the one-rank run never stopped
+sed -n '/^RELAX_STOP_SCENE$/,/^RELAX_STOP_SCENE_END$/p' "$0" | sed '1d;$d' > "$tmp/relax_stop.toml"
+if ! sanitized; then
+  one_rank run "$tmp/relax_stop.toml" -o "$tmp/relax_stop-serial" -q > /dev/null
+  out="$tmp/relax_stop-np2"
+  "${mpirun[@]}" -np 2 "$rift" run "$tmp/relax_stop.toml" -o "$out" -q > "$out.log" 2>&1 &
+  pid=$!
+  until [ -e "$out/fields_000000.h5" ]; do sleep 0.02; done  # written before the solve
+  sleep 0.5
+  pkill -TERM -f "^$rift run $tmp/relax_stop.toml" || fail "relax_stop: no rank to stop"
+  wait "$pid" && fail "relax_stop: the stopped run exited with status 0"
+  grep -q "rift: stopped by signal 15 in load step 1 at iteration" "$out.log" || { cat "$out.log"; fail "relax_stop: not stopped within the solve"; }
+  for np in 3 1; do
+    cp -r "$out" "$out-restart-np$np"
+    "${mpirun[@]}" -np "$np" "$rift" run "$tmp/relax_stop.toml" -o "$out-restart-np$np" -q --restart "$out-restart-np$np/checkpoint.rift" \
+      > "$out-restart-np$np.log" 2>&1 || { cat "$out-restart-np$np.log"; fail "relax_stop: restart on $np ranks"; }
+    rm "$out-restart-np$np/checkpoint.rift"
+    same_outputs "$tmp/relax_stop-serial" "$out-restart-np$np" "relax_stop stopped within its solve on 2 ranks, continued on $np"
+  done
+  echo "ok: a relaxation stopped by SIGTERM within its load step on 2 ranks continues on 3 and 1 ranks: the same bytes as one rank never stopped"
+fi
+
 # The material point method on boxes of cells (mpm/domain.hpp): a 2D cantilever under its weight
 # (MUSL, quadratic B-splines, fixed grid nodes, body force), two disks that fly across the cuts,
 # collide and part (multi-material contact: the contact sums exchanged too; points migrating
@@ -791,3 +815,50 @@ reactions = ["top"]
 damage_image = false
 damage_histogram = false
 DR_SCENE_END
+
+RELAX_STOP_SCENE
+[scene]
+dimension = 2
+plane = "strain"
+thickness = 0.001
+[materials.rock]
+model = "lps"
+density = 2500.0
+youngs_modulus = 10e9
+poisson_ratio = 0.25
+fracture_energy = 20.0
+[regions.block]
+shape = "box"
+min = [0.0, 0.0]
+max = [0.04, 0.04]
+[regions.bottom]
+shape = "box"
+min = [0.0, 0.0]
+max = [0.04, 0.001]
+[regions.top]
+shape = "box"
+min = [0.0, 0.039]
+max = [0.04, 0.04]
+[bodies.block]
+material = "rock"
+region = "block"
+spacing = 0.001
+horizon = 3.015
+[[cracks]]
+points = [[0.0, 0.02], [0.015, 0.02]]
+[[boundaries]]
+region = "bottom"
+type = "fixed"
+[[boundaries]]
+region = "top"
+type = "traction"
+y = 2e6
+[solver]
+type = "dynamic_relaxation"
+max_iterations = 8000
+tolerance = 1e-14
+[output]
+history = ["broken_bonds"]
+damage_image = false
+damage_histogram = false
+RELAX_STOP_SCENE_END

@@ -21,11 +21,12 @@
 #include <vector>
 
 #include "rift/core/error.hpp"
+#include "rift/core/stop_signal.hpp"
 #include "rift/core/version.hpp"
 #include "rift/parallel/communicator.hpp"
 #include "rift/parallel/cpu_quota.hpp"
+#include "rift/run/preflight.hpp"
 #include "rift/run/runner.hpp"
-#include "rift/run/stop_signal.hpp"
 #include "rift/scene/parse.hpp"
 
 namespace {
@@ -58,7 +59,22 @@ int rift_main(int argc, char** argv) {
   auto* run = app.add_subcommand("run", "Run a scene and write its results");
   run->add_option("scene", scene_path, "Scene file (TOML)")->required();
   run->add_option("-o,--output", output_dir, "Output directory (default: results/<scene name>)");
-  run->add_option("--threads", threads, "OpenMP threads (default: all cores)")->check(CLI::PositiveNumber);
+  run->add_option("--threads", threads, "OpenMP threads (default: all cores)")
+      ->check(CLI::Validator(
+          [](const std::string& text) {
+            const bool whole = !text.empty() && text.size() <= 4 && text.find_first_not_of("0123456789") == std::string::npos;
+            return whole && std::stoi(text) >= 1 ? std::string() : "a whole number of threads from 1 to 9999, got " + text;
+          },
+          "N"));
+  std::string max_memory;
+  const auto memory_validator = CLI::Validator(
+      [](const std::string& text) {
+        return rift::run::parse_memory_size(text) > 0.0 ? std::string() : "a size in bytes, or with K, M, G or T (as 8G), got " + text;
+      },
+      "SIZE");
+  run->add_option("--max-memory", max_memory,
+                  "Refuse a scene whose estimated memory exceeds this (bytes, or 512M, 8G, ...; default: this machine's memory)")
+      ->check(memory_validator);
   run->add_flag("-q,--quiet", quiet, "No progress output");
   run->add_option("--restart", restart, "Continue the run from this checkpoint (written by [checkpoint] or on SIGTERM/SIGINT)");
   run->add_option("--cut-along", cut_along,
@@ -78,6 +94,7 @@ int rift_main(int argc, char** argv) {
       ->excludes("--cut-along");
   auto* check = app.add_subcommand("check", "Validate a scene and print particles, bonds, memory, time step and outputs");
   check->add_option("scene", scene_path, "Scene file (TOML)")->required();
+  check->add_option("--max-memory", max_memory, "As for run: the memory the scene may take")->check(memory_validator);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -86,6 +103,14 @@ int rift_main(int argc, char** argv) {
   }
   try {
     auto scene = rift::scene::parse_file(scene_path);
+    // before anything is built or written: the memory the scene takes and where its outputs go
+    rift::run::PreflightOptions preflight;
+    preflight.max_memory = max_memory.empty() ? 0.0 : rift::run::parse_memory_size(max_memory);
+    preflight.ranks = comm.size();
+    if (*run) preflight.output_dir = output_dir.empty() ? "results/" + scene.name : output_dir;
+    rift::run::preflight(scene, preflight);
+    if (comm.root())
+      for (const auto& w : scene.warnings) std::fprintf(stderr, "%s\n", w.c_str());
     if (*check) {
       rift::run::check(scene, std::cout);
       return 0;
@@ -99,11 +124,11 @@ int rift_main(int argc, char** argv) {
       throw rift::SceneError({scene_path, 0, 0}, "--processor-grid",
                              fmt::format("a grid of {} boxes for {} rank{}; its numbers' product must be the ranks' number (mpirun -np {})", boxes,
                                          comm.size(), comm.size() == 1 ? "" : "s", boxes));
-    rift::run::catch_stop_signals();
+    rift::catch_stop_signals();
     auto r = rift::run::run(scene, options);
     if (r.stopped) {
-      std::printf("rift: stopped by signal %d after step %ld (t = %.6g s); checkpoint %s\n", r.stop_signal, r.steps, r.time,
-                  r.checkpoint.c_str());
+      const std::string where = r.stopped_in.empty() ? fmt::format("after step {}", r.steps) : r.stopped_in;
+      std::printf("rift: stopped by signal %d %s (t = %.6g s); checkpoint %s\n", r.stop_signal, where.c_str(), r.time, r.checkpoint.c_str());
       std::printf("rift: continue with: rift run %s%s%s --restart %s\n", scene_path.c_str(), output_dir.empty() ? "" : " -o ",
                   output_dir.c_str(), r.checkpoint.c_str());
       return r.stop_signal > 0 ? 128 + r.stop_signal : 0;

@@ -3,6 +3,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <cmath>
 
 namespace rift {
 
@@ -42,6 +43,29 @@ void Progress::update(long step, double time, double broken_fraction, bool force
     std::fprintf(stderr, "rift: step %ld/%ld (%.1f%%), t = %.4g s, elapsed %s, ETA %s, broken bonds %.3f%%\n", step,
                  total_, 100.0 * done, time, clock_text(now).c_str(), clock_text(eta).c_str(), 100.0 * broken_fraction);
   }
+  std::fflush(stderr);
+}
+
+void Progress::iteration(long step, int iteration, int max_iterations, double residual, double tolerance) {
+  if (quiet_) return;
+  const double now = elapsed();
+  const double interval = tty_ ? 0.2 : 10.0;
+  if (now - last_print_ < interval) return;
+  last_print_ = now;
+  // the time to the tolerance where the residual falls: log(r / tol) over its log's fall per second
+  const double log_residual = std::log(std::max(residual, 1e-300));
+  double eta = -1.0;
+  if (step == iteration_step_ && now > iteration_time_) {
+    const double rate = (iteration_log_residual_ - log_residual) / (now - iteration_time_);
+    if (rate > 0.0) eta = std::max(0.0, (log_residual - std::log(tolerance)) / rate);
+  }
+  iteration_step_ = step, iteration_log_residual_ = log_residual, iteration_time_ = now;
+  if (tty_)
+    std::fprintf(stderr, "\rload step %ld/%ld  iteration %d (at most %d)  residual %.3g (tolerance %.3g)  ETA of the step %s  ", step, total_,
+                 iteration, max_iterations, residual, tolerance, clock_text(eta).c_str());
+  else
+    std::fprintf(stderr, "rift: load step %ld/%ld, iteration %d (at most %d), residual %.3g (tolerance %.3g), elapsed %s, ETA of the step %s\n",
+                 step, total_, iteration, max_iterations, residual, tolerance, clock_text(now).c_str(), clock_text(eta).c_str());
   std::fflush(stderr);
 }
 

@@ -1,5 +1,7 @@
 #include "rift/mpm/discretize.hpp"
 
+#include <fmt/format.h>
+
 #include <cmath>
 #include <limits>
 
@@ -55,15 +57,16 @@ Model<D> discretize(const scene::Scene& s) {
   for (int a = 0; a < D; ++a) {
     m.grid.origin[a] = lo[a];
     const double cells = std::ceil((hi[a] - lo[a]) / h - 1e-9);
-    if (!(cells >= 1)) throw SceneError({s.file, 0, 0}, "mpm.grid_max", "the grid must be at least one cell wide");
-    if (cells > 1e6) throw SceneError({s.file, 0, 0}, "mpm.cell_size", "more than a million cells along one axis");
+    if (!(cells >= 1)) throw SceneError(s.mpm.grid_max_where, "mpm.grid_max", "the grid must be at least one cell wide");
+    if (cells > 1e6) throw SceneError(s.mpm.cell_size_where, "mpm.cell_size",
+                                       fmt::format("{:.4g} cells along {}, more than a million; make the cells larger", cells, "xyz"[a]));
     m.grid.nodes[a] = static_cast<long>(cells) + 1;
   }
   // the stencil cache numbers nodes in 32 bits (stencil_cache.hpp); such a grid would not fit in
   // memory anyway (about 100 bytes a node)
   constexpr double numbers = double(std::numeric_limits<typename StencilCache<D>::NodeIndex>::max()) + 1.0;
   if (double(m.grid.nodes[0]) * double(m.grid.nodes[1]) * double(m.grid.nodes[2]) >= numbers)
-    throw SceneError({s.file, 0, 0}, "mpm.cell_size", "more than 2^32 grid nodes; make the cells larger or the grid smaller");
+    throw SceneError(s.mpm.cell_size_where, "mpm.cell_size", "more than 2^32 grid nodes; make the cells larger or the grid smaller");
   // velocity fields per node: 3 with explicit cracks (CRAMP: same side, above, below), one per body
   // with multi-material contact, else 1
   m.grid.fields = !s.cracks.empty() ? 3

@@ -1,5 +1,7 @@
 #include "rift/pd/contact.hpp"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -9,6 +11,7 @@
 
 #include <omp.h>
 
+#include "rift/core/error.hpp"
 #include "rift/parallel/sort.hpp"
 #include "rift/parallel/team.hpp"
 #include "rift/pd/bond_runs.hpp"
@@ -70,6 +73,25 @@ void Contact<D>::rebuild(const Model<D>& m) {
   const bool team = rift::parallel::worth_a_team(all);
   std::array<long, 3> low{0, 0, 0}, extent{1, 1, 1};
   std::vector<std::array<long, 3>> at(all);
+  // a position past 2^40 cells from the origin (or not finite) has flown off under an unbounded
+  // load: its cell number would overflow the grid's keys. Every rank stops alike (a PhysicsError).
+  constexpr double farthest_cell = 1099511627776.0;  // 2^40
+  std::size_t far_off = all;
+#pragma omp parallel for if(team) schedule(static) reduction(min : far_off)
+  for (std::size_t i = 0; i < all; ++i)
+    for (int k = 0; k < D; ++k)
+      if (!(std::abs(position(i)[k] / cell) < farthest_cell)) far_off = std::min(far_off, i);
+  if (comm.any(far_off < all)) {
+    std::string where = "on another rank";
+    if (far_off < all) {
+      where = "at (";
+      for (int k = 0; k < D; ++k) where += fmt::format("{}{:.4g}", k ? ", " : "", position(far_off)[k]);
+      where += ") m";
+    }
+    throw PhysicsError(fmt::format("a particle lies {}, beyond 2^40 contact cells ({:.3g} m) from the origin: it has flown off under an "
+                                   "unbounded load or a time step above the stable limit",
+                                   where, farthest_cell * cell));
+  }
   if (all > 0) {
     long lx = std::numeric_limits<long>::max(), ly = lx, lz = D == 3 ? lx : 0;
     long hx = std::numeric_limits<long>::min(), hy = hx, hz = D == 3 ? hx : 0;
@@ -82,6 +104,11 @@ void Contact<D>::rebuild(const Model<D>& m) {
     low = {lx, ly, lz};
     extent = {hx - lx + 1, hy - ly + 1, hz - lz + 1};
   }
+  // (every rank alike: a rank's particles span no more cells than the whole run's)
+  if (comm.any(double(extent[0]) * double(extent[1]) * double(extent[2]) > 4.6e18))
+    throw PhysicsError(fmt::format("the particles span {} x {} x {} contact cells of {:.3g} m, more than 2^62 in all: fragments have flown "
+                                   "off under an unbounded load or a time step above the stable limit",
+                                   extent[0], extent[1], extent[2], cell));
   auto key = [&](const std::array<long, 3>& c) { return (c[2] - low[2]) * extent[1] * extent[0] + (c[1] - low[1]) * extent[0] + (c[0] - low[0]); };
   std::vector<std::pair<long, std::int32_t>> sorted(all);
   // Where the grid has not many more cells than particles, a counting sort by cell (Knuth, TAOCP

@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <limits>
 
+#include "rift/core/stop_signal.hpp"
 #include "rift/parallel/communicator.hpp"
 #include "rift/parallel/ordered_sum.hpp"
 #include "rift/pd/effective_stretch.hpp"
@@ -123,11 +124,22 @@ template <int D>
 RelaxationResult DynamicRelaxation<D>::relax(Model<D>& m, const load::Boundaries<D>& loads, Contact<D>* contact,
                                               double t, int max_iterations, double tolerance) {
   const std::size_t n = m.size();
-  m.time = t;
-  loads.prescribe_position(m, t);
-  loads.apply_body_forces(m, t);
-  for (auto& v : m.velocity) v = Vec<D>{};
+  // a load step a stop cut short goes on where it stood: the model holds its positions, velocities
+  // and loads (a checkpoint's), unfinished_ the iterations' own state
+  const int first_iteration = unfinished_.iteration;
+  const double unfinished_load_norm = unfinished_.load_norm;
   std::vector<Vec<D>> previous(n);  // F^{n-1} / lambda
+  std::vector<Vec<D>> start;        // the displacement of Rayleigh's quotient from here (damping_from_start_)
+  if (first_iteration > 0) {
+    previous = std::move(unfinished_.previous), start = std::move(unfinished_.start);
+  } else {
+    m.time = t;
+    loads.prescribe_position(m, t);
+    loads.apply_body_forces(m, t);
+    for (auto& v : m.velocity) v = Vec<D>{};
+    if (damping_from_start_) start = m.position;
+  }
+  unfinished_.iteration = 0, unfinished_.load_norm = 0.0, unfinished_.previous = {}, unfinished_.start = {};
   RelaxationResult result;
   // sums over the owned particles of every rank, exact (parallel/exact_sum.hpp), so the damping and
   // the residual are the one-rank run's bits on any cut
@@ -138,17 +150,21 @@ RelaxationResult DynamicRelaxation<D>::relax(Model<D>& m, const load::Boundaries
   auto squared_load = [&] {  // ||external force||^2
     return sum_over([&](std::size_t i, std::array<double, 4>& acc) { acc[0] += dot<D>(m.body_force[i], m.body_force[i]) * m.volume[i] * m.volume[i]; })[0];
   };
-  double load_norm = squared_load();
+  double load_norm = first_iteration > 0 ? unfinished_load_norm : squared_load();
   // held by tractions alone, no component of any particle prescribed: no rigid motion
   // (rigid_acceleration; a distributed run, pd/window.hpp: on no rank)
   const bool held_here = std::any_of(m.constrained.begin(), m.constrained.end(), [](std::uint8_t c) { return c != 0; });
   const bool free_body = !(distributed ? comm.any(held_here) : held_here);
   const std::vector<std::uint8_t> on_platen = platen_components(m);
   // the displacement of Rayleigh's quotient: from the reference, or from where this call started
-  std::vector<Vec<D>> start;
-  if (damping_from_start_) start = m.position;
   const std::vector<Vec<D>>& origin = damping_from_start_ ? start : m.reference_position;
-  for (int it = 0; it < max_iterations; ++it) {
+  for (int it = first_iteration; it < max_iterations; ++it) {
+    if (it > first_iteration && comm.any(stop_signal() != 0)) {  // every rank stops at the same iteration
+      unfinished_.iteration = it, unfinished_.load_norm = load_norm;
+      unfinished_.previous = std::move(previous), unfinished_.start = std::move(start);
+      result.stopped = true;
+      return result;  // the state of this iteration's start, for a checkpoint
+    }
     advance_stretch_limits<D>(m);
     // a distributed run's ghosts are where their owners moved them, with their s0
     m.refresh_ghosts(m.position);
@@ -191,6 +207,7 @@ RelaxationResult DynamicRelaxation<D>::relax(Model<D>& m, const load::Boundaries
     const double reference = std::sqrt(load_norm) + std::sqrt(reaction);
     result.iterations = it + 1;
     result.residual = reference > 0.0 ? std::sqrt(residual) / reference : std::sqrt(residual);
+    if (observer_) observer_(it + 1, result.residual);
     if (it > 0 && reference > 0.0 && result.residual < tolerance) {
       result.converged = true;
       break;
@@ -232,12 +249,23 @@ RelaxationResult DynamicRelaxation<D>::relax_breaking_at_equilibrium(Model<D>& m
                                                                       double tolerance, int max_passes) {
   RelaxationResult total;
   total.breaking_passes = 0;
-  const std::size_t broken_through = broken_through_sources<D>(m);
-  for (int pass = 0; pass < max_passes; ++pass) {
+  std::size_t broken_through = broken_through_sources<D>(m);
+  int first_pass = 0;
+  if (is_unfinished()) {  // a load step a stop cut short, in its pass `pass`
+    first_pass = unfinished_.pass, total.breaking_passes = unfinished_.pass, total.iterations = unfinished_.iterations;
+    broken_through = static_cast<std::size_t>(unfinished_.broken_through);
+    unfinished_.pass = 0, unfinished_.iterations = 0, unfinished_.broken_through = 0;
+  }
+  for (int pass = first_pass; pass < max_passes; ++pass) {
     RelaxationResult r;
     {
       HeldBreaking<D> held(m);
       r = relax(m, loads, contact, t, max_iterations, tolerance);
+    }
+    if (r.stopped) {
+      unfinished_.pass = pass, unfinished_.iterations = total.iterations, unfinished_.broken_through = broken_through;
+      total.iterations += r.iterations, total.residual = r.residual, total.stopped = true;
+      return total;
     }
     total.iterations += r.iterations;
     total.residual = r.residual;

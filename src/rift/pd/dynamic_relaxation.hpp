@@ -2,6 +2,10 @@
 // fictitious density from the stiffness row sum, damping from Rayleigh's quotient of the local
 // diagonal stiffness. Solves the static equilibrium for the loads at a given time.
 #pragma once
+#include <cstdint>
+#include <functional>
+#include <vector>
+
 #include "rift/load/boundary.hpp"
 #include "rift/pd/contact.hpp"
 #include "rift/pd/held_breaking.hpp"
@@ -15,6 +19,7 @@ struct RelaxationResult {
   bool converged = false;
   int breaking_passes = 1;  // equilibria of the load step (relax_breaking_at_equilibrium)
   double density_factor = 0.0;  // the fictitious density over the row-sum bound, where measured
+  bool stopped = false;  // a stop signal cut it short (core/stop_signal.hpp): not an equilibrium
 };
 
 /// The factor over the PMB row-sum bound of the fictitious density (eq. 10) that covers the LPS
@@ -25,7 +30,9 @@ template <int D>
 class DynamicRelaxation {
  public:
   explicit DynamicRelaxation(const Model<D>& m);
-  /// Relax to equilibrium for the loads at time t (positions of displacement BCs set first).
+  /// Relax to equilibrium for the loads at time t (positions of displacement BCs set first). Each
+  /// iteration reads the stop signal (every rank alike); a stop leaves the iterations where they
+  /// are (unfinished(), stopped = true) for a checkpoint, and the next call goes on from there.
   RelaxationResult relax(Model<D>& m, const load::Boundaries<D>& loads, Contact<D>* contact, double t,
                          int max_iterations, double tolerance);
   /// Measures the largest eigenvalue mu of the stiffness over the row-sum bound (eq. 10 without its
@@ -44,7 +51,25 @@ class DynamicRelaxation {
   template <class A>
   void visit_state(A& a) {
     a("relaxation.fictitious_density", fictitious_density_), a("relaxation.damping_from_start", damping_from_start_);
+    a("relaxation.unfinished.iteration", unfinished_.iteration), a("relaxation.unfinished.load_norm", unfinished_.load_norm);
+    a("relaxation.unfinished.previous", unfinished_.previous), a("relaxation.unfinished.start", unfinished_.start);
+    a("relaxation.unfinished.pass", unfinished_.pass), a("relaxation.unfinished.iterations", unfinished_.iterations);
+    a("relaxation.unfinished.broken_through", unfinished_.broken_through);
   }
+  /// A load step a stop signal cut short: where its iterations stood. The next relax call (the same
+  /// load step, after a restart from the checkpoint that holds it) goes on from there, bit for bit.
+  struct Unfinished {
+    std::int32_t iteration = 0;  // the iteration to go on with; 0: no load step unfinished
+    double load_norm = 0.0;      // ||external force||^2 of the load step
+    std::vector<Vec<D>> previous, start;  // F^{n-1} / lambda per particle; the start of the damping's displacement
+    std::int32_t pass = 0;                 // relax_breaking_at_equilibrium: the pass it is in, the iterations
+    std::int32_t iterations = 0;           // of the passes before it and the fluid sources broken
+    std::uint64_t broken_through = 0;      // through to the outer surface when the load step began
+  };
+  Unfinished& unfinished() { return unfinished_; }
+  /// Called after each iteration's residual (a run's progress lines): f(iteration, residual).
+  void observe(std::function<void(int, double)> f) { observer_ = std::move(f); }
+  bool is_unfinished() const { return unfinished_.iteration > 0; }
   /// Quasi-static growth: relax with every bond held, break the bonds past their limits at that
   /// equilibrium, and relax again, until an equilibrium breaks nothing (or max_passes equilibria;
   /// then converged is false).
@@ -58,6 +83,8 @@ class DynamicRelaxation {
  private:
   std::vector<double> fictitious_density_;  // lambda_ii (eq. 10), time step 1
   bool damping_from_start_ = false;
+  Unfinished unfinished_;
+  std::function<void(int, double)> observer_;
 };
 
 }  // namespace rift::pd

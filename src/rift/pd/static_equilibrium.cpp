@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <limits>
 
+#include "rift/core/stop_signal.hpp"
 #include "rift/parallel/ordered_sum.hpp"
 #include "rift/parallel/team.hpp"
 #include "rift/pd/coarse_space.hpp"
@@ -179,6 +180,10 @@ RelaxationResult solve_static_equilibrium(Model<D>& m, const load::Boundaries<D>
   int stage_start = result.iterations;
   bool restart = true;
   while (result.residual >= tolerance && result.iterations < max_iterations && result.iterations - stage_start < stage_limit) {
+    if (comm.any(stop_signal() != 0)) {  // every rank stops at the same iteration
+      result.stopped = true;
+      break;
+    }
     // p = z + beta p (beta = 0 on a restart)
     const double beta = restart ? 0.0 : rz / previous_rz;
     restart = false;

@@ -30,7 +30,8 @@ namespace rift::pd {
 /// held (HeldBreaking). Returns converged = false where the iterations run out, a linear solve
 /// takes far longer than the lattice's size suggests, a Newton step does not halve the residual, or
 /// K p is not positive along a direction (forces that switch: a contact, an interface's friction),
-/// with the particles at the last iterate whose forces were evaluated.
+/// with the particles at the last iterate whose forces were evaluated; stopped = true where a stop
+/// signal came (core/stop_signal.hpp: read at each iteration, the solve is not resumable).
 template <int D>
 RelaxationResult solve_static_equilibrium(Model<D>& m, const load::Boundaries<D>& loads, Contact<D>* contact, double t,
                                           const std::vector<double>& diagonal, int max_iterations, double tolerance);

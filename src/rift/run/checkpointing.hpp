@@ -1,6 +1,6 @@
 // When a run writes its checkpoints and how it reads one back (io/checkpoint.hpp), for the
 // peridynamic and the MPM runner alike: [checkpoint] every_steps and every_seconds, a stop signal
-// (run/stop_signal.hpp), and `rift run --restart FILE`.
+// (core/stop_signal.hpp), and `rift run --restart FILE`.
 #pragma once
 #include <fmt/format.h>
 
@@ -14,7 +14,7 @@
 #include "rift/io/checkpoint.hpp"
 #include "rift/parallel/communicator.hpp"
 #include "rift/run/runner.hpp"
-#include "rift/run/stop_signal.hpp"
+#include "rift/core/stop_signal.hpp"
 #include "rift/scene/scene.hpp"
 
 namespace rift::run {
@@ -25,6 +25,27 @@ inline std::string checkpoint_path(const scene::Scene& s, const std::string& out
   std::string file = s.checkpoint.file.empty() ? "checkpoint.rift" : s.checkpoint.file;
   if (const auto star = file.find('*'); star != std::string::npos) file.replace(star, 1, std::to_string(step));
   return std::filesystem::path(file).is_absolute() ? file : output_dir + "/" + file;
+}
+
+/// The output directory and the folder of the scene's checkpoints, made where missing (run/preflight.hpp
+/// found them writable before the run began). A run killed while it wrote leaves the file it was
+/// writing under its name + ".tmp" (renamed into place once whole): those of the snapshots, their
+/// index and the checkpoints are removed here.
+inline void make_output_folders(const scene::Scene& s, const std::string& output_dir) {
+  namespace fs = std::filesystem;
+  fs::create_directories(output_dir);
+  const fs::path checkpoint = checkpoint_path(s, output_dir, 0);
+  const auto folder = checkpoint.parent_path();
+  if (!folder.empty()) fs::create_directories(folder);
+  for (const fs::path& dir : {fs::path(output_dir), folder}) {
+    std::error_code ec;
+    for (const auto& f : fs::directory_iterator(dir, ec)) {
+      const std::string name = f.path().filename().string();
+      const bool ours = name.ends_with(".tmp") && (name.starts_with("fields") || name.ends_with(".rift.tmp") ||
+                                                   name == checkpoint.filename().string() + ".tmp");
+      if (ours && f.is_regular_file(ec)) fs::remove(f.path(), ec);
+    }
+  }
 }
 
 /// What `rift check` says of the scene's checkpoints.
@@ -114,6 +135,38 @@ class Checkpointing {
       res.steps = step;
     }
     return stop;
+  }
+  /// A stop within `step` (an iteration of its relaxation): every rank calls gather() before rank 0
+  /// writes the records with visit, under the name of `step` (where the scene's file has a '*'; the
+  /// step's own checkpoint replaces it once the restart has finished it) and as after step - 1.
+  template <class Gather, class Visit>
+  void stop_within(long step, double time, Result& res, Gather gather, Visit visit) {
+    const std::string file = checkpoint_path(scene_, output_dir_, step);
+    gather();
+    if (parallel::Communicator::world().root()) {
+      io::CheckpointWriter w(file, {scene_.fingerprint, step - 1, time});
+      visit(w);
+      w.commit();
+    }
+    res.checkpoint = file;
+    res.stopped = true;
+    res.stop_signal = stop_signal();
+    res.steps = step - 1;
+  }
+  /// A stop before the first step (in the in-situ stage): rank 0 writes the checkpoint of step 0
+  /// that visit(writer) makes, and the run is stopped there.
+  template <class Visit>
+  void after_stop_before_start(Result& res, Visit visit) {
+    const std::string file = checkpoint_path(scene_, output_dir_, 0);
+    if (parallel::Communicator::world().root()) {
+      io::CheckpointWriter w(file, {scene_.fingerprint, 0, 0.0});
+      visit(w);
+      w.commit();
+    }
+    res.checkpoint = file;
+    res.stopped = true;
+    res.stop_signal = stop_signal();
+    res.steps = 0;
   }
 
  private:

@@ -2,6 +2,7 @@
 
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <optional>
 #include <ostream>
@@ -46,6 +47,7 @@ struct MpmRun {
 template <int D>
 Plan check_dim(const scene::Scene& s, std::ostream& out) {
   MpmRun<D> r(s);
+  if (const auto w = snapshots_past_steps(s, r.steps); !w.empty()) std::fprintf(stderr, "%s\n", w.c_str());
   Plan plan;
   plan.particles = r.model.particles.size();
   plan.bytes_per_particle = sizeof(Vec<D>) * 4 + sizeof(double) * 3 + sizeof(mpm::Tensor<D>) * 2 + sizeof(material::State<D>) + 4;
@@ -225,6 +227,7 @@ template <int D>
 Result run_dim(const scene::Scene& s, const Options& o) {
   const auto& comm = parallel::Communicator::world();
   MpmRun<D> r(s);  // every scene error is raised here, before anything is written
+  if (const auto w = snapshots_past_steps(s, r.steps); !w.empty() && comm.root()) std::fprintf(stderr, "%s\n", w.c_str());
   auto& m = r.model;
   const std::size_t points = m.particles.size();  // the whole run's
   Result res;
@@ -302,7 +305,7 @@ Result run_dim(const scene::Scene& s, const Options& o) {
     require_output_file(o, res.output_dir + "/history.csv", history_bytes);
     if (cracked) require_output_file(o, res.output_dir + "/crack_tips.csv", tip_bytes);
   }
-  if (comm.root()) std::filesystem::create_directories(res.output_dir);
+  if (comm.root()) make_output_folders(s, res.output_dir);
   comm.barrier();  // before the ranks open the snapshot files together
   std::vector<std::string> columns{"time", "step"};
   columns.insert(columns.end(), s.output.history.begin(), s.output.history.end());

@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <csignal>
 #include <cmath>
 #include <filesystem>
 #include <optional>
@@ -74,6 +75,7 @@ template <int D>
 Plan check_dim(const scene::Scene& s, std::ostream& out) {
   Simulation<D> p(s);
   const auto probes = probe_particles<D>(s, p.model);
+  if (const auto w = snapshots_past_steps(s, p.steps); !w.empty()) std::fprintf(stderr, "%s\n", w.c_str());
   Plan plan = make_plan<D>(p);
   char line[256];
   out << "scene        " << s.name << " (" << s.file << ")\n";
@@ -240,6 +242,7 @@ Result run_dim(const scene::Scene& s, const Options& o) {
   const auto probes = probe_particles<D>(s, p.model);
   // mpirun -np N: each rank keeps its window of the model (pd/window.hpp); rank 0 writes the outputs
   const auto& comm = parallel::Communicator::world();
+  if (const auto w = snapshots_past_steps(s, p.steps); !w.empty() && comm.root()) std::fprintf(stderr, "%s\n", w.c_str());
   const std::size_t particles = p.model.size();
   auto& m = p.model;
   // the damage of probe k: its owner's (the others add nothing)
@@ -272,9 +275,17 @@ Result run_dim(const scene::Scene& s, const Options& o) {
     pd::visit(a, state.model);
     pd::visit(a, state.contact);
   };
+  // A checkpoint written by a stop in the in-situ stage holds no state (run.from_start): the run
+  // starts again from the beginning. Any other holds the whole run after its step, and where a stop
+  // cut a load step of relaxation short, that load step's iterations (DynamicRelaxation::unfinished).
+  bool restarted = false;
   if (!o.restart.empty()) {
     // the whole checkpoint is read before any output is touched
     res.first_step = 1 + read_checkpoint(s, o, p.steps, [&](io::CheckpointReader& checkpoint) {
+                       std::uint8_t from_start = 0;
+                       checkpoint("run.from_start", from_start);
+                       if (from_start) return;
+                       restarted = true;
                        visit_run(checkpoint, p);
                        if (relaxation) {
                          dr.emplace(m);
@@ -282,7 +293,6 @@ Result run_dim(const scene::Scene& s, const Options& o) {
                        }
                      });
   }
-  const bool restarted = !o.restart.empty();
   if (restarted) require_output_file(o, res.output_dir + "/history.csv", history_bytes);
   // mpirun -np N: from here on each rank holds its window of the model (a restart read the whole
   // run's checkpoint first, so it continues on any number of ranks)
@@ -290,9 +300,19 @@ Result run_dim(const scene::Scene& s, const Options& o) {
   std::optional<pd::DynamicRelaxation<D>> whole_dr;  // and of its relaxation
   if (comm.distributed()) {
     p.distribute(s, comm, o.cut_axis, o.processor_grid);
-    if (dr) dr.emplace(m);  // its fictitious densities from the window's rows (an owned row is whole)
+    if (dr) {  // its fictitious densities from the window's rows (an owned row is whole); an unfinished load step's to the window
+      auto unfinished = std::move(dr->unfinished());
+      dr.emplace(m);
+      for (auto* whole_run : {&unfinished.previous, &unfinished.start}) {
+        if (whole_run->empty()) continue;
+        std::vector<Vec<D>> window(m.size());
+        for (std::size_t i = 0; i < m.size(); ++i) window[i] = (*whole_run)[m.numbering.whole(i)];
+        *whole_run = std::move(window);
+      }
+      dr->unfinished() = std::move(unfinished);
+    }
   }
-  if (comm.root()) std::filesystem::create_directories(res.output_dir);
+  if (comm.root()) make_output_folders(s, res.output_dir);
   comm.barrier();  // before the ranks open the snapshot files together
   std::vector<std::string> columns{"time", "step"};
   columns.insert(columns.end(), s.output.history.begin(), s.output.history.end());
@@ -354,6 +374,14 @@ Result run_dim(const scene::Scene& s, const Options& o) {
     const auto in_situ_start = std::chrono::steady_clock::now();
     const auto r = p.equilibrate_in_situ(s.in_situ);
     res.in_situ_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - in_situ_start).count();
+    if (r.stopped) {  // its solves do not resume: the checkpoint starts the run again
+      Checkpointing(s, o, res.output_dir).after_stop_before_start(res, [](io::CheckpointWriter& w) {
+        std::uint8_t from_start = 1;
+        w("run.from_start", from_start);
+      });
+      res.stopped_in = "in the in-situ stage (its checkpoint starts the run again from the beginning)";
+      return res;
+    }
     const bool cg = p.uses_conjugate_gradients(s.in_situ);
     const std::string how = !(r.density_factor > 0.0) ? std::string("force evaluations of preconditioned conjugate gradients")
                             : fmt::format("{} (fictitious density {:.3g} times the row-sum bound, measured)",
@@ -394,23 +422,34 @@ Result run_dim(const scene::Scene& s, const Options& o) {
   PhaseTimes::run().reset();
   Progress progress(p.steps, s.solver.end_time, o.quiet || !comm.root());
   Checkpointing checkpoints(s, o, res.output_dir);
+  auto gather = [&] {
+    if (!comm.distributed()) return;
+    if (comm.root() && !whole) whole.emplace(s);
+    gather_model<D>(comm, m, comm.root() ? &whole->model : nullptr);
+    // its contact pairs as one rank would find them (the forces do not depend on when they were
+    // found); the fictitious densities of its relaxation, as one rank makes them
+    if (comm.root()) whole->contact = pd::Contact<D>(s.contact, whole->model);
+    if (comm.root() && dr && !whole_dr) whole_dr.emplace(whole->model);
+    if (!dr) return;
+    // an unfinished load step's iterations (the same on every rank but for its particles')
+    auto& u = dr->unfinished();
+    auto* w = comm.root() ? &whole_dr->unfinished() : nullptr;
+    if (w) w->iteration = u.iteration, w->load_norm = u.load_norm, w->pass = u.pass, w->iterations = u.iterations, w->broken_through = u.broken_through;
+    if (w) w->previous.clear(), w->start.clear();
+    gather_into<D>(comm, m, u.previous, w ? &w->previous : nullptr);
+    gather_into<D>(comm, m, u.start, w ? &w->start : nullptr);
+  };
+  auto write_state = [&](io::CheckpointWriter& w) {
+    std::uint8_t from_start = 0;
+    w("run.from_start", from_start);
+    history_bytes = history ? history->bytes() : 0;
+    visit_run(w, whole ? *whole : p);
+    if (dr) pd::visit(w, whole_dr ? *whole_dr : *dr);
+  };
   // after step `step`: writes a checkpoint where one is due, and says whether the run stops here
   auto checkpoint_and_stop = [&](long step) {
     PhaseClock output_clock(Phase::output);
-    auto gather = [&] {
-      if (!comm.distributed()) return;
-      if (comm.root() && !whole) whole.emplace(s);
-      gather_model<D>(comm, m, comm.root() ? &whole->model : nullptr);
-      // its contact pairs as one rank would find them (the forces do not depend on when they were
-      // found); the fictitious densities of its relaxation, as one rank makes them
-      if (comm.root()) whole->contact = pd::Contact<D>(s.contact, whole->model);
-      if (comm.root() && dr && !whole_dr) whole_dr.emplace(whole->model);
-    };
-    return checkpoints.after_step(step, m.time, res, gather, [&](io::CheckpointWriter& w) {
-      history_bytes = history ? history->bytes() : 0;
-      visit_run(w, whole ? *whole : p);
-      if (dr) pd::visit(w, whole_dr ? *whole_dr : *dr);
-    });
+    return checkpoints.after_step(step, m.time, res, gather, write_state);
   };
   if (s.solver.kind == scene::SolverKind::explicit_dynamics) {
     if (!restarted) {
@@ -439,9 +478,21 @@ Result run_dim(const scene::Scene& s, const Options& o) {
   } else {
     if (!dr) dr.emplace(m);
     if (!restarted) write_snapshot<D>(fields, m, s, comm);
+    long relaxing = 0, iterations = 0;  // the load step of the progress lines, the iterations of this process
+    dr->observe([&](int iteration, double residual) {
+      if (comm.root()) progress.iteration(relaxing, iteration, s.solver.max_iterations, residual, s.solver.tolerance);
+      if (o.stop_after_iterations > 0 && ++iterations == o.stop_after_iterations) set_stop_signal(SIGTERM);
+    });
     for (long step = res.first_step; step <= p.steps; ++step) {
       const double t = s.solver.end_time * double(step) / double(p.steps);
+      relaxing = step;
       auto r = p.relax(*dr, s.solver, t);
+      if (r.stopped) {  // the checkpoint holds the load steps done and this one's iterations so far
+        res.stopped_in = fmt::format("in load step {} at iteration {} (its checkpoint goes on from there)", step, dr->unfinished().iteration);
+        PhaseClock output_clock(Phase::output);
+        checkpoints.stop_within(step, m.time, res, gather, write_state);
+        break;
+      }
       res.bond_updates += double(r.iterations) * bonds;
       std::vector<double> extra{double(r.iterations), r.residual};
       if (at_equilibrium) extra.push_back(double(r.breaking_passes));
@@ -462,6 +513,7 @@ Result run_dim(const scene::Scene& s, const Options& o) {
       if (checkpoint_and_stop(step)) break;
     }
   }
+  if (o.stop_after_iterations > 0) set_stop_signal(0);  // the tests' stop, not a signal to the process
   res.loop_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - loop_start).count();
   const double in_mpi = parallel::seconds_in_mpi() - mpi_at_start;
   res.phases = phase_summary(PhaseTimes::run(), res.loop_seconds);

@@ -17,6 +17,9 @@ struct Options {
   bool quiet = false;
   std::string restart;     // a checkpoint to continue from (io/checkpoint.hpp); empty: from the start
   long stop_after_step = 0;  // tests: stop after this step as a stop signal would (checkpoint, then return); 0: never
+  /// tests: stop within a load step of relaxation once this many iterations have run, as SIGTERM would
+  /// (the checkpoint of an unfinished load step, then return); 0: never
+  long stop_after_iterations = 0;
   /// mpirun: the axis (0, 1, 2: x, y, z) across which the ranks' slabs are cut; -1: chosen (material
   /// points: the processor grid that crosses the fewest nodes; peridynamics: the lattice's slowest,
   /// the only one it takes)
@@ -53,8 +56,9 @@ struct Result {
   double max_damage = 0.0;
   long crack_growth_events = 0;  // MPM: crack particles added by propagation
   long first_step = 1;           // 1, or the step after the checkpoint a restart continued from
-  int stop_signal = 0;           // the run stopped early on this signal (run/stop_signal.hpp), its checkpoint written
+  int stop_signal = 0;           // the run stopped early on this signal (core/stop_signal.hpp), its checkpoint written
   bool stopped = false;          // stopped early (a signal, or Options::stop_after_step): `steps` is where
+  std::string stopped_in;        // where a stop came within a step (a load step's iteration, the in-situ stage); empty: after `steps`
   std::string checkpoint;        // the last checkpoint written, empty if none
 };
 

@@ -103,6 +103,7 @@ struct Simulation {
   std::unique_ptr<parallel::Halo> halo;
   /// The in-situ stage ([in_situ_stress]): static equilibrium under the far-field stresses and
   /// every other load at t = 0, with no bond allowed to break; the run starts from it at rest.
+  /// A stop signal ends it early (stopped = true): the run then starts again from the beginning.
   pd::RelaxationResult equilibrate_in_situ(const scene::InSituStress& in_situ) {
     pd::HeldBreaking<D> held(model);
     const auto initial_velocity = model.velocity;
@@ -116,7 +117,7 @@ struct Simulation {
       const auto start = model.position;
       cg = pd::solve_static_equilibrium<D>(model, loads, contact_ptr(), 0.0, dr.fictitious_density(), in_situ.max_iterations,
                                            in_situ.tolerance);
-      if (cg.converged || cg.iterations >= in_situ.max_iterations) {
+      if (cg.converged || cg.stopped || cg.iterations >= in_situ.max_iterations) {
         model.velocity = initial_velocity;
         return cg;
       }

@@ -1,6 +1,9 @@
 #include "rift/scene/parse.hpp"
 
+#include <cerrno>
 #include <cmath>
+#include <cstring>
+#include <filesystem>
 #include <fstream>
 #include <functional>
 #include <map>
@@ -114,6 +117,30 @@ void for_each_named(R& root, const std::string& key, const std::string& example,
   }
 }
 
+/// A scene's warning at the key's place ("file:line:column: warning: 'key': ...", Scene::warnings).
+void warn(R& r, Scene& s, const std::string& k, const std::string& msg) {
+  const SourceLocation w = r.where(k);
+  s.warnings.push_back(w.file + ":" + std::to_string(w.line) + ":" + std::to_string(w.column) + ": warning: '" + r.key(k) + "': " + msg);
+}
+
+/// PMB's Poisson ratio is fixed: 1/4 in 3D and plane strain, 1/3 in plane stress (Silling and
+/// Askari 2005; the bond constant matches the bulk modulus, make_constants). Another one given is
+/// not the material's: a warning with the Young's modulus the bonds then have.
+void pmb_poisson_warning(R& r, Scene& s, const Material& m, const std::string& k) {
+  const double K = m.bulk_modulus, G = m.shear_modulus;
+  const double nu = (3.0 * K - 2.0 * G) / (2.0 * (3.0 * K + G));
+  const bool stress = s.dimension == 2 && s.plane == PlaneCondition::stress;
+  const double fixed = stress ? 1.0 / 3.0 : 0.25;
+  if (std::abs(nu - fixed) <= 0.01) return;
+  // the modulus the bonds match (material_constants.cpp) and the Young's modulus of PMB with it
+  const double E = 9.0 * K * G / (3.0 * K + G);
+  const double E_pmb = s.dimension == 3 ? 1.5 * K : stress ? 4.0 / 3.0 * (9.0 * K * G / (3.0 * K + 4.0 * G)) : 1.25 * (K + G / 3.0);
+  warn(r, s, k,
+       "PMB's Poisson ratio is " + std::string(stress ? "1/3 in plane stress" : s.dimension == 3 ? "1/4 in 3D" : "1/4 in plane strain") +
+           ", not " + R::fmt_double(nu) + ": its bonds match the bulk modulus, and their Young's modulus is " + R::fmt_double(E_pmb) +
+           " Pa, " + R::fmt_double(E_pmb / E) + " times the one given; use model = \"lps\" for another Poisson ratio");
+}
+
 void parse_materials(R& root, Scene& s) {
   for_each_named(root, "materials", "steel", s.file, [&](R& r, const std::string& name) {
     Material m;
@@ -147,6 +174,7 @@ void parse_materials(R& root, Scene& s) {
       throw SceneError(r.where(), r.key("youngs_modulus"), "missing elastic constants: give youngs_modulus + poisson_ratio or bulk_modulus + shear_modulus");
     }
     std::vector<std::string> allowed{"model", "density", "youngs_modulus", "poisson_ratio", "bulk_modulus", "shear_modulus"};
+    if (m.model == ModelKind::pmb) pmb_poisson_warning(r, s, m, nu ? "poisson_ratio" : "shear_modulus");
     if (pd) {
       if (auto inf = r.choice("influence", {"constant", "inverse_distance"}))
         m.influence = *inf == "constant" ? Influence::constant : Influence::inverse_distance;
@@ -254,7 +282,8 @@ void parse_regions(R& root, Scene& s) {
       g.shape = sh == "union" ? Shape::union_of : sh == "difference" ? Shape::difference_of : Shape::intersection_of;
       auto of = r.strings("of");
       if (!of) throw SceneError(r.where(), r.key("of"), "missing required key (list of region names)");
-      if (of->size() < (g.shape == Shape::difference_of ? 2u : 1u)) r.fail("of", "needs at least two regions (the first minus the others)");
+      if (g.shape == Shape::difference_of && of->size() < 2u) r.fail("of", "needs at least two regions (the first minus the others)");
+      if (of->empty()) r.fail("of", "needs at least one region");
       g.of = *of;
       r.finish({"shape", "of"});
     }
@@ -342,11 +371,30 @@ void for_each_entry(R& root, const std::string& key, const std::string& file, F&
   }
 }
 
+/// A crack's or interface's points: in 2D no segment of zero length, in 3D a polygon of some area.
+void require_extent(R& r, const std::string& k, const std::vector<Point3>& points, int dimension) {
+  if (dimension == 2) {
+    for (std::size_t i = 0; i + 1 < points.size(); ++i)
+      if (points[i][0] == points[i + 1][0] && points[i][1] == points[i + 1][1])
+        r.fail(k, "points " + std::to_string(i) + " and " + std::to_string(i + 1) + " are the same: a segment of zero length");
+    return;
+  }
+  Point3 area{0, 0, 0};  // twice the vector area of the polygon (a fan from its first point)
+  for (std::size_t i = 1; i + 1 < points.size(); ++i) {
+    Point3 a, b;
+    for (int q = 0; q < 3; ++q) a[q] = points[i][q] - points[0][q], b[q] = points[i + 1][q] - points[0][q];
+    area[0] += a[1] * b[2] - a[2] * b[1], area[1] += a[2] * b[0] - a[0] * b[2], area[2] += a[0] * b[1] - a[1] * b[0];
+  }
+  if (norm<3>(area) == 0.0) r.fail(k, "the polygon has no area: its points lie on one line or coincide");
+}
+
 void parse_cracks(R& root, Scene& s) {
   for_each_entry(root, "cracks", s.file, [&](R& r, std::size_t) {
     Crack c;
     c.where = r.where();
     c.points = point_list(r, "points", s.dimension, s.dimension == 2 ? 2 : 3);  // 2D: a polyline; 3D: a planar polygon
+    c.points_where = r.where("points");
+    require_extent(r, "points", c.points, s.dimension);
     std::vector<std::string> allowed{"points"};
     if (s.method == Method::peridynamics) {
       c.pressure = r.non_negative("pressure", r.number("pressure", 0.0));
@@ -364,6 +412,8 @@ void parse_interfaces(R& root, Scene& s) {
     Interface f;
     f.where = r.where();
     f.points = point_list(r, "points", s.dimension, s.dimension == 2 ? 2 : 3);
+    f.points_where = r.where("points");
+    require_extent(r, "points", f.points, s.dimension);
     if (s.dimension == 2 && f.points.size() != 2)
       r.fail("points", "a 2D interface is one straight segment: give its two end points");
     f.tensile_strength = r.non_negative("tensile_strength", r.required_number("tensile_strength", "normal tension at which the interface parts, Pa (below the rock's)"));
@@ -450,10 +500,8 @@ void parse_in_situ_stress(R& root, Scene& s) {
   else v.sigma_v = r.number("sigma_v", 0.0);  // out of the horizontal section: recorded, not applied
   if (auto axis = r.choice("sigma_H_axis", {"x", "y"})) v.sigma_H_axis = *axis == "x" ? 0 : 1;
   if (auto faces = r.choice("faces", {"tractions", "platens"})) v.faces = *faces == "platens" ? InSituStress::Faces::platens : InSituStress::Faces::tractions;
-  if (auto n = r.integer("max_iterations")) {
-    if (*n < 1) r.fail("max_iterations", "must be >= 1");
+  if (auto n = r.count("max_iterations", 1, limits::iterations, "force evaluations of the in-situ stage"))
     v.max_iterations = static_cast<int>(*n);
-  }
   if (auto tol = r.number("tolerance")) v.tolerance = r.positive("tolerance", *tol);
   if (auto start = r.choice("start", {"reference", "uniform_strain"}))
     v.start = *start == "uniform_strain" ? InSituStress::Start::uniform_strain : InSituStress::Start::reference;
@@ -486,6 +534,7 @@ void parse_solver(R& root, Scene& s) {
   std::vector<std::string> allowed{"type", "end_time"};
   if (v.kind == SolverKind::explicit_dynamics) {
     v.end_time = r.positive("end_time", r.required_number("end_time", "simulated time, s"));
+    v.end_time_where = r.where("end_time");
     if (auto dt = r.number("time_step")) {
       v.time_step = r.positive("time_step", *dt);
       v.time_step_where = r.where("time_step");
@@ -498,19 +547,14 @@ void parse_solver(R& root, Scene& s) {
     allowed.insert(allowed.end(), {"time_step", "safety_factor"});
   } else {
     v.end_time = r.positive("end_time", r.number("end_time", 1.0));
-    if (auto n = r.integer("load_steps")) {
-      if (*n < 1) r.fail("load_steps", "must be >= 1");
+    if (auto n = r.count("load_steps", 1, limits::load_steps, "load steps, each an equilibrium and a snapshot file"))
       v.load_steps = static_cast<int>(*n);
-    }
-    if (auto n = r.integer("max_iterations")) {
-      if (*n < 1) r.fail("max_iterations", "must be >= 1");
+    if (auto n = r.count("max_iterations", 1, limits::iterations, "iterations of each load step"))
       v.max_iterations = static_cast<int>(*n);
-    }
     if (auto tol = r.number("tolerance")) v.tolerance = r.positive("tolerance", *tol);
     if (auto b = r.choice("breaking", {"during", "at_equilibrium"}))
       v.breaking = *b == "at_equilibrium" ? Solver::Breaking::at_equilibrium : Solver::Breaking::during;
-    if (auto n = r.integer("max_breaking_passes")) {
-      if (*n < 1) r.fail("max_breaking_passes", "must be >= 1");
+    if (auto n = r.count("max_breaking_passes", 1, limits::iterations, "equilibria of each load step")) {
       if (v.breaking != Solver::Breaking::at_equilibrium) r.fail("max_breaking_passes", "only with breaking = \"at_equilibrium\"");
       v.max_breaking_passes = static_cast<int>(*n);
     }
@@ -531,6 +575,7 @@ void parse_mpm(R& root, Scene& s) {
   R r(*t, "mpm", s.file);
   Mpm& m = s.mpm;
   m.cell_size = r.positive("cell_size", r.required_number("cell_size", "background grid cell size, m"));
+  m.cell_size_where = r.where("cell_size");
   if (auto v = r.choice("shape", {"linear", "gimp", "bspline2", "bspline3"}))
     m.shape = *v == "linear" ? Mpm::Shape::linear : *v == "gimp" ? Mpm::Shape::gimp : *v == "bspline2" ? Mpm::Shape::bspline2 : Mpm::Shape::bspline3;
   if (auto v = r.choice("scheme", {"usl", "usf", "musl"})) m.scheme = *v == "usl" ? Mpm::Scheme::usl : *v == "usf" ? Mpm::Scheme::usf : Mpm::Scheme::musl;
@@ -554,7 +599,7 @@ void parse_mpm(R& root, Scene& s) {
     throw SceneError(r.where(), r.key("friction"), "missing required key (Coulomb coefficient) for \"friction\" contact");
   }
   if (r.has("grid_min")) m.grid_min = point(r, "grid_min", s.dimension, true);
-  if (r.has("grid_max")) m.grid_max = point(r, "grid_max", s.dimension, true);
+  if (r.has("grid_max")) m.grid_max = point(r, "grid_max", s.dimension, true), m.grid_max_where = r.where("grid_max");
   if (m.grid_min.has_value() != m.grid_max.has_value()) r.fail(m.grid_min ? "grid_min" : "grid_max", "give both grid_min and grid_max");
   if (auto n = r.integer("j_contour")) {
     if (*n < 1 || *n > 50) r.fail("j_contour", "must be an integer in [1, 50] (cells from the node nearest the crack tip)");
@@ -587,10 +632,7 @@ void parse_crack_growth(R& root, Scene& s) {
     if (r.has("toughness")) r.fail("toughness", "only with criterion = \"max_hoop_stress\"");
   }
   if (auto v = r.number("increment")) g.increment = r.positive("increment", *v);
-  if (auto n = r.integer("check_every")) {
-    if (*n < 1) r.fail("check_every", "must be an integer >= 1 (steps between growth checks)");
-    g.check_every = static_cast<int>(*n);
-  }
+  if (auto n = r.count("check_every", 1, limits::iterations, "steps between growth checks")) g.check_every = static_cast<int>(*n);
   r.finish({"criterion", "toughness", "critical_energy_release_rate", "increment", "check_every"});
 }
 
@@ -627,14 +669,11 @@ void parse_output(R& root, Scene& s) {
   const toml::table* t = root.table("output");
   if (!t) return;
   R r(*t, "output", s.file);
-  if (auto n = r.integer("snapshots")) {
-    if (*n < 1) r.fail("snapshots", "must be >= 1");
+  if (auto n = r.count("snapshots", 1, limits::snapshots, "field snapshots, a file each")) {
     o.count = static_cast<int>(*n);
+    o.count_where = r.where("snapshots");
   }
-  if (auto n = r.integer("history_rows")) {
-    if (*n < 1) r.fail("history_rows", "must be >= 1");
-    o.history_count = static_cast<int>(*n);
-  }
+  if (auto n = r.count("history_rows", 1, limits::history_rows, "rows of history.csv")) o.history_count = static_cast<int>(*n);
   if (auto f = r.strings("fields")) {
     for (const auto& name : *f) {
       bool ok = false;
@@ -676,14 +715,13 @@ void parse_checkpoint(R& root, Scene& s) {
   const toml::table* t = root.table("checkpoint");
   if (!t) return;
   R r(*t, "checkpoint", s.file);
-  if (auto n = r.integer("every_steps")) {
-    if (*n < 1) r.fail("every_steps", "must be >= 1 (steps, or load steps of relaxation, between checkpoints)");
+  if (auto n = r.count("every_steps", 1, limits::steps, "steps, or load steps of relaxation, between checkpoints"))
     s.checkpoint.every_steps = static_cast<long>(*n);
-  }
   if (auto t = r.number("every_seconds")) s.checkpoint.every_seconds = r.positive("every_seconds", *t);
   if (auto f = r.string("file")) {
     if (f->empty()) r.fail("file", "must not be empty");
     s.checkpoint.file = *f;
+    s.checkpoint.file_where = r.where("file");
   }
   r.finish({"every_steps", "every_seconds", "file"});
 }
@@ -737,8 +775,11 @@ Scene parse_text(const std::string& text, const std::string& name) {
 Scene parse_string(const std::string& text, const std::string& name) { return parse_text(text, name); }
 
 Scene parse_file(const std::string& path) {
+  std::error_code ec;
+  if (std::filesystem::is_directory(path, ec)) throw SceneError({path, 0, 0}, "", "is a directory; give a scene file (TOML)");
+  errno = 0;
   std::ifstream in(path);
-  if (!in) throw SceneError({path, 0, 0}, "", "cannot open the scene file");
+  if (!in) throw SceneError({path, 0, 0}, "", std::string("cannot open the scene file: ") + std::strerror(errno ? errno : ENOENT));
   std::stringstream ss;
   ss << in.rdbuf();
   return parse_text(ss.str(), path);

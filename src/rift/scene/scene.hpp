@@ -12,6 +12,19 @@
 
 namespace rift::scene {
 
+/// The largest counts a scene may ask for: what the integers that hold them keep, and a bound on
+/// files and steps no run reaches in practice (docs/scenes.md, "Limits"). The step loops multiply a
+/// step by a count of snapshots or rows, so steps times either stays below 2^63.
+namespace limits {
+inline constexpr long long steps = 10'000'000'000;        // explicit time steps of a run
+inline constexpr long long snapshots = 1'000'000;         // field snapshots (a file each)
+inline constexpr long long history_rows = 100'000'000;    // rows of history.csv
+inline constexpr long long load_steps = 1'000'000;        // load steps of relaxation (a snapshot each)
+inline constexpr long long iterations = 2'147'483'647;    // iterations, passes and step intervals held as int
+/// A given time step below this fraction of the stable one is a mistake (a unit, an exponent).
+inline constexpr double smallest_time_step_fraction = 1e-6;
+}  // namespace limits
+
 enum class PlaneCondition { none, stress, strain };
 enum class Method { peridynamics, mpm };
 /// Peridynamic models (pmb, lps) and continuum models for the material point method.
@@ -90,7 +103,7 @@ struct TimeFunction {
 /// Pre-crack: a segment (2D, two points) or a planar polygon (3D, >= 3 points). Bonds that
 /// cross it are never created.
 struct Crack {
-  SourceLocation where;
+  SourceLocation where, points_where;
   std::vector<Point3> points;
   /// Peridynamics: fluid pressure on the crack faces, Pa, times its time function. The bonds the
   /// crack cuts carry it as the force state of the fluid's stress -p I (see pd/crack_pressure.hpp).
@@ -105,7 +118,7 @@ struct Crack {
 /// cohesion + friction_coefficient * (sigma_n - p); a failed interface bond bears compression only
 /// (the faces may open and close), and fluid enters it where it is open.
 struct Interface {
-  SourceLocation where;
+  SourceLocation where, points_where;
   std::vector<Point3> points;
   double tensile_strength = 0.0;      // T, Pa: the effective normal tension at which the interface parts
   double cohesion = 0.0;              // tau_0, Pa
@@ -187,7 +200,7 @@ enum class SolverKind { explicit_dynamics, dynamic_relaxation };
 struct Solver {
   SolverKind kind = SolverKind::explicit_dynamics;
   std::optional<double> time_step;
-  SourceLocation time_step_where;
+  SourceLocation time_step_where, end_time_where;
   double safety_factor = 0.8;
   double end_time = 0.0;
   // dynamic relaxation (Kilic and Madenci 2010)
@@ -220,6 +233,7 @@ struct Mpm {
   double flip_fraction = 1.0;  // velocity update: flip_fraction * FLIP + (1 - flip_fraction) * PIC
   double damping = 0.0;        // mass-proportional (external) damping coefficient, 1/s
   std::optional<Point3> grid_min, grid_max;  // default: bodies' bounds grown by 3 cells
+  SourceLocation cell_size_where, grid_max_where;  // where the scene gives them
   /// J-integral at explicit-crack tips (Guo and Nairn 2006): contour `j_contour` cells from the
   /// node nearest the tip; the area term of the dynamic J (their eq. 8).
   int j_contour = 2;
@@ -242,6 +256,7 @@ struct CrackGrowth {
 
 struct Output {
   int count = 10;                   // number of field snapshots (plus the initial state)
+  SourceLocation count_where;       // where the scene gives it (none: the default)
   std::vector<std::string> fields;  // position, displacement, velocity, damage, dilatation, ...
   int history_count = 200;          // history rows
   std::vector<std::string> history; // history columns after time and step (default: all)
@@ -259,6 +274,7 @@ struct Checkpoint {
   long every_steps = 0;        // steps (load steps for relaxation) between checkpoints; 0: not by steps
   double every_seconds = 0.0;  // wall time between checkpoints, s; 0: not by time
   std::string file;            // relative to the output directory, or absolute; empty: checkpoint.rift
+  SourceLocation file_where;   // where the scene gives it
 };
 
 struct Scene {
@@ -284,6 +300,9 @@ struct Scene {
   CrackGrowth crack_growth;
   Output output;
   Checkpoint checkpoint;
+  /// What is legitimate but likely not meant ("file:line:column: warning: 'key': ..."): `rift check`
+  /// and `rift run` print each before they start.
+  std::vector<std::string> warnings;
 
   const RegionDef* find_region(const std::string& n) const {
     for (const auto& r : regions)

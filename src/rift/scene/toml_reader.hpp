@@ -3,6 +3,8 @@
 #pragma once
 #include <toml++/toml.h>
 
+#include <cmath>
+#include <cstdio>
 #include <optional>
 #include <set>
 #include <string>
@@ -41,7 +43,10 @@ class TomlReader {
   std::optional<double> number(const std::string& k) {
     const toml::node* n = node(k);
     if (!n) return std::nullopt;
-    if (auto v = n->value<double>(); v && (n->is_floating_point() || n->is_integer())) return *v;
+    if (auto v = n->value<double>(); v && (n->is_floating_point() || n->is_integer())) {
+      if (!std::isfinite(*v)) fail(k, "must be a finite number, got " + fmt_double(*v));
+      return *v;
+    }
     fail(k, "expected a number, got " + type_name(*n));
   }
   double number(const std::string& k, double fallback) { return number(k).value_or(fallback); }
@@ -63,6 +68,14 @@ class TomlReader {
     if (!n) return std::nullopt;
     if (!n->is_integer()) fail(k, "expected an integer, got " + type_name(*n));
     return *n->value<long long>();
+  }
+  /// An integer in [lo, hi] (64 bits read, then bounded by what the code that takes it holds);
+  /// `meaning` says what it counts, for the message.
+  std::optional<long long> count(const std::string& k, long long lo, long long hi, const std::string& meaning) {
+    auto v = integer(k);
+    if (v && (*v < lo || *v > hi))
+      fail(k, "must be an integer from " + std::to_string(lo) + " to " + std::to_string(hi) + " (" + meaning + "), got " + std::to_string(*v));
+    return v;
   }
   std::optional<bool> boolean(const std::string& k) {
     const toml::node* n = node(k);
@@ -99,6 +112,7 @@ class TomlReader {
       auto v = e.value<double>();
       if (!v || !(e.is_integer() || e.is_floating_point()))
         throw SceneError(at(e), key(k), "expected a number, got " + type_name(e));
+      if (!std::isfinite(*v)) throw SceneError(at(e), key(k), "must be finite numbers, got " + fmt_double(*v));
       out.push_back(*v);
     }
     return out;

@@ -1,8 +1,8 @@
-#include "rift/run/stop_signal.hpp"
+#include "rift/core/stop_signal.hpp"
 
 #include <csignal>
 
-namespace rift::run {
+namespace rift {
 
 namespace {
 
@@ -16,11 +16,14 @@ void catch_stop_signals() {
   struct sigaction action {};
   action.sa_handler = on_stop_signal;
   sigemptyset(&action.sa_mask);
-  action.sa_flags = SA_RESETHAND;  // a second signal: the default action, the process ends
+  action.sa_flags = 0;
   sigaction(SIGTERM, &action, nullptr);
+  action.sa_flags = SA_RESETHAND;  // a second Ctrl-C: the default action, the process ends
   sigaction(SIGINT, &action, nullptr);
 }
 
 int stop_signal() { return received; }
 
-}  // namespace rift::run
+void set_stop_signal(int signal) { received = signal; }
+
+}  // namespace rift
