@@ -154,6 +154,10 @@ CASES = [
     ("in-situ stress -inf", "static", "sigma_H = -10e6", "sigma_H = -inf", "in_situ_stress.sigma_H", "sigma_H = -inf"),
     ("mpm cell size inf", "mpm", "cell_size = 0.001", "cell_size = inf", "mpm.cell_size", "cell_size = inf"),
     ("mpm crack point nan", "mpm", "[0.008, 0.0055]", "[nan, 0.0055]", "cracks[0].points", "points = "),
+    # loads no solid holds, speeds no wave reaches (finite, but a unit or an exponent is wrong)
+    ("crack pressure 1e30", "pd", "pressure = 1e6", "pressure = 1e30", "cracks[0].pressure", "pressure = 1e30"),
+    ("boundary velocity 1e300", "pd", "x = -5.0", "x = -1e300", "boundaries[0].x", "x = -1e300"),
+    ("in-situ stress 1e20", "static", "sigma_h = -5e6", "sigma_h = -1e20", "in_situ_stress.sigma_h", "sigma_h = -1e20"),
     # integers past what the code holds
     ("snapshots 2^32", "pd", "snapshots = 3", "snapshots = 4294967296", "output.snapshots", "snapshots = 4294967296"),
     ("snapshots 2^31", "pd", "snapshots = 3", "snapshots = 2147483648", "output.snapshots", "snapshots = 2147483648"),
@@ -182,6 +186,7 @@ CASES = [
     ("pre-crack of zero length", "pd", "points = [[0.01, 0.0], [0.01, 0.004]]", "points = [[0.01, 0.0], [0.01, 0.0]]", "cracks[0].points", "points = [[0.01, 0.0], [0.01, 0.0]]"),
     ("mpm crack outside the plate", "mpm", "points = [[0.0, 0.0055], [0.008, 0.0055]]", "points = [[0.5, 0.5], [0.6, 0.5]]", "cracks[0].points", "points = [[0.5"),
     ("two bodies on one region", "pd", "[[cracks]]", "[bodies.twin]\nmaterial = \"glass\"\nregion = \"plate\"\nspacing = 0.0005\nhorizon = 3.015\n[[cracks]]", "bodies.twin.region", "[bodies.twin]"),
+    ("two bodies overlap", "pd", "[[cracks]]", "[regions.right]\nshape = \"box\"\nmin = [0.015, 0.0]\nmax = [0.03, 0.01]\n[bodies.right]\nmaterial = \"glass\"\nregion = \"right\"\nspacing = 0.0005\nhorizon = 3.015\n[[cracks]]", "bodies.right.region", "[bodies.right]"),
     ("empty union", "pd", "[bodies.plate]", "[regions.none]\nshape = \"union\"\nof = []\n[bodies.plate]", "regions.none.of", "of = []"),
     ("3d crack without area", "bar", "[solver]", "[[cracks]]\npoints = [[0.01, 0.0, 0.0], [0.01, 0.001, 0.0], [0.01, 0.002, 0.0]]\n[solver]", "cracks[0].points", "points = [[0.01, 0.0, 0.0]"),
 ]
@@ -199,8 +204,7 @@ OPTION_CASES = [
 # runtime guards: scenes that pass every check but whose loads are unbounded; `run` stops with status 1
 # and says where (a particle flown off, a non-finite energy), never a signal
 RUNTIME = [
-    ("crack pressure 1e30", "pd", "pressure = 1e6", "pressure = 1e30"),
-    ("boundary velocity 1e300", "pd", "x = -5.0", "x = -1e300"),
+    ("boundary displacement 1e30 m", "pd", "type = \"velocity\"\nx = -5.0", "type = \"displacement\"\nx = -1e30"),
 ]
 
 # warnings: (name, base, find, replace, key, text in the message, the line's text); `check` exits with 0

@@ -108,11 +108,16 @@ int rift_main(int argc, char** argv) {
     preflight.max_memory = max_memory.empty() ? 0.0 : rift::run::parse_memory_size(max_memory);
     preflight.ranks = comm.size();
     if (*run) preflight.output_dir = output_dir.empty() ? "results/" + scene.name : output_dir;
-    rift::run::preflight(scene, preflight);
+    const auto estimate = rift::run::preflight(scene, preflight);
     if (comm.root())
       for (const auto& w : scene.warnings) std::fprintf(stderr, "%s\n", w.c_str());
     if (*check) {
       rift::run::check(scene, std::cout);
+      const double limit = preflight.max_memory > 0.0 ? preflight.max_memory : rift::run::machine_memory();
+      const bool mpm = scene.method == rift::scene::Method::mpm;
+      std::printf("pre-flight   estimated before building: %.4g %s, %.4g %s, %.4g MB at least (the limit: %.4g GB, %s)\n", estimate.particles,
+                  mpm ? "material points" : "particles", mpm ? estimate.grid_nodes : estimate.directed_bonds, mpm ? "grid nodes" : "directed bonds",
+                  estimate.bytes / 1e6, limit / 1e9, preflight.max_memory > 0.0 ? "--max-memory" : "this machine's memory");
       return 0;
     }
     rift::run::Options options{output_dir, threads, quiet, restart};

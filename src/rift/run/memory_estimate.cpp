@@ -13,7 +13,8 @@ namespace rift::run {
 namespace {
 
 constexpr double pi = 3.14159265358979323846;
-// The fewest bytes a run keeps per item (lower bounds: the estimate never refuses a run that fits).
+// The fewest bytes a run keeps per item (lower bounds: the memory a run takes is above the estimate
+// unless its counts are, and those are the bounding box's lattice and bonds, sampled and truncated).
 // PD: a particle's fields (pd::Model::bytes_per_particle and its row offsets); a directed bond's
 // neighbour, family and state (13.2 to 20.3 measured, bench/README.md). MPM: a point's vectors,
 // scalars and two tensors; a grid node's mass and D-vectors per velocity field.
@@ -30,8 +31,10 @@ SourceLocation region_where(const scene::Scene& s, const std::string& name) {
   return r ? r->where : SourceLocation{s.file, 0, 0};
 }
 
-/// Sites of a lattice of `spacing` in the region's bounds, and the share of them inside it.
+/// Sites of a lattice of `spacing` in the region's bounds (along each axis, and in all), and the
+/// share of them inside it.
 struct Fill {
+  double along[3] = {1, 1, 1};
   double sites = 0.0, share = 0.0;
 };
 
@@ -49,7 +52,8 @@ Fill fill_of(const scene::Scene& s, const std::string& region_name, double spaci
       throw SceneError(region_where(s, region_name), "regions." + region_name,
                        fmt::format("region \"{}\" is unbounded along {} (a half-space); intersect it with a box", region_name, "xyz"[k]));
     extent[k] = hi[k] - lo[k];
-    f.sites *= std::max(1.0, std::floor(extent[k] / spacing));
+    f.along[k] = std::max(1.0, std::floor(extent[k] / spacing));
+    f.sites *= f.along[k];
   }
   if (!(f.sites <= most_lattice_sites))
     throw SceneError(where, key,
@@ -79,6 +83,27 @@ Fill fill_of(const scene::Scene& s, const std::string& region_name, double spaci
 /// Lattice offsets within a horizon of h spacings (the disk's or ball's lattice points).
 double family_offsets_estimate(int D, double h) { return D == 2 ? pi * h * h : 4.0 / 3.0 * pi * h * h * h; }
 
+/// Bonds per particle of a box of `along` lattice sites per axis: each offset within the horizon
+/// counted by the share of the box's sites that have it (1 - |o_k| / n_k along each axis), so that
+/// a plate thinner than the horizon has its truncated families. Past 2e7 offsets to look at, the
+/// whole family (family_offsets_estimate).
+double bonds_per_particle(int D, double h, const double along[3]) {
+  const long r = static_cast<long>(std::floor(h));
+  if (std::pow(2.0 * double(r) + 1.0, D) > 2e7) return family_offsets_estimate(D, h);
+  const long rz = D == 3 ? r : 0;
+  double sum = 0.0;
+  for (long z = -rz; z <= rz; ++z)
+    for (long y = -r; y <= r; ++y)
+      for (long x = -r; x <= r; ++x) {
+        if ((x == 0 && y == 0 && z == 0) || double(x * x + y * y + z * z) > h * h) continue;
+        const long o[3] = {x, y, z};
+        double share = 1.0;
+        for (int k = 0; k < D; ++k) share *= std::max(0.0, 1.0 - double(std::abs(o[k])) / along[k]);
+        sum += share;
+      }
+  return sum;
+}
+
 }  // namespace
 
 MemoryEstimate estimate_memory(const scene::Scene& s) {
@@ -105,7 +130,7 @@ MemoryEstimate estimate_memory(const scene::Scene& s) {
                                    h, offsets, most_family_offsets));
     const double particles = f.sites * f.share;
     e.particles += particles;
-    e.directed_bonds += particles * offsets;
+    e.directed_bonds += particles * bonds_per_particle(D, h, f.along);
   }
   if (s.method == scene::Method::mpm) {
     // the grid: the bodies' bounds and three cells each side, or the scene's

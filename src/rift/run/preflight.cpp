@@ -87,6 +87,36 @@ void require_touching_bodies(const scene::Scene& s) {
     bodies.push_back(geometry::Region::build(s, body.region));
     reach = std::max(reach, s.method == scene::Method::mpm ? s.mpm.cell_size : body.horizon);
   }
+  // bodies overlap nowhere: the overlap of two bounding boxes, where thicker than a lattice spacing
+  // (a cell), sampled on a lattice of at most 2^15 points
+  auto spacing_of = [&](const scene::Body& b) { return s.method == scene::Method::mpm ? s.mpm.cell_size / b.particles_per_cell : b.spacing; };
+  for (std::size_t b = 0; b < s.bodies.size(); ++b)
+    for (std::size_t c = 0; c < b; ++c) {
+      Point3 lo_b, hi_b, lo_c, hi_c, lo, hi;
+      bodies[b].bounds(lo_b, hi_b), bodies[c].bounds(lo_c, hi_c);
+      const double thinnest = std::min(spacing_of(s.bodies[b]), spacing_of(s.bodies[c]));
+      bool apart = false;
+      for (int k = 0; k < D; ++k) {
+        lo[k] = std::max(lo_b[k], lo_c[k]), hi[k] = std::min(hi_b[k], hi_c[k]);
+        apart = apart || !(hi[k] - lo[k] > thinnest) || !std::isfinite(hi[k] - lo[k]);
+      }
+      if (apart) continue;
+      const int n = D == 2 ? 181 : 32;
+      for (int z = 0; z < (D == 3 ? n : 1); ++z)
+        for (int y = 0; y < n; ++y)
+          for (int x = 0; x < n; ++x) {
+            const int ijk[3] = {x, y, z};
+            Point3 p{0, 0, 0};
+            for (int q = 0; q < D; ++q) p[q] = lo[q] + (ijk[q] + 0.5) / n * (hi[q] - lo[q]);
+            if (!bodies[b].contains(p) || !bodies[c].contains(p)) continue;
+            const auto& body = s.bodies[b];
+            throw SceneError(body.where, "bodies." + body.name + ".region",
+                             fmt::format("body \"{}\" overlaps body \"{}\" (both hold {}): bodies fill places apart; cut one out of the "
+                                         "other with a \"difference\" region",
+                                         body.name, s.bodies[c].name,
+                                         D == 2 ? fmt::format("({:.4g}, {:.4g})", p[0], p[1]) : fmt::format("({:.4g}, {:.4g}, {:.4g})", p[0], p[1], p[2])));
+          }
+    }
   auto require = [&](const std::vector<Point3>& points, const SourceLocation& where, const std::string& key, const char* what) {
     for (const auto& p : samples_of(points, D))
       if (near_a_body(p, bodies, D, reach)) return;

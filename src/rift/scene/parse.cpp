@@ -1,5 +1,6 @@
 #include "rift/scene/parse.hpp"
 
+#include <algorithm>
 #include <cerrno>
 #include <cmath>
 #include <cstring>
@@ -319,6 +320,27 @@ void require_region(const Scene& s, R& r, const std::string& k, const std::strin
   r.fail(k, "unknown region \"" + name + "\"; defined: " + R::join(names));
 }
 
+/// A load no solid of the scene holds, or a speed no wave of it reaches, by three orders: a unit or an
+/// exponent is wrong (a crack pressure of 1e30 Pa flings the particles past what the contact grid
+/// numbers). Stresses against 1000 times the stiffest bulk modulus, speeds against 1000 times the
+/// fastest dilatational wave speed sqrt((K + 4G/3) / rho).
+double plausible_stress(R& r, const Scene& s, const std::string& k, double value) {
+  double stiffest = 0.0;
+  for (const auto& m : s.materials) stiffest = std::max(stiffest, m.bulk_modulus);
+  if (std::abs(value) > 1e3 * stiffest)
+    r.fail(k, R::fmt_double(value) + " Pa is more than 1000 times the stiffest material's bulk modulus (" + R::fmt_double(stiffest) +
+                  " Pa): no solid of the scene holds it; check its unit");
+  return value;
+}
+double plausible_speed(R& r, const Scene& s, const std::string& k, double value) {
+  double fastest = 0.0;
+  for (const auto& m : s.materials) fastest = std::max(fastest, std::sqrt((m.bulk_modulus + 4.0 / 3.0 * m.shear_modulus) / m.density));
+  if (std::abs(value) > 1e3 * fastest)
+    r.fail(k, R::fmt_double(value) + " m/s is more than 1000 times the fastest wave speed of the scene's materials (" + R::fmt_double(fastest) +
+                  " m/s); check its unit");
+  return value;
+}
+
 std::string required_string(R& r, const std::string& k, const std::string& meaning) {
   auto v = r.string(k);
   if (!v) throw SceneError(r.where(), r.key(k), "missing required key (" + meaning + ")");
@@ -397,7 +419,7 @@ void parse_cracks(R& root, Scene& s) {
     require_extent(r, "points", c.points, s.dimension);
     std::vector<std::string> allowed{"points"};
     if (s.method == Method::peridynamics) {
-      c.pressure = r.non_negative("pressure", r.number("pressure", 0.0));
+      c.pressure = plausible_stress(r, s, "pressure", r.non_negative("pressure", r.number("pressure", 0.0)));
       c.pressure_time = time_function(r, "time");
       allowed.insert(allowed.end(), {"pressure", "time"});
     }
@@ -431,9 +453,10 @@ void parse_boreholes(R& root, Scene& s) {
     b.where = r.where();
     b.region = required_string(r, "region", "name of the region the borehole occupies (a cylinder, a disk in 2D)");
     require_region(s, r, "region", b.region);
-    b.pressure = r.non_negative("pressure", r.number("pressure", 0.0));
+    b.pressure = plausible_stress(r, s, "pressure", r.non_negative("pressure", r.number("pressure", 0.0)));
     b.pressure_time = time_function(r, "time");
-    if (auto p = r.number("breakdown_pressure")) b.breakdown_pressure = r.non_negative("breakdown_pressure", *p);
+    if (auto p = r.number("breakdown_pressure"))
+      b.breakdown_pressure = plausible_stress(r, s, "breakdown_pressure", r.non_negative("breakdown_pressure", *p));
     if (auto q = r.number("injection_rate")) {
       b.injection_rate = r.non_negative("injection_rate", *q);
       b.fluid_bulk_modulus = r.positive("fluid_bulk_modulus", r.required_number("fluid_bulk_modulus", "bulk modulus of the injected fluid, Pa"));
@@ -469,6 +492,8 @@ void parse_boundaries(R& root, Scene& s) {
       for (int k = 0; k < 3; ++k) {
         if (k >= s.dimension) continue;
         b.value[k] = r.number(comp[k]);
+        if (b.value[k] && b.kind == BoundaryKind::traction) plausible_stress(r, s, comp[k], *b.value[k]);
+        if (b.value[k] && b.kind == BoundaryKind::velocity) plausible_speed(r, s, comp[k], *b.value[k]);
         any = any || b.value[k].has_value();
         allowed.push_back(comp[k]);
       }
@@ -494,10 +519,10 @@ void parse_in_situ_stress(R& root, Scene& s) {
   v.enabled = true;
   v.where = r.where();
   const std::string unit = "far-field principal stress, Pa, compression negative";
-  v.sigma_H = r.required_number("sigma_H", "maximum horizontal " + unit);
-  v.sigma_h = r.required_number("sigma_h", "minimum horizontal " + unit);
-  if (s.dimension == 3) v.sigma_v = r.required_number("sigma_v", "vertical (z) " + unit);
-  else v.sigma_v = r.number("sigma_v", 0.0);  // out of the horizontal section: recorded, not applied
+  v.sigma_H = plausible_stress(r, s, "sigma_H", r.required_number("sigma_H", "maximum horizontal " + unit));
+  v.sigma_h = plausible_stress(r, s, "sigma_h", r.required_number("sigma_h", "minimum horizontal " + unit));
+  if (s.dimension == 3) v.sigma_v = plausible_stress(r, s, "sigma_v", r.required_number("sigma_v", "vertical (z) " + unit));
+  else v.sigma_v = plausible_stress(r, s, "sigma_v", r.number("sigma_v", 0.0));  // out of the horizontal section: recorded, not applied
   if (auto axis = r.choice("sigma_H_axis", {"x", "y"})) v.sigma_H_axis = *axis == "x" ? 0 : 1;
   if (auto faces = r.choice("faces", {"tractions", "platens"})) v.faces = *faces == "platens" ? InSituStress::Faces::platens : InSituStress::Faces::tractions;
   if (auto n = r.count("max_iterations", 1, limits::iterations, "force evaluations of the in-situ stage"))
@@ -519,6 +544,7 @@ void parse_initial_velocity(R& root, Scene& s) {
     v.region = required_string(r, "region", "name of a region");
     require_region(s, r, "region", v.region);
     v.velocity = point(r, "velocity", s.dimension, true);
+    for (int k = 0; k < s.dimension; ++k) plausible_speed(r, s, "velocity", v.velocity[k]);
     r.finish({"region", "velocity"});
     s.initial_velocities.push_back(v);
   });
