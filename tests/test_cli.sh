@@ -151,52 +151,7 @@ cmp "$tmp/long/history.csv" "$tmp/long_whole/history.csv"
 # SIGTERM inside a relaxation solve (issue 81): the run stops at the iteration it is in, even with a
 # second SIGTERM on the heels of the first, writes a checkpoint of the unfinished load step, and the
 # restart goes on from that iteration to the bytes of a run never stopped. Its log has progress lines.
-cat > "$tmp/relax.toml" <<'SCENE'
-[scene]
-dimension = 2
-plane = "strain"
-thickness = 0.001
-[materials.rock]
-model = "lps"
-density = 2500.0
-youngs_modulus = 10e9
-poisson_ratio = 0.25
-fracture_energy = 20.0
-[regions.block]
-shape = "box"
-min = [0.0, 0.0]
-max = [0.04, 0.04]
-[regions.bottom]
-shape = "box"
-min = [0.0, 0.0]
-max = [0.04, 0.001]
-[regions.top]
-shape = "box"
-min = [0.0, 0.039]
-max = [0.04, 0.04]
-[bodies.block]
-material = "rock"
-region = "block"
-spacing = 0.001
-horizon = 3.015
-[[cracks]]
-points = [[0.0, 0.02], [0.015, 0.02]]
-[[boundaries]]
-region = "bottom"
-type = "fixed"
-[[boundaries]]
-region = "top"
-type = "traction"
-y = 2e6
-[solver]
-type = "dynamic_relaxation"
-max_iterations = 8000
-tolerance = 1e-14
-[output]
-history = ["broken_bonds"]
-damage_image = false
-damage_histogram = false
-SCENE
+cp "$(dirname "$0")/relax_under_traction.toml" "$tmp/relax.toml"
 "$rift" run "$tmp/relax.toml" -o "$tmp/relax_whole" --threads 1 > /dev/null 2> "$tmp/relax_whole.err"
 grep -q "rift: load step 1/1, iteration 1 (at most 8000), residual" "$tmp/relax_whole.err"
 set +e

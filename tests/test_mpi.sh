@@ -572,7 +572,7 @@ done
 # SIGTERM to the ranks inside a relaxation solve (issue 81): every rank stops at the same iteration,
 # rank 0 writes the checkpoint of the unfinished load step (its previous forces gathered), and it
 # continues on 3 ranks and on 1 to the bytes of the one-rank run never stopped
-sed -n '/^RELAX_STOP_SCENE$/,/^RELAX_STOP_SCENE_END$/p' "$0" | sed '1d;$d' > "$tmp/relax_stop.toml"
+cp "$(dirname "$0")/relax_under_traction.toml" "$tmp/relax_stop.toml"
 if ! sanitized; then
   one_rank run "$tmp/relax_stop.toml" -o "$tmp/relax_stop-serial" -q > /dev/null
   out="$tmp/relax_stop-np2"
@@ -815,50 +815,3 @@ reactions = ["top"]
 damage_image = false
 damage_histogram = false
 DR_SCENE_END
-
-RELAX_STOP_SCENE
-[scene]
-dimension = 2
-plane = "strain"
-thickness = 0.001
-[materials.rock]
-model = "lps"
-density = 2500.0
-youngs_modulus = 10e9
-poisson_ratio = 0.25
-fracture_energy = 20.0
-[regions.block]
-shape = "box"
-min = [0.0, 0.0]
-max = [0.04, 0.04]
-[regions.bottom]
-shape = "box"
-min = [0.0, 0.0]
-max = [0.04, 0.001]
-[regions.top]
-shape = "box"
-min = [0.0, 0.039]
-max = [0.04, 0.04]
-[bodies.block]
-material = "rock"
-region = "block"
-spacing = 0.001
-horizon = 3.015
-[[cracks]]
-points = [[0.0, 0.02], [0.015, 0.02]]
-[[boundaries]]
-region = "bottom"
-type = "fixed"
-[[boundaries]]
-region = "top"
-type = "traction"
-y = 2e6
-[solver]
-type = "dynamic_relaxation"
-max_iterations = 8000
-tolerance = 1e-14
-[output]
-history = ["broken_bonds"]
-damage_image = false
-damage_histogram = false
-RELAX_STOP_SCENE_END
