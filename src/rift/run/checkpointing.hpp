@@ -119,21 +119,10 @@ class Checkpointing {
                               (c.every_seconds > 0.0 &&
                                std::chrono::duration<double>(std::chrono::steady_clock::now() - last_).count() >= c.every_seconds));
     if (stop || due) {
-      const std::string file = checkpoint_path(scene_, output_dir_, step);
-      gather();
-      if (comm.root()) {
-        io::CheckpointWriter w(file, {scene_.fingerprint, step, time});
-        visit(w);
-        w.commit();
-      }
-      res.checkpoint = file;
+      write(step, step, time, res, gather, visit);
       last_ = std::chrono::steady_clock::now();
     }
-    if (stop) {
-      res.stopped = true;
-      res.stop_signal = stop_signal();
-      res.steps = step;
-    }
+    if (stop) stopped_after(step, res);
     return stop;
   }
   /// A stop within `step` (an iteration of its relaxation): every rank calls gather() before rank 0
@@ -141,35 +130,37 @@ class Checkpointing {
   /// step's own checkpoint replaces it once the restart has finished it) and as after step - 1.
   template <class Gather, class Visit>
   void stop_within(long step, double time, Result& res, Gather gather, Visit visit) {
-    const std::string file = checkpoint_path(scene_, output_dir_, step);
-    gather();
-    if (parallel::Communicator::world().root()) {
-      io::CheckpointWriter w(file, {scene_.fingerprint, step - 1, time});
-      visit(w);
-      w.commit();
-    }
-    res.checkpoint = file;
-    res.stopped = true;
-    res.stop_signal = stop_signal();
-    res.steps = step - 1;
+    write(step, step - 1, time, res, gather, visit);
+    stopped_after(step - 1, res);
   }
   /// A stop before the first step (in the in-situ stage): rank 0 writes the checkpoint of step 0
   /// that visit(writer) makes, and the run is stopped there.
   template <class Visit>
   void after_stop_before_start(Result& res, Visit visit) {
-    const std::string file = checkpoint_path(scene_, output_dir_, 0);
+    write(0, 0, 0.0, res, [] {}, visit);
+    stopped_after(0, res);
+  }
+
+ private:
+  /// Every rank calls gather(); rank 0 writes the records with visit into the checkpoint named after
+  /// `named_step`, its header's step `step`.
+  template <class Gather, class Visit>
+  void write(long named_step, long step, double time, Result& res, Gather gather, Visit visit) {
+    const std::string file = checkpoint_path(scene_, output_dir_, named_step);
+    gather();
     if (parallel::Communicator::world().root()) {
-      io::CheckpointWriter w(file, {scene_.fingerprint, 0, 0.0});
+      io::CheckpointWriter w(file, {scene_.fingerprint, step, time});
       visit(w);
       w.commit();
     }
     res.checkpoint = file;
+  }
+  /// The run stops after `step` (a signal's, or Options::stop_after_step).
+  void stopped_after(long step, Result& res) const {
     res.stopped = true;
     res.stop_signal = stop_signal();
-    res.steps = 0;
+    res.steps = step;
   }
-
- private:
   const scene::Scene& scene_;
   long stop_after_step_;
   std::string output_dir_;
