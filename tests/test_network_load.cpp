@@ -352,7 +352,7 @@ void check_uncorrected_ends(const std::string& material) {
   for (std::size_t i = 0; i < m.size(); ++i) {
     bool row_end = false, end = false;
     auto z = rift::pd::detail::network_end<D>(
-        m, i, [&](std::size_t p, std::int64_t k) { return rift::pd::network_of_bond(f, b, p, k) == 0; }, row_end);
+        m, i, true, [&](std::size_t p, std::int64_t k) { return rift::pd::network_of_bond(f, b, p, k) == 0; }, row_end);
     if (!row_end) z = {};
     const auto u = rift::pd::detail::uncorrected_network_end<D>(m, i, 0, terms, end);
     ASSERT_EQ(end, row_end) << "particle " << i;

@@ -12,10 +12,11 @@
 namespace rift::validation {
 
 /// Largest change of a momentum component over `steps` velocity-Verlet steps, relative to
-/// sum m |v| (angular momentum divided by the body size too); 1 if no bond broke.
+/// sum m |v| (angular momentum divided by the body size too); 1 if no bond broke. `material_extra`:
+/// the lines a law needs in its material beyond the elastic constants.
 template <int D>
-double momentum_drift(const std::string& model, int steps) {
-  auto s = scene::parse_string(box_scene(D, model, 0.25, "", "", 3.015, "strain", "critical_stretch = 0.002\n"), "m.toml");
+double momentum_drift(const std::string& model, int steps, const std::string& material_extra = "") {
+  auto s = scene::parse_string(box_scene(D, model, 0.25, "", "", 3.015, "strain", "critical_stretch = 0.002\n" + material_extra), "m.toml");
   auto m = pd::discretize<D>(s);
   load::Boundaries<D> loads(s, m);
   pd::Contact<D> contact(s.contact, m);

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "rift/pd/influence.hpp"
+#include "rift/pd/laws/registry.hpp"
 
 namespace rift::pd {
 namespace {
@@ -58,14 +59,14 @@ std::array<double, 3> mu_moments(int dim, double a, double b) {
 
 }  // namespace
 
-double separation_work_per_stretch2(const MaterialConstants& mc) {
+double separation_work_per_stretch2(const MaterialConstants& mc, bool state_based) {
   const int d = mc.dimension;
   const double delta = mc.horizon;
   const double t = d == 2 ? mc.thickness : 1.0;
   // radial measure: 3D  2 pi xi^2 dxi ; 2D  t xi dxi (the factor 2 of the two half-planes is in mu_moments)
   auto radial = [&](double xi) { return d == 3 ? 2.0 * pi * xi * xi : t * xi; };
   auto omega = [&](double xi) { return influence(mc.influence, xi, delta); };
-  const bool lps = mc.state_based();
+  const bool lps = state_based;
   const double m = family_moment(d, mc.influence, delta, t, 2);
   const double alpha = mc.lps_deviatoric_coefficient() / m;
 
@@ -106,8 +107,7 @@ double pmb_separation_work_per_stretch2(const MaterialConstants& mc) {
 }
 
 double critical_stretch_from_fracture_energy(const MaterialConstants& mc, double fracture_energy) {
-  double gamma = mc.model == scene::ModelKind::pmb ? pmb_separation_work_per_stretch2(mc)
-                                                   : separation_work_per_stretch2(mc);
+  const double gamma = with_law(mc.model, [&]<class Law>() { return Law::separation_work_per_stretch2(mc); });
   return std::sqrt(fracture_energy / gamma);
 }
 

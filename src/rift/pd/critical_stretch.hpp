@@ -10,11 +10,12 @@
 
 namespace rift::pd {
 
-/// Gamma = G0 / s0^2 by quadrature of the rigid-separation work (any model, dimension, influence).
-double separation_work_per_stretch2(const MaterialConstants& mc);
+/// Gamma = G0 / s0^2 by quadrature of the rigid-separation work (any dimension and influence): of a
+/// state-based law (the LPS energy) or, where not `state_based`, of the PMB.
+double separation_work_per_stretch2(const MaterialConstants& mc, bool state_based);
 /// Closed form for PMB: 3D  G0 = (pi c s0^2 / 2) int omega r^4 dr ; 2D  G0 = c t s0^2 int omega r^3 dr.
 double pmb_separation_work_per_stretch2(const MaterialConstants& mc);
-/// s0 such that the work to separate the body equals G0.
+/// s0 such that the work to separate the body equals G0 (the law's Gamma, laws/registry.hpp).
 double critical_stretch_from_fracture_energy(const MaterialConstants& mc, double fracture_energy);
 
 }  // namespace rift::pd

@@ -12,6 +12,7 @@
 #include "rift/pd/crack_pressure.hpp"
 #include "rift/pd/influence.hpp"
 #include "rift/pd/interface_law.hpp"
+#include "rift/pd/laws/registry.hpp"
 #include "rift/pd/normal_stress_failure.hpp"
 #include "rift/pd/surface_correction.hpp"
 #include "rift/pd/ves.hpp"
@@ -416,7 +417,7 @@ Model<D> discretize(const scene::Scene& s) {
     }
   }
   compute_dilatation_weights<D>(m, factor_row_owners);
-  prepare_viscous_history<D>(m);
+  prepare_viscous_history<D>(m, [](const BodyInfo& body) { return law_traits(body.constants.model).bond_history; });
   prepare_crack_pressure<D>(m);
   prepare_interfaces<D>(s, m);
 

@@ -135,25 +135,4 @@ void strain_energy_densities(const Model<D>& m, const BodyInfo& body, double* w)
   }
 }
 
-/// W_i of every particle of every body into w (size m.size()).
-template <int D>
-void strain_energy_densities(const Model<D>& m, double* w) {
-  for (const auto& body : m.bodies) {
-    const bool corrected = body.constants.surface_correction;
-    switch (body.constants.model) {
-      case scene::ModelKind::pmb:
-        if (corrected) strain_energy_densities<D, false, false, true>(m, body, w);
-        else strain_energy_densities<D, false, false, false>(m, body, w);
-        break;
-      case scene::ModelKind::ves:
-        if (corrected) strain_energy_densities<D, true, true, true>(m, body, w);
-        else strain_energy_densities<D, true, true, false>(m, body, w);
-        break;
-      default:
-        if (corrected) strain_energy_densities<D, true, false, true>(m, body, w);
-        else strain_energy_densities<D, true, false, false>(m, body, w);
-    }
-  }
-}
-
 }  // namespace rift::pd

@@ -14,17 +14,14 @@
 #include "rift/pd/ghost_fields.hpp"
 #include "rift/pd/interface_contact.hpp"
 #include "rift/pd/interface_law.hpp"
-#include "rift/pd/lps.hpp"
+#include "rift/pd/laws/registry.hpp"
 #include "rift/pd/normal_stress_failure.hpp"
-#include "rift/pd/pmb.hpp"
-#include "rift/pd/ves.hpp"
 #include "rift/parallel/team.hpp"
 
 namespace rift::pd {
 
 template <int D>
 void compute_forces(Model<D>& m, Contact<D>* contact, double history_dt) {
-  using I = scene::Influence;
   PhaseClock clock(Phase::bond_passes);
   apply_interface_law<D>(m);  // bonds across pre-existing fractures, with the last stresses
   if (!m.failure_strain.empty()) {
@@ -38,40 +35,20 @@ void compute_forces(Model<D>& m, Contact<D>* contact, double history_dt) {
   std::vector<RowStates> rows(m.bodies.size());
   for (std::size_t a = 0; a < m.bodies.size(); ++a) {
     const auto& body = m.bodies[a];
-    const auto& c = body.constants;
-    if (c.model == scene::ModelKind::pmb) {
-      if (c.influence == I::constant) pmb_forces<D, I::constant>(m, body);
-      else pmb_forces<D, I::inverse_distance>(m, body);
-    } else if (c.model == scene::ModelKind::lps) {
-      if (c.influence == I::constant) lps_dilatation<D, I::constant>(m, body, &rows[a]);
-      else lps_dilatation<D, I::inverse_distance>(m, body, &rows[a]);
-    } else {
-      if (c.influence == I::constant) ves_dilatation<D, I::constant>(m, body, history_dt, &rows[a]);
-      else ves_dilatation<D, I::inverse_distance>(m, body, history_dt, &rows[a]);
-    }
+    with_law(body.constants.model, [&]<class Law>() { Law::template first_pass<D>(m, body, history_dt, &rows[a]); });
   }
   // the second pass of the state-based models needs every dilatation of the step (bodies may
   // neighbour through contact only); a distributed run's ghosts take theirs, and P, from their
   // owners, who summed them over whole families (pd/window.hpp); PMB alone reads neither
-  const bool state_based = std::any_of(m.bodies.begin(), m.bodies.end(), [](const auto& b) { return b.constants.model != scene::ModelKind::pmb; });
+  const bool state_based =
+      std::any_of(m.bodies.begin(), m.bodies.end(), [](const auto& b) { return law_traits(b.constants.model).state_based; });
   if (m.ghosts && state_based) {
     m.refresh_ghosts(m.dilatation);
     m.refresh_ghosts(m.dilatation_coupling);
   }
-  // VES with its history held (history_dt 0) and every back extension zero (bonds.hpp
-  // back_extension_at_rest): the deviatoric extension less lambda times zero is the LPS's, to the
-  // bit, so the LPS pass serves without reading the history (the in-situ stage's evaluations)
-  const bool viscous = history_dt > 0.0 || !m.bonds.back_extension_at_rest;
   for (std::size_t a = 0; a < m.bodies.size(); ++a) {
     const auto& body = m.bodies[a];
-    const auto& c = body.constants;
-    if (c.model == scene::ModelKind::lps || (c.model == scene::ModelKind::ves && !viscous)) {
-      if (c.influence == I::constant) state_based_forces<D, I::constant, false>(m, body, 0.0, &rows[a]);
-      else state_based_forces<D, I::inverse_distance, false>(m, body, 0.0, &rows[a]);
-    } else if (c.model == scene::ModelKind::ves) {
-      if (c.influence == I::constant) state_based_forces<D, I::constant, true>(m, body, history_dt, &rows[a]);
-      else state_based_forces<D, I::inverse_distance, true>(m, body, history_dt, &rows[a]);
-    }
+    with_law(body.constants.model, [&]<class Law>() { Law::template second_pass<D>(m, body, history_dt, &rows[a]); });
   }
   if (history_dt > 0.0) m.bonds.back_extension_at_rest = false;  // the VES pass advanced the history
   add_interface_contact<D>(m, history_dt > 0.0);  // failed bonds across pre-existing fractures
@@ -160,11 +137,13 @@ void update_damage(Model<D>& m) {
 template <int D>
 double strain_energy_density(const Model<D>& m, std::size_t i) {
   const auto& body = m.bodies[m.body[i]];
-  switch (body.constants.model) {
-    case scene::ModelKind::pmb: return pmb_energy_density<D>(m, body, i);
-    case scene::ModelKind::ves: return state_based_energy_density<D, true>(m, body, i);
-    default: return state_based_energy_density<D, false>(m, body, i);
-  }
+  return with_law(body.constants.model, [&]<class Law>() { return Law::template energy_density<D>(m, body, i); });
+}
+
+template <int D>
+void strain_energy_densities(const Model<D>& m, double* w) {
+  for (const auto& body : m.bodies)
+    with_law(body.constants.model, [&]<class Law>() { Law::template energy_densities<D>(m, body, w); });
 }
 
 namespace {

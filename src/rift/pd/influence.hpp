@@ -9,6 +9,14 @@ inline double influence(scene::Influence kind, double xi, double horizon) {
   return kind == scene::Influence::constant ? 1.0 : horizon / xi;
 }
 
+/// f.template operator()<Omega>() with the kind as a template argument: the passes' loops are
+/// compiled for each influence function.
+template <class F>
+decltype(auto) with_influence(scene::Influence kind, F&& f) {
+  if (kind == scene::Influence::constant) return f.template operator()<scene::Influence::constant>();
+  return f.template operator()<scene::Influence::inverse_distance>();
+}
+
 /// Moments  int_0^delta omega(r) r^p dr  of the influence function.
 inline double influence_moment(scene::Influence kind, double horizon, int p) {
   const double d = horizon;

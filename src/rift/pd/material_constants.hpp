@@ -6,7 +6,7 @@
 namespace rift::pd {
 
 struct MaterialConstants {
-  scene::ModelKind model = scene::ModelKind::pmb;
+  scene::ModelKind model{};  // the body's law (laws/registry.hpp)
   scene::Influence influence = scene::Influence::constant;
   int dimension = 3;
   double horizon = 0.0, spacing = 0.0, thickness = 1.0;
@@ -30,8 +30,6 @@ struct MaterialConstants {
   double viscous_fraction = 0.0, relaxation_time = 0.0;
   bool surface_correction = true;
 
-  /// Ordinary state-based (dilatation and deviatoric extension): LPS and its viscoelastic variant.
-  bool state_based() const { return model == scene::ModelKind::lps || model == scene::ModelKind::ves; }
   /// Lame's first parameter of the dimension: kappa - 2G/3 (3D), kappa - G (2D).
   double lame_lambda() const { return dimension == 3 ? kappa - 2.0 * shear_modulus / 3.0 : kappa - shear_modulus; }
   /// P-wave (constrained) modulus of the dimension: kappa + 4G/3 (3D), kappa + G (2D).

@@ -40,9 +40,8 @@
 #include "rift/pd/fluid_network.hpp"
 #include "rift/pd/ghost_fields.hpp"
 #include "rift/pd/influence.hpp"
-#include "rift/pd/lps.hpp"
+#include "rift/pd/laws/registry.hpp"
 #include "rift/pd/network_load_runs.hpp"
-#include "rift/pd/pmb.hpp"
 #include "rift/parallel/sort.hpp"
 #include "rift/parallel/team.hpp"
 
@@ -73,13 +72,14 @@ NetworkEnd end_from_sums(const Model<D>& m, std::size_t i, double th, double q, 
 /// What the network load reads of particle i (PMB: nothing) under the unit uniform expansion
 /// y = 2 X (e = |xi|): its theta and P (lps.hpp lps_dilatation) with the network's bonds held
 /// intact, the network bonds' share of each (F^s less F), and its p of both (force_state).
-/// `is_end`: whether i has a bond in the network (an end), found in the same pass.
+/// `is_end`: whether i has a bond in the network (an end), found in the same pass. `state_based`:
+/// whether i's law reads the dilatation (laws/registry.hpp).
 template <int D, class InNetwork>
-NetworkEnd network_end(const Model<D>& m, std::size_t i, InNetwork in_network, bool& is_end) {
+NetworkEnd network_end(const Model<D>& m, std::size_t i, bool state_based, InNetwork in_network, bool& is_end) {
   const Bonds& b = m.bonds;
   const auto& c = m.constants_of(i);
   is_end = false;
-  if (c.model == scene::ModelKind::pmb) {
+  if (!state_based) {
     for (auto k = b.offset[i]; k < b.offset[i + 1] && !is_end; ++k) is_end = b.intact[static_cast<std::size_t>(k)] != bond_intact && in_network(i, k);
     return {};
   }
@@ -208,6 +208,7 @@ void changed_rows_pass(const Model<D>& m, const std::vector<std::size_t>& change
       const auto high = static_cast<std::size_t>(b.neighbor[static_cast<std::size_t>(b.offset[x + 1] - 1)]);
       reach = std::max({reach, x > low ? x - low : 0, high > x ? high - x : 0});
     }
+  const std::vector<LawTraits> laws = body_laws(m.bodies);
 #pragma omp parallel if(rift::parallel::worth_a_team(count))
   {
 #ifdef _OPENMP
@@ -221,8 +222,8 @@ void changed_rows_pass(const Model<D>& m, const std::vector<std::size_t>& change
          q < count && changed[q] < hi + reach; ++q) {
       const std::size_t x = changed[q];
       const auto& c = m.constants_of(x);  // and of every neighbour: bonds join particles of one body
-      const bool pmb = c.model == scene::ModelKind::pmb;
-      const bool own = x >= lo && x < hi, correct = moved[q] && !pmb;  // a PMB's pair forces do not read the ends
+      const bool pmb = !laws[m.body[x]].state_based;  // a bond-based law (PMB): its pair forces do not read the ends
+      const bool own = x >= lo && x < hi, correct = moved[q] && !pmb;
       if (!own && !correct) continue;
       const NetworkEnd z = now(q), old = correct ? before[q] : NetworkEnd{};
       Vec<D> sum{};
@@ -286,7 +287,7 @@ bool load_by_runs(const Model<D>& m) {
   for (const auto& body : m.bodies) {
     if (body.last <= body.first) continue;
     const auto& c = body.constants;
-    if ((c.model != scene::ModelKind::lps && c.model != scene::ModelKind::ves) || c.surface_correction || body.slab_runs.size() < 2)
+    if (!law_traits(c.model).state_based || c.surface_correction || body.slab_runs.size() < 2)
       return false;
   }
   return true;
@@ -478,11 +479,12 @@ void update_network_load(Model<D>& m) {
       }
     }
     // in one pass each: whether it is an end, and its NetworkEnd
+    const std::vector<LawTraits> laws = body_laws(m.bodies);
 #pragma omp parallel for if(rift::parallel::worth_a_team(changed.size())) schedule(static)
     for (std::size_t q = 0; q < changed.size(); ++q) {
       const std::size_t i = changed[q];
       bool end = false;
-      const NetworkEnd z = by_runs ? detail::uncorrected_network_end<D>(m, i, source, terms, end) : detail::network_end<D>(m, i, in_network, end);
+      const NetworkEnd z = by_runs ? detail::uncorrected_network_end<D>(m, i, source, terms, end) : detail::network_end<D>(m, i, laws[m.body[i]].state_based, in_network, end);
       is_end[i] = end ? 1 : 0;
       ends[i] = end ? z : NetworkEnd{};
     }

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "rift/pd/influence.hpp"
+#include "rift/pd/laws/registry.hpp"
 #include "rift/parallel/team.hpp"
 
 namespace rift::pd {
@@ -75,12 +76,13 @@ void apply_surface_correction(Model<D>& m, const std::vector<std::size_t>& owner
   Bonds& b = m.bonds;
   const auto exps = quartic_exponents<D>();
   const int na = static_cast<int>(exps.size());
+  const std::vector<LawTraits> laws = body_laws(m.bodies);
 #pragma omp parallel for if(rift::parallel::worth_a_team(owners.size())) schedule(dynamic, 64)
   for (std::size_t o = 0; o < owners.size(); ++o) {
     const std::size_t i = owners[o];
     const auto& c = m.constants_of(i);
     if (!c.surface_correction) continue;
-    const int p = c.model == scene::ModelKind::pmb ? 1 : 2;  // weight |xi|^p of the energy moment
+    const int p = laws[m.body[i]].energy_moment_power;  // weight |xi|^p of the energy moment
     // continuum moment int_ball omega |xi|^p dV
     const double full = family_moment(D, c.influence, c.horizon, c.thickness, p);
     Eigen::MatrixXd A = Eigen::MatrixXd::Zero(na, na);
@@ -120,11 +122,12 @@ void compute_dilatation_weights(Model<D>& m, const std::vector<std::size_t>& own
     for (int a = 0; a < D; ++a)
       for (int c = a; c < D; ++c) pairs[static_cast<std::size_t>(q++)] = {a, c};
   }
+  const std::vector<LawTraits> laws = body_laws(m.bodies);
 #pragma omp parallel for if(rift::parallel::worth_a_team(owners.size())) schedule(dynamic, 64)
   for (std::size_t o = 0; o < owners.size(); ++o) {
     const std::size_t i = owners[o];
     const auto& c = m.constants_of(i);
-    if (!c.state_based()) continue;
+    if (!laws[m.body[i]].state_based) continue;
     auto weight = [&](std::int64_t k) -> float& {
       return b.factors[static_cast<std::size_t>(b.factor_row[i] + b.family[static_cast<std::size_t>(k)])].dilatation_weight;
     };

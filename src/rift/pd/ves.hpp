@@ -35,12 +35,13 @@ namespace rift::pd {
 /// Zero history for the VES bodies, laid out by lattice offset (bonds.hpp, bond_slabs.hpp
 /// history_index): per block of Bonds::history_block particles, two directions of every forward
 /// offset; e(0) = 0 and theta(0) = 0 at the reference positions; the per-particle sums of
-/// ves_dilatation to be taken on the first evaluation.
-template <int D>
-void prepare_viscous_history(Model<D>& m) {
+/// ves_dilatation to be taken on the first evaluation. `has_history(body)`: whether the body's law
+/// keeps a history of each bond (laws/registry.hpp).
+template <int D, class HasHistory>
+void prepare_viscous_history(Model<D>& m, HasHistory has_history) {
   std::size_t slots = 0;
   for (auto& body : m.bodies) {
-    if (body.constants.model != scene::ModelKind::ves) continue;
+    if (!has_history(body)) continue;
     constexpr std::size_t block = Bonds::history_block;
     body.history_base = static_cast<std::int64_t>(slots);
     slots += (body.last - body.first + block - 1) / block * (body.family_count / 2) * 2 * block;

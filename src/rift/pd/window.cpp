@@ -10,6 +10,7 @@
 #include "rift/pd/bond_runs.hpp"
 #include "rift/pd/bond_slabs.hpp"
 #include "rift/pd/crack_crossing.hpp"
+#include "rift/pd/laws/registry.hpp"
 #include "rift/pd/normal_stress_failure.hpp"
 
 namespace rift::pd {
@@ -115,7 +116,7 @@ void window_viscous_history(const Bonds& b, const std::vector<BodyInfo>& bodies,
   for (std::size_t q = 0; q < parts.size(); ++q) {
     BodyInfo& part = parts[q];
     const BodyInfo& body = bodies[q];
-    if (body.constants.model != scene::ModelKind::ves || part.last <= part.first) continue;
+    if (!law_traits(body.constants.model).bond_history || part.last <= part.first) continue;
     const std::size_t per_block = body.family_count / 2 * 2 * block;
     const auto index = [&](std::size_t i) { return static_cast<std::size_t>(static_cast<std::int64_t>(i) - part.origin); };
     const std::size_t first_block = index(part.first) / block, blocks = index(part.last - 1) / block + 1 - first_block;
@@ -311,7 +312,7 @@ Partition partition_into_pencils(const Model<D>& m, int across_y, int across_z, 
     double longest = 0.0;
     for (const auto& f : m.bonds.families) longest = std::max(longest, f.length);
     const double margin = static_cast<double>(reaches) * longest * (1.0 + 1e-12);
-    const bool ves = std::any_of(m.bodies.begin(), m.bodies.end(), [](const BodyInfo& b) { return b.constants.model == scene::ModelKind::ves; });
+    const bool ves = std::any_of(m.bodies.begin(), m.bodies.end(), [](const BodyInfo& b) { return law_traits(b.constants.model).bond_history; });
     for (std::size_t r = 0; r < ranks; ++r) {
       std::vector<IndexRange> window;
       if (owns_any[r])

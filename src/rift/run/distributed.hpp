@@ -12,6 +12,7 @@
 #include "rift/pd/bond_slabs.hpp"
 #include "rift/pd/crack_crossing.hpp"
 #include "rift/pd/forces.hpp"
+#include "rift/pd/laws/registry.hpp"
 #include "rift/pd/model.hpp"
 #include "rift/pd/normal_stress_failure.hpp"
 
@@ -205,10 +206,11 @@ void gather_model(const parallel::Communicator& comm, const pd::Model<D>& m, pd:
     gather_into<D>(comm, m, b.intact_weighted_volume, w ? &w->intact_weighted_volume : nullptr);
     gather_into<D>(comm, m, b.summed_bonds, w ? &w->summed_bonds : nullptr);
     // every owned particle's pairs as lower end: per forward offset, both directions and the pair's extension
-    auto each_slot = [](const pd::Model<D>& model, std::size_t from, std::size_t to, auto&& slot) {
+    const std::vector<pd::LawTraits> laws = pd::body_laws(m.bodies);
+    auto each_slot = [&laws](const pd::Model<D>& model, std::size_t from, std::size_t to, auto&& slot) {
       for (std::size_t i = from; i < to; ++i) {
         const pd::BodyInfo& body = model.bodies[model.body[i]];
-        if (body.constants.model != scene::ModelKind::ves) continue;
+        if (!laws[model.body[i]].bond_history) continue;
         for (std::size_t f = body.first_family + body.family_count / 2; f < body.first_family + body.family_count; ++f)
           slot(pd::history_index(body, i, f, 0));
       }

@@ -22,6 +22,7 @@
 #include "rift/pd/dynamic_relaxation.hpp"
 #include "rift/pd/checkpoint_state.hpp"
 #include "rift/pd/interface_outcome.hpp"
+#include "rift/pd/laws/registry.hpp"
 #include "rift/pd/stress.hpp"
 #include "rift/run/checkpointing.hpp"
 #include "rift/run/distributed.hpp"
@@ -84,7 +85,7 @@ Plan check_dim(const scene::Scene& s, std::ostream& out) {
   for (const auto& b : p.model.bodies) {
     const auto& c = b.constants;
     std::snprintf(line, sizeof line, "body         %s: %zu particles, %s, spacing %g m, horizon %g m (%.3f spacings), s0 = %s\n",
-                  b.name.c_str(), b.last - b.first, c.model == scene::ModelKind::pmb ? "PMB" : c.model == scene::ModelKind::lps ? "LPS" : "VES", c.spacing, c.horizon,
+                  b.name.c_str(), b.last - b.first, pd::law_traits(c.model).name, c.spacing, c.horizon,
                   c.horizon / c.spacing, c.breakable ? std::to_string(c.critical_stretch).c_str() : "unbreakable");
     out << line;
   }
