@@ -1,8 +1,8 @@
 // A std::vector whose resize() leaves new elements default-initialized: for the plain types of the
 // bond arrays, not written at all. A vector of hundreds of millions of bonds is then first touched
-// by the parallel pass that fills it (or by parallel_fill), not by resize's zeroing on one thread:
-// the thesis-size lattice's 494 million directed bonds spent two 9 s stretches of its 32 s set-up
-// on one core in first-touch page faults (perf; bench/README.md, session of 2026-11-30, seventeenth).
+// by the parallel pass that fills it (or by parallel_fill), not by resize's zeroing on one thread,
+// which would take all of its first-touch page faults (gigabytes of bond arrays) on one core
+// (bench/README.md).
 #pragma once
 #include <cstddef>
 #include <memory>

@@ -2,11 +2,10 @@
 // the x86-64 baseline (SSE2: two doubles a vector), so that one binary runs everywhere; the kernels
 // are also compiled for AVX2 (four) and AVX-512 and chosen once, at run time, by what the processor
 // has. The AVX-512 clone keeps to vectors of four doubles (AVX-512VL: its masks and 32 registers on
-// 256-bit vectors): on a Xeon (Sapphire Rapids) the cube's runs, a few dozen bonds each, ran 5-10%
-// slower in vectors of eight than in vectors of four (bench/README.md, session of 2026-12-01,
-// twenty-fifth). On an AMD processor with AVX-512 (an EPYC of the Zen 4 family) the AVX2 clone is
-// taken: the cube's loop ran 7% (PMB) and 8% (LPS) faster in it than in the AVX-512 clone, VES alike
-// (bench/README.md, session of 2026-12-04, thirty-first). Every clone does the same IEEE operations
+// 256-bit vectors): a run is a few dozen bonds, and vectors of eight leave more of each to the
+// remainder loops (measured slower on a Sapphire Rapids Xeon, bench/README.md). On an AMD processor
+// with AVX-512 (Zen 4) the AVX2 clone is taken: it measured faster there than the AVX-512 clone
+// (bench/README.md). Every clone does the same IEEE operations
 // in the same order (no fused multiply-add: -ffp-contract=off; square roots and divisions are
 // correctly rounded at every width), so results are the same bits whichever runs
 // (tests/test_bond_runs.cpp).

@@ -101,8 +101,8 @@ template <int D>
 void Boundaries<D>::apply_body_forces(pd::Model<D>& m, double t) const {
   using K = scene::BoundaryKind;
   // cleared by the team as kick splits the particles, so that each core clears the lines it reads
-  // next: cleared by one thread, every line the other core's kick read came from this core's cache
-  // (2% of a PMB step on a VM whose two CPUs sat on different L3 caches, 2026-12-05)
+  // next: cleared by one thread, every line the other core's kick reads would come from this core's
+  // cache, dear where the two cores share no L3 cache (bench/README.md)
   const std::size_t n = m.size();
 #pragma omp parallel for if(rift::parallel::worth_a_team(n)) schedule(static)
   for (std::size_t i = 0; i < n; ++i) m.body_force[i] = Vec<D>{};

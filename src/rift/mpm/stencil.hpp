@@ -42,7 +42,7 @@ struct LostParticle {
 /// the number of nodes, or 0 when the particle's stencil reaches past the grid. The 1D factors stay
 /// in registers and each product is stored once where it is read from: a copy through a
 /// temporary (scalar stores read back as vectors) cost two threads sharing a core more than the
-/// products themselves (bench/README.md, session of 2026-11-29). The shape is a template argument
+/// products themselves (bench/README.md). The shape is a template argument
 /// so that its node count is a constant and the loops unroll (the 2D linear beam's stencils took
 /// 241 instructions a point with the kind read at run time; with_shape picks the instance).
 template <ShapeKind Shape, int D, class NodeIndex>
@@ -65,7 +65,7 @@ int make_stencil(const Model<D>& m, const Vec<D>& x, NodeIndex* node, double* we
     if (!inside(sz, 2)) return 0;
   }
   // The numbering in registers: the stores below may alias m, so g.index would read it again each
-  // time (3-5% of the 2D beam's step, 2026-11-29).
+  // time.
   const std::array<long, 3> nodes = g.nodes;
   int count = 0;
   for (int k = 0; k < sz.count; ++k)

@@ -5,9 +5,9 @@
 // taken again by each. Memory: support(shape)^D nodes
 // per point, each its index (32 bits), weight and gradient (2D quadratic B-splines: 9 x 28 bytes).
 // The cache is read three times a step (MUSL: the forces' scatter, grid to particles with the remap of
-// the new momenta, the stress update): 64-bit indices ran two threads 5-8% slower. Storing each
-// axis' 1D factors instead (70-101 bytes a 2D point) and forming the products in the transfers ran
-// 14-16% slower on one thread and two alike (bench/README.md, sessions of 2026-11-29).
+// the new momenta, the stress update), so its indices are 32-bit (64-bit ones measured slower on two
+// threads). The products are stored, not formed in the transfers from each axis' 1D factors: the
+// transfers are bound by their work per node, not by the bytes they read (bench/README.md).
 #pragma once
 #include <cstddef>
 #include <cstdint>
@@ -77,9 +77,8 @@ class StencilCache {
 /// for a few points (parallel/team.hpp). body must compute each point alone. Every pass over the
 /// points in a step gives each thread the same block first (the scatter's, solver.cpp), so a
 /// point's data stays in the cache of the core that used it last; a thread done early takes over
-/// the rest of another's (parallel/shared_blocks.hpp). A dynamic schedule moved the blocks between
-/// cores from pass to pass, and two threads ran the 2D beam no faster than one (bench/README.md,
-/// session of 2026-11-29).
+/// the rest of another's (parallel/shared_blocks.hpp). A dynamic schedule would move the blocks
+/// between cores from pass to pass, and cost two threads their gain over one (bench/README.md).
 template <int D, class Body>
 void for_each_cached_stencil(const StencilCache<D>& cache, Body body) {
   rift::parallel::for_each_in_shared_blocks(cache.size(), [&](std::size_t p) { body(p, cache[p]); });

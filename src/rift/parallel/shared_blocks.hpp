@@ -2,11 +2,11 @@
 // equal blocks, in order, so that each pass of a step over the same items finds them in the cache
 // of the core that used them last), in which a thread that is done with its block goes on with the
 // rest of the others' blocks, a chunk at a time. A static schedule waits at its closing barrier for
-// the last thread: on a shared machine a descheduled vCPU held both threads of an MPM step for as
-// long as it was away, so two threads lost about twice the time one did (bench/README.md, session
-// of 2026-11-30). Each block hands out its chunks from the front through one atomic counter, which
-// its owner alone touches until someone else is done. Each item is computed by one thread, by the
-// same code on any thread, so the results do not depend on who took it.
+// the last thread: on a shared machine a descheduled vCPU holds the whole team for as long as it is
+// away, so two threads pay about twice the machine's noise that one does (bench/README.md). Each
+// block hands out its chunks from the front through one atomic counter, which its owner alone
+// touches until someone else is done. Each item is computed by one thread, by the same code on any
+// thread, so the results do not depend on who took it.
 #pragma once
 #include <omp.h>
 
@@ -20,10 +20,10 @@
 namespace rift::parallel {
 
 /// body(i) for i in [first, last). One compiled loop for a team's chunks and for the calling thread
-/// alone: inlined into each caller, GCC 12 compiled the 2D stress update's point body in the team's
-/// copy with its velocity gradient stored to the stack as scalars and read back as pairs (a failed
-/// store forwarding, twice a point), and two threads ran that pass 1.65-1.73 times faster than
-/// one instead of 2 (bench/README.md, session of 2026-12-01, twenty-fifth).
+/// alone, so that one thread and a team run the same machine code: inlined into each caller, GCC 12
+/// compiled the 2D stress update's point body differently in the team's copy (its velocity gradient
+/// stored to the stack as scalars and read back as pairs: a failed store forwarding, twice a point),
+/// and that pass gained well under 2x from a second thread (bench/README.md).
 template <class Body>
 [[gnu::noinline]] void for_each_in_range(std::size_t first, std::size_t last, Body& body) {
   for (std::size_t i = first; i < last; ++i) body(i);

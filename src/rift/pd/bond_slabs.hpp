@@ -130,13 +130,12 @@ inline SlabCut cut_into_slabs(const Bonds& b, std::size_t first, std::size_t las
   std::partial_sum(forward.begin(), forward.end(), forward.begin());
   std::size_t length = std::max(reach, (count + 255) / 256);
   // the slabs of each parity shared evenly by a team of two or four: their number a multiple of
-  // eight where that keeps a slab at least the reach long (27 slabs on two threads left one thread
-  // 7 of a parity's 14 and the other 6 to wait: 5% of the thesis proxy's bond passes). Not the
-  // team's size itself: the slabs order the sums, which must not depend on it. Under sixteen slabs
-  // a multiple of four: the bench cube (41^3, horizon 3 spacings: 13 slabs) then has 12, three a
-  // thread and parity on two threads instead of two, and a thread slowed for a while by the rest of
-  // the machine holds the other back for less: its PMB pass on two threads 9% faster, LPS and VES
-  // 4-5% (alternating runs, 2026-11-30). A team of four then gets two slabs or one a parity, not one.
+  // eight where that keeps a slab at least the reach long (27 slabs would leave one of two threads
+  // 7 of a parity's 14 and the other 6, then waiting). Not the team's size itself: the slabs order
+  // the sums, which must not depend on it. Under sixteen slabs a multiple of four: the bench cube
+  // (41^3, horizon 3 spacings: 13 slabs) then has 12, three a thread and parity on two threads
+  // instead of two, so a thread slowed for a while by the rest of the machine holds the other back
+  // for less (bench/README.md). A team of four then gets two slabs or one a parity, not one.
   std::size_t slabs = (count + length - 1) / length;
   const std::size_t multiple = slabs >= 16 ? 8 : 4;
   if (slabs >= multiple && slabs % multiple != 0) {
@@ -147,12 +146,11 @@ inline SlabCut cut_into_slabs(const Bonds& b, std::size_t first, std::size_t las
   }
   if (slabs < 2) return {std::max<std::size_t>(length, 1), 1};
   // A slab's work is its rows' forward bonds, and the rows of the last slab lose theirs past the
-  // body's end: in equal slabs the bench cube's last had two thirds of the others' forward bonds,
-  // and the thread that took it waited for the other in every pass of odd slabs (libgomp's spin,
-  // 2.4-4.6% of a step on two threads). So the others are made shorter, down to the reach, until the
-  // last, which takes the rest, has the forward bonds of an average other (the cube's slabs 5,581
-  // particles, not 5,744, its last 7,530: its loop on two threads 2-4% faster, 2026-12-05; the
-  // thesis-size lattice's 85,796, not 86,944, its last 115,516).
+  // body's end: in equal slabs the bench cube's last has two thirds of the others' forward bonds,
+  // and the thread that takes it waits for the other in every pass of odd slabs. So the others are
+  // made shorter, down to the reach, until the last, which takes the rest, has the forward bonds of
+  // an average other (the cube's slabs 5,581 particles, not 5,744, its last 7,530; the thesis-size
+  // lattice's 85,796, not 86,944, its last 115,516; bench/README.md).
   const auto shortfall = [&](std::size_t l) {  // the last slab's forward bonds less an average other's, times (slabs - 1)
     const std::size_t cut = (slabs - 1) * l;
     return (forward[count] - forward[cut]) * static_cast<std::int64_t>(slabs - 1) - forward[cut];
@@ -175,16 +173,15 @@ inline std::size_t slab_of(const BodyInfo& body, std::size_t whole) {
 /// beside q - 1 or q + 1. Each even slab (whole-body parity) comes before its odd neighbours, as one
 /// sweep of the even slabs and then one of the odd ones would do: each particle gets its sums in the
 /// same order on any thread count. An odd slab waits only until its two even neighbours are done, not
-/// for every even slab: a barrier between the two sweeps kept a thread that ended its even slabs
-/// early waiting (13% of a PMB step's thread time was spent in such barriers, perf, 2026-11-30).
+/// for every even slab: a barrier between the two sweeps would keep a thread that ends its even
+/// slabs early waiting.
 /// A team's thread t owns the t-th of equal blocks of consecutive slabs, as a static schedule over
 /// the particles splits them (kick, drift, the passes' copies), and takes its own even slabs, then
 /// what is left of the others' even ones, then its odd ones and the others'. So a slab runs where
-/// its particles were last moved and summed, and where the next pass finds them: handed out from
-/// one counter, every other slab went to the other core, and on a VM whose two CPUs sat on
-/// different L3 caches (a cache line between them 170 ns, not 25) that cost a PMB step on two
-/// threads 25% (2026-12-05). A thread slowed by the rest of the machine still holds the other back
-/// for at most a slab: the other takes what is left of its block.
+/// its particles were last moved and summed, and where the next pass finds them: slabs handed out
+/// from one counter would move every other slab's particles to the other core each pass, dear where
+/// the two cores share no L3 cache (bench/README.md). A thread slowed by the rest of the machine
+/// still holds the other back for at most a slab: the other takes what is left of its block.
 template <class Slab>
 void for_each_slab(std::size_t count, std::size_t first_slab, bool team, Slab&& slab) {
   const std::size_t skip = first_slab % 2;  // local number of the first even slab

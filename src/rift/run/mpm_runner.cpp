@@ -210,10 +210,9 @@ mpm::CrackSet broadcast_cracks(const parallel::Communicator& comm, const mpm::Cr
 
 /// Each point's weight in the cut into boxes (mpm/domain.hpp cut_into_boxes): 1, and 2 for a point
 /// within the solver's reach of an explicit crack (two cells of its box), which takes a velocity
-/// field per node by the line-crossing test (crack.hpp) on nodes that solve per field. Measured on
-/// the cracked DCB of bench/run_mpm on 2 ranks cut by points alone (2026-11-28), the rank holding
-/// the crack's 840 such points worked about 0.2 s of 1 s more: a near point about 1.4 times an
-/// ordinary point's work more with quadratic B-splines, 0.5 times with linear shapes; 1 between.
+/// field per node by the line-crossing test (crack.hpp) on nodes that solve per field. 2 lies
+/// between a near point's measured work with linear shapes (about 1.5 ordinary points') and with
+/// quadratic B-splines (about 2.4) (docs/decisions/performance-notes.md).
 template <int D>
 std::vector<double> crack_work_weights(const mpm::Model<D>& m, const mpm::CrackSet& cracks) {
   std::vector<double> weight(m.particles.size(), 1.0);
