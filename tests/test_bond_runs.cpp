@@ -64,6 +64,7 @@ std::string block_scene(int dimension, bool surface_correction, const char* mode
   s << "[scene]\ndimension = " << dimension << (dimension == 2 ? "\nplane = \"strain\"\nthickness = 0.001\n" : "\n")
     << "[materials.glass]\nmodel = \"" << model << "\"\ndensity = 2440.0\nyoungs_modulus = 72e9\npoisson_ratio = 0.25\n"
     << (std::string(model) == "ves" ? "viscous_fraction = 0.5\nrelaxation_time = 1e-6\n" : "")
+    << (std::string(model) == "eps" ? "yield_stress = 1.0e5\n" : "")
     << (std::string(model) == "lps" ? "influence = \"inverse_distance\"\n" : "")
     << "critical_stretch = 2e-3\nalpha = 0.25\nsurface_correction = " << (surface_correction ? "true" : "false") << "\n";
   if (dimension == 3)
@@ -599,8 +600,8 @@ TEST(BondRuns, VectorClonesGiveTheSameBits) {
   }
 }
 
-// The energy densities in runs against the rows (pmb.hpp, lps.hpp energy_density): PMB, LPS and VES
-// (two steps of history), 3D without the surface correction and 2D with it, bonds broken
+// The energy densities in runs against the rows (pmb.hpp, lps.hpp energy_density): PMB, LPS, VES
+// (two steps of history) and EPS (two steps of plastic flow), 3D without the surface correction and 2D with it, bonds broken
 // beforehand and by the passes. The sums are made in another order: 1e-12 of the largest W.
 template <int D>
 void check_energy_runs_against_rows(bool surface_correction, const char* model) {
@@ -620,7 +621,7 @@ void check_energy_runs_against_rows(bool surface_correction, const char* model) 
 }
 
 TEST(BondRuns, StrainEnergyDensitiesEqualRowByRowFormulas) {
-  for (const char* model : {"pmb", "lps", "ves"}) {
+  for (const char* model : {"pmb", "lps", "ves", "eps"}) {
     check_energy_runs_against_rows<3>(false, model);
     check_energy_runs_against_rows<2>(true, model);
   }

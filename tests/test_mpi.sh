@@ -34,7 +34,7 @@ one_rank() { OMP_NUM_THREADS=2 "$rift" "$@"; }
 # memory errors and undefined behaviour on the exchanges' paths, which the other scenes take too;
 # the release build runs and compares every scene on every rank count
 sanitized() { [[ "${RIFT_MPI_SANITIZED:-0}" == 1 ]]; }
-sanitizer_skips="borehole sealed relax_bar free_plate insitu_dr kgd_viscous mpm_growth"
+sanitizer_skips="borehole sealed relax_bar eps_relax_bar free_plate insitu_dr kgd_viscous mpm_growth"
 # skipped SCENE: whether this run leaves SCENE out
 skipped() { sanitized && [[ " $sanitizer_skips " == *" $1 "* ]]; }
 sanitized && echo "note: each scene compared on its largest rank count only, and left out: $sanitizer_skips (RIFT_MPI_SANITIZED=1)"
@@ -184,13 +184,18 @@ SCENE
 sed -e 's/model = "lps"/model = "ves"\nviscous_fraction = 0.5\nrelaxation_time = 2.0e-6/' -e 's/name = "bar"/name = "ves_bar"/' \
   "$tmp/bar.toml" > "$tmp/ves_bar.toml"
 
+# the bar again, elastic-plastic (laws/eps.hpp): each rank commits the plastic extension of every
+# direction it holds, a ghost's with its owner's return-map scale
+sed -e 's/model = "lps"/model = "eps"\nyield_stress = 3.0e5/' -e 's/name = "bar"/name = "eps_bar"/' \
+  "$tmp/bar.toml" > "$tmp/eps_bar.toml"
+
 # the plate again, LPS, its bonds failing on the normal stress along them (normal_stress_failure.hpp):
 # a bond across a cut reads the strains of both ends, the ghost's from its owner, and the
 # dilatation pass goes row by row through each window's slabs, the first cut short (bond_slabs.hpp)
 sed -e 's/model = "pmb"/model = "lps"/' -e 's/fracture_energy = 3.8/bond_failure = "normal_stress"\ntensile_strength = 15.0e6/' \
   -e 's/name = "plate"/name = "ns_plate"/' "$tmp/plate.toml" > "$tmp/ns_plate.toml"
 
-for scene in plate bar ves_bar ns_plate; do
+for scene in plate bar ves_bar eps_bar ns_plate; do
   one_rank run "$tmp/$scene.toml" -o "$tmp/$scene-serial" -q > "$tmp/$scene-serial.log"
   same_on_ranks "$scene" 1 2 3
   echo "ok: $scene on $(compared_on 1 2 3) ranks: the same bytes in every output as one rank"
@@ -206,7 +211,11 @@ sed -e 's/type = "velocity"/type = "displacement"/' -e 's/^z = 5.0/z = 2.0e-6\nt
   -e 's/type = "explicit"/type = "dynamic_relaxation"\nload_steps = 2\nmax_iterations = 400\ntolerance = 1e-4/' -e 's/end_time = 2.0e-5/end_time = 1.0/' \
   -e '/^snapshots = 3/d' -e '/^history_rows = 10/d' -e 's/name = "bar"/name = "relax_bar"/' "$tmp/bar.toml" > "$tmp/relax_bar.toml"
 skipped relax_bar || one_rank run "$tmp/relax_bar.toml" -o "$tmp/relax_bar-serial" -q > /dev/null
-for scene in bar ves_bar relax_bar; do
+# eps_relax_bar: the same, elastic-plastic: each load step's equilibrium commits the plastic extensions
+sed -e 's/model = "lps"/model = "eps"\nyield_stress = 1.0e5/' -e 's/name = "relax_bar"/name = "eps_relax_bar"/' \
+  "$tmp/relax_bar.toml" > "$tmp/eps_relax_bar.toml"
+skipped eps_relax_bar || one_rank run "$tmp/eps_relax_bar.toml" -o "$tmp/eps_relax_bar-serial" -q > /dev/null
+for scene in bar ves_bar relax_bar eps_relax_bar; do
   skipped "$scene" && continue
   for grid in 1x2x2 1x2x1; do
     IFS=x read -r _ py pz <<< "$grid"
@@ -228,6 +237,7 @@ for np in $(ranks_compared 1 3); do
 done
 echo "ok: $(skipped relax_bar && echo "bar and ves_bar" || echo "bar, ves_bar and relax_bar") on 1 x 2 x 2 and 1 x 2 x 1 pencils, and ves_bar from a checkpoint of 1 x 2 x 2 continued on $(compared_on 1 3) ranks: the same bytes as one rank"
 # the plates' cracks must have grown (else the test shows nothing about breaking on the cut)
+cmp -s "$tmp/bar-serial/history.csv" "$tmp/eps_bar-serial/history.csv" && fail "eps_bar: the same history as the elastic bar (no plastic flow)"
 for scene in plate ns_plate; do
   awk -F, 'NR > 1 { b = $6 } END { exit !(b > 1000) }' "$tmp/$scene-serial/history.csv" || fail "$scene: fewer than 1000 bonds broke"
 done

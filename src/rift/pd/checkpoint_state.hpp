@@ -17,7 +17,7 @@ namespace rift::pd {
 #if defined(__x86_64__) && defined(__GLIBCXX__)
 // 24 bytes per std::vector, 32 per std::string (libstdc++, x86_64); a bool or int member padded to 8
 static_assert(sizeof(FamilyOffset) == 7 * 8, "a member was added to FamilyOffset: list it in pd/checkpoint_state.hpp");
-static_assert(sizeof(MaterialConstants) == 3 * 4 + 4 + 12 * 8 + 2 * 8, "a member was added to MaterialConstants: list it in pd/checkpoint_state.hpp");
+static_assert(sizeof(MaterialConstants) == 3 * 4 + 4 + 13 * 8 + 2 * 8, "a member was added to MaterialConstants: list it in pd/checkpoint_state.hpp");
 static_assert(sizeof(InterfaceOutcome) == 8 + 2 * 8, "a member was added to InterfaceOutcome: list it in pd/checkpoint_state.hpp");
 // (the states carry a count of their changes, and the kept rows and whether the back extensions are
 // at rest are caches: none is saved)
@@ -57,7 +57,8 @@ void visit(A& a, MaterialConstants& c) {
   a("constants.micromodulus", c.micromodulus), a("constants.equivalent_micromodulus", c.equivalent_micromodulus);
   a("constants.critical_stretch", c.critical_stretch), a("constants.alpha", c.alpha), a("constants.breakable", c.breakable);
   a("constants.normal_stress_failure", c.normal_stress_failure), a("constants.viscous_fraction", c.viscous_fraction);
-  a("constants.relaxation_time", c.relaxation_time), a("constants.surface_correction", c.surface_correction);
+  a("constants.relaxation_time", c.relaxation_time), a("constants.yield_stress", c.yield_stress);
+  a("constants.surface_correction", c.surface_correction);
 }
 
 template <class A>

@@ -58,6 +58,16 @@ void compute_forces(Model<D>& m, Contact<D>* contact, double history_dt) {
   }
 }
 
+template <int D>
+void commit_at_equilibrium(Model<D>& m, Contact<D>* contact) {
+  const bool any = std::any_of(m.bodies.begin(), m.bodies.end(), [](const BodyInfo& b) {
+    return with_law(b.constants.model, []<class Law>() { return Law::commits_at_equilibrium; });
+  });
+  if (!any) return;
+  compute_forces<D>(m, contact);
+  for (const auto& body : m.bodies) with_law(body.constants.model, [&]<class Law>() { Law::template commit<D>(m, body); });
+}
+
 namespace {
 
 /// Damage of row i (Silling and Askari 2005, eq. 25); its broken (or failed) directed bonds into
@@ -239,6 +249,7 @@ std::size_t failed_bonds(const Model<D>& m) {
 
 #define RIFT_INSTANTIATE(D)                                               \
   template void compute_forces<D>(Model<D>&, Contact<D>*, double);        \
+  template void commit_at_equilibrium<D>(Model<D>&, Contact<D>*);         \
   template void update_damage<D>(Model<D>&);                              \
   template double strain_energy_density<D>(const Model<D>&, std::size_t); \
   template void strain_energy_densities<D>(const Model<D>&, double*);     \

@@ -8,10 +8,16 @@
 
 namespace rift::pd {
 
-/// history_dt: the time the viscoelastic (ves) history advances in this evaluation: the step of an
-/// explicit run; 0 holds it (initial forces, dynamic relaxation).
+/// history_dt: the time the bonds' histories advance in this evaluation (VES: its back extensions;
+/// EPS: its plastic extensions commit): the step of an explicit run; 0 holds them (initial forces,
+/// dynamic relaxation, whose load steps commit_at_equilibrium).
 template <int D>
 void compute_forces(Model<D>& m, Contact<D>* contact, double history_dt = 0.0);
+
+/// At the equilibrium of a load step of dynamic relaxation: the histories that commit there (EPS's
+/// plastic extensions), from the forces of the positions reached. Nothing for the other laws.
+template <int D>
+void commit_at_equilibrium(Model<D>& m, Contact<D>* contact);
 
 /// After a step: the s0 computed from this step's minimum stretch becomes current (alpha > 0).
 template <int D>

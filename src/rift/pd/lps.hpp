@@ -295,18 +295,20 @@ void lps_dilatation(Model<D>& m, const BodyInfo& body, RowStates* rows_out = nul
 /// extension of each end less lambda times its back extension, which first advances over
 /// history_dt, viscous_step.hpp; 0 holds it), each bond once (bond_slabs.hpp): the pair force
 /// density (t_i<j> + t_j<i>) V along the deformed bond, on i and, opposite, on j. `rows`: the rows'
-/// states as the dilatation pass left them (null: read from the bonds).
+/// states as the dilatation pass left them (null: read from the bonds). `deviatoric_scale`, where
+/// given, scales each particle's deviatoric term a_i (EPS: its return map's beta_i, eps.hpp).
 template <int D, scene::Influence Omega, bool Viscous, bool Corrected>
-void state_based_forces(Model<D>& m, const BodyInfo& body, double history_dt, const RowStates* rows);
+void state_based_forces(Model<D>& m, const BodyInfo& body, double history_dt, const RowStates* rows, const double* deviatoric_scale);
 
 template <int D, scene::Influence Omega, bool Viscous>
-void state_based_forces(Model<D>& m, const BodyInfo& body, double history_dt = 0.0, const RowStates* rows = nullptr) {
-  if (body.constants.surface_correction) state_based_forces<D, Omega, Viscous, true>(m, body, history_dt, rows);
-  else state_based_forces<D, Omega, Viscous, false>(m, body, history_dt, rows);
+void state_based_forces(Model<D>& m, const BodyInfo& body, double history_dt = 0.0, const RowStates* rows = nullptr,
+                        const double* deviatoric_scale = nullptr) {
+  if (body.constants.surface_correction) state_based_forces<D, Omega, Viscous, true>(m, body, history_dt, rows, deviatoric_scale);
+  else state_based_forces<D, Omega, Viscous, false>(m, body, history_dt, rows, deviatoric_scale);
 }
 
 template <int D, scene::Influence Omega, bool Viscous, bool Corrected>
-void state_based_forces(Model<D>& m, const BodyInfo& body, double history_dt, const RowStates* given_rows) {
+void state_based_forces(Model<D>& m, const BodyInfo& body, double history_dt, const RowStates* given_rows, const double* deviatoric_scale) {
   const auto& c = body.constants;
   Bonds& b = m.bonds;
   const double horizon = c.horizon, kappa = c.kappa, a_dev = c.lps_deviatoric_coefficient(), lambda = c.viscous_fraction;
@@ -326,7 +328,7 @@ void state_based_forces(Model<D>& m, const BodyInfo& body, double history_dt, co
     const double a_j = m.weighted_volume[j] > 0.0 ? a_dev / m.weighted_volume[j] : 0.0;
     double p_j = pressure_factor<D>(kappa, m.dilatation[j], a_j, m.dilatation_coupling[j]);
     if constexpr (!Corrected) p_j *= dilatation_scale<D>(m.weighted_volume[j]);
-    pressure[j] = p_j, coefficient[j] = a_j;
+    pressure[j] = p_j, coefficient[j] = deviatoric_scale ? a_j * deviatoric_scale[j] : a_j;
     for (int q = 0; q < D; ++q) f[q][j] = 0.0;
   }
   const RowStates rows = given_rows ? *given_rows : whole_rows(b, body);

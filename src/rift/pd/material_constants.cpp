@@ -2,6 +2,7 @@
 
 #include "rift/pd/critical_stretch.hpp"
 #include "rift/pd/influence.hpp"
+#include "rift/pd/laws/registry.hpp"
 
 namespace rift::pd {
 
@@ -35,9 +36,8 @@ MaterialConstants make_constants(const scene::Scene& s, const scene::Material& m
   const double kappa_equivalent = mc.dimension == 3 ? 5.0 * mc.p_wave_modulus() / 9.0 : 2.0 * mc.p_wave_modulus() / 3.0;
   mc.equivalent_micromodulus = pmb_micromodulus(mc.dimension, kappa_equivalent, horizon, mc.thickness, mc.influence);
   mc.alpha = m.alpha;
-  mc.viscous_fraction = m.viscous_fraction;
-  mc.relaxation_time = m.relaxation_time;
   mc.surface_correction = m.surface_correction;
+  with_law(mc.model, [&]<class Law>() { Law::take_constants(mc, m); });
   if (m.bond_failure == scene::BondFailure::normal_stress) {
     mc.normal_stress_failure = true;
     mc.critical_stretch = *m.tensile_strength / (mc.dimension * mc.kappa);

@@ -25,9 +25,12 @@ struct MaterialConstants {
   /// Bonds break on the normal stress along them (bond_failure = normal_stress): critical_stretch is
   /// then the tensile strength over d kappa, the stretch of a uniform expansion with that stress.
   bool normal_stress_failure = false;
-  /// Viscoelastic state-based model (ves; Mitchell 2011): lambda, the share of the deviatoric
-  /// response that relaxes, and its relaxation time tau (s).
+  /// A law with a history of each bond (laws/registry.hpp bond_history): lambda, the share of the
+  /// deviatoric extension measured from each direction's stored extension (VES: the share that
+  /// relaxes, Mitchell 2011; EPS: 1, the plastic extension), and VES's relaxation time tau (s).
   double viscous_fraction = 0.0, relaxation_time = 0.0;
+  /// EPS (laws/eps.hpp): the uniaxial yield stress sigma_Y, Pa.
+  double yield_stress = 0.0;
   bool surface_correction = true;
 
   /// Lame's first parameter of the dimension: kappa - 2G/3 (3D), kappa - G (2D).

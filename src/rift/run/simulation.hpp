@@ -145,11 +145,14 @@ struct Simulation {
   }
   void step() { pd::velocity_verlet_step<D>(model, loads, contact_ptr(), dt); }
   /// One load step of dynamic relaxation at time t, bonds breaking as [solver] breaking says.
+  /// The load step ends with its equilibrium's histories committed (pd::commit_at_equilibrium).
   pd::RelaxationResult relax(pd::DynamicRelaxation<D>& dr, const scene::Solver& solver, double t) {
-    if (solver.breaking == scene::Solver::Breaking::at_equilibrium)
-      return dr.relax_breaking_at_equilibrium(model, loads, contact_ptr(), t, solver.max_iterations, solver.tolerance,
-                                              solver.max_breaking_passes);
-    return dr.relax(model, loads, contact_ptr(), t, solver.max_iterations, solver.tolerance);
+    const auto r = solver.breaking == scene::Solver::Breaking::at_equilibrium
+                       ? dr.relax_breaking_at_equilibrium(model, loads, contact_ptr(), t, solver.max_iterations, solver.tolerance,
+                                                          solver.max_breaking_passes)
+                       : dr.relax(model, loads, contact_ptr(), t, solver.max_iterations, solver.tolerance);
+    if (!r.stopped) pd::commit_at_equilibrium<D>(model, contact_ptr());
+    return r;
   }
 
  private:

@@ -148,11 +148,11 @@ void parse_materials(R& root, Scene& s) {
     m.name = name;
     m.where = r.where();
     const bool pd = s.method == Method::peridynamics;
-    const std::vector<std::string> models = pd ? std::vector<std::string>{"pmb", "lps", "ves"}
+    const std::vector<std::string> models = pd ? std::vector<std::string>{"pmb", "lps", "ves", "eps"}
                                                : std::vector<std::string>{"linear_elastic", "neo_hookean", "j2_plasticity"};
     auto model = r.choice("model", models);
     if (!model) throw SceneError(r.where(), r.key("model"), "missing required key (" + R::join(models) + ")");
-    const std::map<std::string, ModelKind> kinds{{"pmb", ModelKind::pmb}, {"lps", ModelKind::lps}, {"ves", ModelKind::ves},
+    const std::map<std::string, ModelKind> kinds{{"pmb", ModelKind::pmb}, {"lps", ModelKind::lps}, {"ves", ModelKind::ves}, {"eps", ModelKind::eps},
         {"linear_elastic", ModelKind::linear_elastic}, {"neo_hookean", ModelKind::neo_hookean}, {"j2_plasticity", ModelKind::j2_plasticity}};
     m.model = kinds.at(*model);
     m.density = r.positive("density", r.required_number("density", "mass density, kg/m^3"));
@@ -214,6 +214,11 @@ void parse_materials(R& root, Scene& s) {
         m.viscous_fraction = lambda;
         m.relaxation_time = r.positive("relaxation_time", r.required_number("relaxation_time", "tau, s"));
         allowed.insert(allowed.end(), {"viscous_fraction", "relaxation_time"});
+      }
+      if (m.model == ModelKind::eps) {
+        // Mitchell (2011) elastic-plastic state-based model, as LAMMPS peri/eps
+        m.yield_stress = r.positive("yield_stress", r.required_number("yield_stress", "uniaxial yield stress, Pa"));
+        allowed.insert(allowed.end(), {"yield_stress"});
       }
     } else {
       if (m.model != ModelKind::linear_elastic && s.dimension == 2 && s.plane == PlaneCondition::stress)

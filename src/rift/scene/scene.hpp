@@ -28,7 +28,7 @@ inline constexpr double smallest_time_step_fraction = 1e-6;
 enum class PlaneCondition { none, stress, strain };
 enum class Method { peridynamics, mpm };
 /// Peridynamic models (pmb, lps) and continuum models for the material point method.
-enum class ModelKind { pmb, lps, ves, linear_elastic, neo_hookean, j2_plasticity };
+enum class ModelKind { pmb, lps, ves, linear_elastic, neo_hookean, j2_plasticity, eps };
 /// Influence function omega(|xi|): constant 1, or delta/|xi| ("inverse_distance", LAMMPS peri/lps).
 enum class Influence { constant, inverse_distance };
 // What breaks a bond: its stretch past s0 (Silling and Askari 2005; LAMMPS peri), or the normal
@@ -55,7 +55,7 @@ struct Material {
   double viscous_fraction = 0.0;           // ves: lambda, share of the deviatoric response that relaxes
   double relaxation_time = 0.0;            // ves: tau, s
   bool surface_correction = true;
-  double yield_stress = 0.0;       // j2_plasticity, Pa
+  double yield_stress = 0.0;       // j2_plasticity, eps: uniaxial yield stress, Pa
   double hardening_modulus = 0.0;  // j2_plasticity, linear isotropic hardening, Pa
   double youngs_modulus() const { return 9.0 * bulk_modulus * shear_modulus / (3.0 * bulk_modulus + shear_modulus); }
   double poisson_ratio() const {

@@ -40,7 +40,11 @@ struct Lps {
   static constexpr const char* example_material = "";  // the material lines it needs beyond the elastic constants
   static constexpr bool state_based = true;  // the force pass reads the dilatations (and P) of both ends
   static constexpr bool bond_history = false;
+  static constexpr bool commits_at_equilibrium = false;  // a history that dynamic relaxation commits at each load step
   static constexpr int energy_moment_power = 2;  // the surface correction matches int omega |xi|^2 (the weighted volume)
+
+  /// The law's own constants from the scene's material (make_constants does the elastic ones).
+  static void take_constants(MaterialConstants&, const scene::Material&) {}
 
   static double separation_work_per_stretch2(const MaterialConstants& c) { return pd::separation_work_per_stretch2(c, true); }
 
@@ -54,6 +58,10 @@ struct Lps {
   static void second_pass(Model<D>& m, const BodyInfo& body, double /*history_dt*/, const RowStates* rows) {
     with_influence(body.constants.influence, [&]<scene::Influence Omega>() { state_based_forces<D, Omega, false>(m, body, 0.0, rows); });
   }
+
+  /// The history committed at an equilibrium (dynamic relaxation's load step): none.
+  template <int D>
+  static void commit(Model<D>&, const BodyInfo&) {}
 
   template <int D>
   static void energy_densities(const Model<D>& m, const BodyInfo& body, double* w) {

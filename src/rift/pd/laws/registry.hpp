@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "rift/pd/laws/eps.hpp"
 #include "rift/pd/laws/lps.hpp"
 #include "rift/pd/laws/pmb.hpp"
 #include "rift/pd/laws/ves.hpp"
@@ -18,7 +19,7 @@ namespace rift::pd {
 template <class... L>
 struct LawList {};
 
-using Laws = LawList<laws::Pmb, laws::Lps, laws::Ves>;
+using Laws = LawList<laws::Pmb, laws::Lps, laws::Ves, laws::Eps>;
 
 namespace detail {
 template <class F, class First, class... Rest>

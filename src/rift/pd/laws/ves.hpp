@@ -15,7 +15,13 @@ struct Ves {
   static constexpr const char* example_material = "viscous_fraction = 0.5\nrelaxation_time = 1.0e-4\n";  // the material lines it needs beyond the elastic constants
   static constexpr bool state_based = true;
   static constexpr bool bond_history = true;  // e_b of each direction of every bond (bonds.hpp back_extension)
+  static constexpr bool commits_at_equilibrium = false;  // a history that dynamic relaxation commits at each load step
   static constexpr int energy_moment_power = 2;
+
+  static void take_constants(MaterialConstants& c, const scene::Material& m) {
+    c.viscous_fraction = m.viscous_fraction;
+    c.relaxation_time = m.relaxation_time;
+  }
 
   static double separation_work_per_stretch2(const MaterialConstants& c) { return pd::separation_work_per_stretch2(c, true); }
 
@@ -35,6 +41,10 @@ struct Ves {
       else state_based_forces<D, Omega, false>(m, body, 0.0, rows);
     });
   }
+
+  /// The history committed at an equilibrium (dynamic relaxation's load step): none.
+  template <int D>
+  static void commit(Model<D>&, const BodyInfo&) {}
 
   template <int D>
   static void energy_densities(const Model<D>& m, const BodyInfo& body, double* w) {

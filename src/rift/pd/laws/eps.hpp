@@ -1,0 +1,85 @@
+// Elastic-plastic state-based law (EPS; Mitchell 2011, SAND2011-3166, as LAMMPS peri/eps): the LPS
+// with a plastic deviatoric extension e_p of each direction of every bond,
+//   t_i<j> = b_ij p_i + a_i sigma_ij (e_d - e_p),   e_d = e - theta_i |xi| / d,
+// perfectly plastic under the yield function f = ||t_d||^2 / 2 - psi_0 (eps.hpp: the return map,
+// beta of each end in the pair force, so Newton's third law holds where LAMMPS's peri/eps takes i's
+// dilatation and e_p for both halves). psi_0 (eps.hpp YieldShear), each particle's from its own
+// family, makes a homogeneous pure shear yield at tau = sigma_Y / sqrt(3) (von Mises; Mitchell's
+// 25 sigma_Y^2 / (8 pi delta^5) on the continuum's family in 3D with omega = 1). In 3D any
+// homogeneous deformation then yields as J2 (the norm is |dev eps|), and with omega = 1 flows at
+// sigma_Y; a 2D uniaxial stress yields at 2 sigma_Y / sqrt(3). The dilatation (and P) are the
+// LPS's; e_p commits after each explicit step, and at each load step's equilibrium in dynamic
+// relaxation (trials from the committed e_p between).
+#pragma once
+#include <vector>
+
+#include "rift/pd/eps.hpp"
+#include "rift/pd/laws/lps.hpp"
+
+namespace rift::pd::laws {
+
+struct Eps {
+  static constexpr scene::ModelKind kind = scene::ModelKind::eps;
+  static constexpr const char* name = "EPS";
+  static constexpr const char* keyword = "eps";  // [materials] model = "eps"
+  static constexpr const char* example_material = "yield_stress = 1.0e12\n";  // the material lines it needs beyond the elastic constants
+  static constexpr bool state_based = true;
+  static constexpr bool bond_history = true;  // e_p of each direction of every bond (bonds.hpp back_extension)
+  static constexpr bool commits_at_equilibrium = true;  // a history that dynamic relaxation commits at each load step
+  static constexpr int energy_moment_power = 2;
+
+  /// sigma_Y; lambda = 1: the deviatoric term is measured from e_p.
+  static void take_constants(MaterialConstants& c, const scene::Material& m) {
+    c.yield_stress = m.yield_stress;
+    c.viscous_fraction = 1.0;
+  }
+
+  static double separation_work_per_stretch2(const MaterialConstants& c) { return pd::separation_work_per_stretch2(c, true); }
+
+  template <int D>
+  static void first_pass(Model<D>& m, const BodyInfo& body, double /*history_dt*/, RowStates* rows) {
+    with_influence(body.constants.influence, [&]<scene::Influence Omega>() { lps_dilatation<D, Omega>(m, body, rows); });
+  }
+  /// beta of each particle, the pair forces with the returned deviatoric states, and, where the step
+  /// advances (history_dt > 0), e_p committed.
+  template <int D>
+  static void second_pass(Model<D>& m, const BodyInfo& body, double history_dt, const RowStates* rows) {
+    std::vector<double>& beta = yield_scales<D>(m, body);
+    with_influence(body.constants.influence,
+                   [&]<scene::Influence Omega>() { state_based_forces<D, Omega, true>(m, body, 0.0, rows, beta.data()); });
+    if (history_dt > 0.0) commit_plastic_extension<D>(m, body, beta);
+  }
+  /// e_p committed at an equilibrium (dynamic relaxation's load step), from the last force evaluation's dilatations.
+  template <int D>
+  static void commit(Model<D>& m, const BodyInfo& body) {
+    commit_plastic_extension<D>(m, body, yield_scales<D>(m, body));
+  }
+
+  template <int D>
+  static void energy_densities(const Model<D>& m, const BodyInfo& body, double* w) {
+    if (body.constants.surface_correction) strain_energy_densities<D, true, true, true>(m, body, w);
+    else strain_energy_densities<D, true, true, false>(m, body, w);
+  }
+  template <int D>
+  static double energy_density(const Model<D>& m, const BodyInfo& body, std::size_t i) {
+    return state_based_energy_density<D, true>(m, body, i);
+  }
+  template <int D>
+  static double pair_force_density(const Model<D>& m, const BodyInfo& body, std::size_t i, std::size_t j, std::int64_t k,
+                                   double e, double xi, double omega) {
+    return state_based_pair_force_density<D, true>(m, body, i, j, k, e, xi, omega);
+  }
+
+ private:
+  /// beta of every particle of the window (the ghosts' from their owners): the calling thread's buffer.
+  template <int D>
+  static std::vector<double>& yield_scales(const Model<D>& m, const BodyInfo& body) {
+    static thread_local std::vector<double> beta;
+    beta.assign(m.size(), 1.0);
+    with_influence(body.constants.influence, [&]<scene::Influence Omega>() { plastic_yield_scales<D, Omega>(m, body, beta); });
+    m.refresh_ghosts(beta);
+    return beta;
+  }
+};
+
+}  // namespace rift::pd::laws
