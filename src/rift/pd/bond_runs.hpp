@@ -425,11 +425,11 @@ inline void note_broken_bond(std::vector<std::pair<std::size_t, std::int64_t>>& 
 }
 
 /// The particles' positions one array per component (the runs read them contiguously): the calling
-/// thread's buffers (pass_scratch slots 2 to 4), which the team reads through the pointers.
+/// thread's buffers (pass_buffer position_x to position_z), which the team reads through the pointers.
 template <int D>
 std::array<double*, 3> positions_by_component(const std::vector<Vec<D>>& position, const BodyInfo& body) {
   std::array<double*, 3> x{};
-  for (int q = 0; q < D; ++q) x[static_cast<std::size_t>(q)] = pass_scratch(position.size(), 2 + q);
+  for (int q = 0; q < D; ++q) x[static_cast<std::size_t>(q)] = pass_buffer(position.size(), component(PassBuffer::position_x, q));
 #pragma omp parallel for if(rift::parallel::worth_a_team(body.last - body.first)) schedule(static)
   for (std::size_t j = body.first; j < body.last; ++j)
     for (int q = 0; q < D; ++q) x[static_cast<std::size_t>(q)][j] = position[j][q];

@@ -86,12 +86,29 @@ inline void break_mirror_bonds(Bonds& b, const BodyInfo& body, const std::vector
   b.intact.changed();
 }
 
-/// Per-particle scratch of the passes, the calling thread's (the team reads and writes it through
-/// the pointer): one array of n doubles per `slot` (0 to 11).
-inline double* pass_scratch(std::size_t n, int slot) {
-  static thread_local std::vector<double> scratch[12];
-  scratch[slot].resize(n);
-  return scratch[slot].data();
+/// The per-particle buffers of the passes, by what the pass that fills them keeps there: the
+/// dilatation pass's q_i and smallest stretch; the positions one component each; the pair forces
+/// (the network load's sums) one component each; the force pass's p_i and a_i.
+enum class PassBuffer {
+  coupling,
+  smallest_stretch,
+  position_x, position_y, position_z,
+  force_x, force_y, force_z,
+  pressure,
+  deviatoric_coefficient,
+  count
+};
+
+/// Component k of a buffer of components (position_x, force_x).
+constexpr PassBuffer component(PassBuffer x, int k) { return static_cast<PassBuffer>(static_cast<int>(x) + k); }
+
+/// A per-particle buffer of the passes, the calling thread's (the team reads and writes it through
+/// the pointer): n doubles.
+inline double* pass_buffer(std::size_t n, PassBuffer which) {
+  static thread_local std::vector<double> buffers[static_cast<int>(PassBuffer::count)];
+  auto& buffer = buffers[static_cast<int>(which)];
+  buffer.resize(n);
+  return buffer.data();
 }
 
 /// s0_i = s00 - alpha s_min for the next step (alpha > 0), from each particle's smallest stretch

@@ -283,8 +283,8 @@ void dilatation_pass(Model<D>& m, const BodyInfo& body, double* coupling, double
 /// `rows_out`, where given, receives the rows' states after the pass (dilatation_pass).
 template <int D, scene::Influence Omega>
 void lps_dilatation(Model<D>& m, const BodyInfo& body, RowStates* rows_out = nullptr) {
-  double* const q = pass_scratch(m.size(), 0);
-  double* const smallest = pass_scratch(m.size(), 1);
+  double* const q = pass_buffer(m.size(), PassBuffer::coupling);
+  double* const smallest = pass_buffer(m.size(), PassBuffer::smallest_stretch);
   dilatation_pass<D, Omega, true>(m, body, q, smallest, nullptr, rows_out);
 #pragma omp parallel for if(rift::parallel::worth_a_team(body.last - body.first)) schedule(static)
   for (std::size_t i = body.first; i < body.last; ++i) m.dilatation_coupling[i] = q[i] - m.dilatation[i] * m.weighted_volume[i] / D;
@@ -319,9 +319,9 @@ void state_based_forces(Model<D>& m, const BodyInfo& body, double history_dt, co
   const std::size_t n = m.size();
   const auto x = positions_by_component<D>(m.position, body);
   std::array<double*, 3> f{};
-  for (int q = 0; q < D; ++q) f[q] = pass_scratch(n, 5 + q);
-  double* const pressure = pass_scratch(n, 8);  // without the surface correction times d / m (dilatation_scale)
-  double* const coefficient = pass_scratch(n, 9);  // a = A_dev / m
+  for (int q = 0; q < D; ++q) f[q] = pass_buffer(n, component(PassBuffer::force_x, q));
+  double* const pressure = pass_buffer(n, PassBuffer::pressure);  // without the surface correction times d / m (dilatation_scale)
+  double* const coefficient = pass_buffer(n, PassBuffer::deviatoric_coefficient);  // a = A_dev / m
   const double* const theta = m.dilatation.data();
 #pragma omp parallel for if(rift::parallel::worth_a_team(body.last - body.first)) schedule(static)
   for (std::size_t j = body.first; j < body.last; ++j) {

@@ -345,7 +345,7 @@ void network_load_by_runs(const Model<D>& m, int s, const std::vector<NetworkEnd
   // again, in a block made again: a run that reaches no block of either kind adds nothing to a g
   // made again, and is skipped (at the thesis size a pass over every run was a tenth of an early step)
   std::array<double*, 3> sum{};
-  for (int q = 0; q < D; ++q) sum[static_cast<std::size_t>(q)] = pass_scratch(n, 5 + q);
+  for (int q = 0; q < D; ++q) sum[static_cast<std::size_t>(q)] = pass_buffer(n, component(PassBuffer::force_x, q));
 #pragma omp parallel for if(rift::parallel::worth_a_team(n)) schedule(static)
   for (std::size_t first = 0; first < n; first += block) {
     if (!every && !block_remade[first / block]) continue;

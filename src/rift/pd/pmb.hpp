@@ -121,8 +121,9 @@ void pmb_forces(Model<D>& m, const BodyInfo& body) {
   // calling thread's buffers, which the team reads and writes through these pointers
   const std::size_t n = m.size();
   std::array<double*, 3> x{}, f{};
-  for (int q = 0; q < D; ++q) x[q] = pass_scratch(n, 2 + q), f[q] = pass_scratch(n, 5 + q);
-  double* const smallest = pass_scratch(n, 1);
+  for (int q = 0; q < D; ++q)
+    x[q] = pass_buffer(n, component(PassBuffer::position_x, q)), f[q] = pass_buffer(n, component(PassBuffer::force_x, q));
+  double* const smallest = pass_buffer(n, PassBuffer::smallest_stretch);
   constexpr double none = std::numeric_limits<double>::max();
 #pragma omp parallel for if(rift::parallel::worth_a_team(body.last - body.first)) schedule(static)
   for (std::size_t j = body.first; j < body.last; ++j) {

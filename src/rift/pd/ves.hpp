@@ -157,8 +157,8 @@ void ves_dilatation(Model<D>& m, const BodyInfo& body, double dt, RowStates* row
   Bonds& b = m.bonds;
   const double lambda = c.viscous_fraction;
   const ViscousStep step(dt, c.relaxation_time);
-  double* const smallest = pass_scratch(m.size(), 1);
-  double* const q = pass_scratch(m.size(), 0);  // with the surface correction: q_i
+  double* const smallest = pass_buffer(m.size(), PassBuffer::smallest_stretch);
+  double* const q = pass_buffer(m.size(), PassBuffer::coupling);  // with the surface correction: q_i
   const bool corrected = c.surface_correction;
   std::vector<std::pair<std::size_t, std::int64_t>> broken;
   RowStates local_rows;
