@@ -11,6 +11,7 @@
 #include <cmath>
 #include <vector>
 
+#include "rift/pd/bond_runs.hpp"
 #include "rift/pd/bond_slabs.hpp"
 #include "rift/pd/material_constants.hpp"
 #include "rift/pd/influence.hpp"
@@ -35,54 +36,85 @@ struct YieldShear {
   }
 };
 
-/// beta_i of every owned particle of the body (1 where the trial state lies inside the yield
-/// surface), from the current positions and dilatations and the stored plastic extensions.
-template <int D, scene::Influence Omega>
-void plastic_yield_scales(const Model<D>& m, const BodyInfo& body, std::vector<double>& beta) {
+/// The sums of each particle's family over the body's runs (bond_runs.hpp, in the passes' order of
+/// slabs, so the same bits on any thread count and any rank's window): ||t_d||^2 of its trial state
+/// over its intact bonds into norm2, and sum_j (a_i g omega |xi|)^2 V_j over every bond of its row
+/// (broken ones too: damage does not move the yield surface) into family2.
+template <int D, scene::Influence Omega, bool Corrected>
+void deviatoric_norms(const Model<D>& m, const BodyInfo& body, const RowStates& rows, double* norm2, double* family2) {
   const auto& c = body.constants;
   const Bonds& b = m.bonds;
-  const double a_dev = c.lps_deviatoric_coefficient(), shear = YieldShear::of<D>(c).factor;
-  for (const IndexRange& r : m.owned()) {
-    const std::size_t first = std::max(r.first, body.first), last = std::min(r.last, body.last);
-#pragma omp parallel for if(rift::parallel::worth_a_team(last > first ? last - first : 0)) schedule(static)
-    for (std::size_t i = first; i < last; ++i) {
-      beta[i] = 1.0;
-      if (!(m.weighted_volume[i] > 0.0)) continue;
-      const double a = a_dev / m.weighted_volume[i], theta = m.dilatation[i];
-      double norm2 = 0.0, family = 0.0;
-      for (auto k = b.offset[i]; k < b.offset[i + 1]; ++k) {
-        const double xi = b.length(k), weight = a * b.correction(i, k) * influence(Omega, xi, c.horizon);
-        family += weight * weight * xi * xi * b.volume(k);
-        if (b.intact[static_cast<std::size_t>(k)] != bond_intact) continue;
-        const auto j = static_cast<std::size_t>(b.neighbor[k]);
-        const double e = norm<D>(m.position[j] - m.position[i]) - xi;
-        const double t = weight * (e - theta * (xi / D) - b.back_extension[history_slot(b, body, i, k)]);
-        norm2 += t * t * b.volume(k);
+  const double a_dev = c.lps_deviatoric_coefficient();
+  double* const a = pass_buffer(m.size(), PassBuffer::deviatoric_coefficient);
+#pragma omp parallel for if(rift::parallel::worth_a_team(body.last - body.first)) schedule(static)
+  for (std::size_t j = body.first; j < body.last; ++j) {
+    a[j] = m.weighted_volume[j] > 0.0 ? a_dev / m.weighted_volume[j] : 0.0;
+    norm2[j] = 0.0, family2[j] = 0.0;
+  }
+  const auto x = positions_by_component<D>(m.position, body);
+  const double* const theta = m.dilatation.data();
+  for_each_run_by_slabs(body, [&](const BondRun& run) {
+    const FamilyOffset& family = b.families[run.family];
+    const double xi = family.length, omega = influence(Omega, xi, c.horizon), length_over_d = xi / D, xi2v = xi * xi * family.volume;
+    const std::size_t h = history_index(body, static_cast<std::size_t>(run.i), run.family, 0);  // the run's bonds in consecutive slots
+    const float* const back_i = b.back_extension.data() + h;
+    const float* const back_j = b.back_extension.data() + mirror_history_slot(h);
+    for (std::size_t t = 0; t < run.length; ++t) {
+      const std::size_t i = static_cast<std::size_t>(run.i) + t, j = static_cast<std::size_t>(run.j) + t;
+      double g_i = 1.0, g_j = 1.0;
+      if constexpr (Corrected) {
+        g_i = b.factors[static_cast<std::size_t>(b.factor_row[i] + run.family)].correction;
+        g_j = b.factors[static_cast<std::size_t>(b.factor_row[j] + family.mirror)].correction;
       }
-      const double psi0 = shear * family;
-      if (0.5 * norm2 > psi0) beta[i] = std::sqrt(2.0 * psi0 / norm2);
+      const double w_i = a[i] * g_i * omega, w_j = a[j] * g_j * omega;
+      family2[i] += w_i * w_i * xi2v, family2[j] += w_j * w_j * xi2v;
+      if (!run_bond_intact(b, run, rows, t)) continue;
+      const double e = norm<D>(run_ends_at<D>(run, t, x).eta) - xi;
+      const double t_i = w_i * (e - theta[i] * length_over_d - back_i[t]), t_j = w_j * (e - theta[j] * length_over_d - back_j[t]);
+      norm2[i] += t_i * t_i * family.volume, norm2[j] += t_j * t_j * family.volume;
     }
+  });
+}
+
+/// beta_i of every particle of the body (1 where the trial state lies inside the yield surface),
+/// from the current positions and dilatations and the stored plastic extensions: the owned
+/// particles' (a ghost's sums are cut to the window; its owner's beta comes in the exchange).
+template <int D, scene::Influence Omega>
+void plastic_yield_scales(const Model<D>& m, const BodyInfo& body, const RowStates& rows, std::vector<double>& beta) {
+  const double shear = YieldShear::of<D>(body.constants).factor;
+  double* const norm2 = pass_buffer(m.size(), PassBuffer::coupling);
+  double* const family2 = pass_buffer(m.size(), PassBuffer::smallest_stretch);
+  if (body.constants.surface_correction) deviatoric_norms<D, Omega, true>(m, body, rows, norm2, family2);
+  else deviatoric_norms<D, Omega, false>(m, body, rows, norm2, family2);
+#pragma omp parallel for if(rift::parallel::worth_a_team(body.last - body.first)) schedule(static)
+  for (std::size_t i = body.first; i < body.last; ++i) {
+    const double psi0 = shear * family2[i];
+    beta[i] = 0.5 * norm2[i] > psi0 ? std::sqrt(2.0 * psi0 / norm2[i]) : 1.0;
   }
 }
 
-/// e_p of each direction i -> j of every intact bond of the body's particles (the window's ghosts
-/// too, with their owners' beta: both ranks of a pair keep its history alike) after the return map.
+/// e_p of both directions of every intact bond of the body's runs after the return map, e_p +=
+/// (1 - beta)(e_d - e_p) with each end's beta (the window's ghosts' from their owners: both ranks of
+/// a pair keep its history alike).
 template <int D>
-void commit_plastic_extension(Model<D>& m, const BodyInfo& body, const std::vector<double>& beta) {
+void commit_plastic_extension(Model<D>& m, const BodyInfo& body, const RowStates& rows, const std::vector<double>& beta) {
   Bonds& b = m.bonds;
-#pragma omp parallel for if(rift::parallel::worth_a_team(body.last - body.first)) schedule(static)
-  for (std::size_t i = body.first; i < body.last; ++i) {
-    if (beta[i] == 1.0) continue;
-    const double theta = m.dilatation[i], share = 1.0 - beta[i];
-    for (auto k = b.offset[i]; k < b.offset[i + 1]; ++k) {
-      if (b.intact[static_cast<std::size_t>(k)] != bond_intact) continue;
-      const auto j = static_cast<std::size_t>(b.neighbor[k]);
-      const double xi = b.length(k);
-      const double e = norm<D>(m.position[j] - m.position[i]) - xi;
-      float& plastic = b.back_extension[history_slot(b, body, i, k)];
-      plastic = static_cast<float>(plastic + share * (e - theta * (xi / D) - plastic));
+  const auto x = positions_by_component<D>(m.position, body);
+  const double* const theta = m.dilatation.data();
+  for_each_run_by_slabs(body, [&](const BondRun& run) {
+    const FamilyOffset& family = b.families[run.family];
+    const double xi = family.length, length_over_d = xi / D;
+    const std::size_t h = history_index(body, static_cast<std::size_t>(run.i), run.family, 0);
+    float* const back_i = b.back_extension.data() + h;
+    float* const back_j = b.back_extension.data() + mirror_history_slot(h);
+    for (std::size_t t = 0; t < run.length; ++t) {
+      const std::size_t i = static_cast<std::size_t>(run.i) + t, j = static_cast<std::size_t>(run.j) + t;
+      if ((beta[i] == 1.0 && beta[j] == 1.0) || !run_bond_intact(b, run, rows, t)) continue;
+      const double e = norm<D>(run_ends_at<D>(run, t, x).eta) - xi;
+      back_i[t] = static_cast<float>(back_i[t] + (1.0 - beta[i]) * (e - theta[i] * length_over_d - back_i[t]));
+      back_j[t] = static_cast<float>(back_j[t] + (1.0 - beta[j]) * (e - theta[j] * length_over_d - back_j[t]));
     }
-  }
+  });
 }
 
 }  // namespace rift::pd

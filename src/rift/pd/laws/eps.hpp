@@ -43,16 +43,18 @@ struct Eps {
   /// beta of each particle, the pair forces with the returned deviatoric states, and, where the step
   /// advances (history_dt > 0), e_p committed.
   template <int D>
-  static void second_pass(Model<D>& m, const BodyInfo& body, double history_dt, const RowStates* rows) {
-    std::vector<double>& beta = yield_scales<D>(m, body);
+  static void second_pass(Model<D>& m, const BodyInfo& body, double history_dt, const RowStates* given_rows) {
+    const RowStates rows = given_rows ? *given_rows : whole_rows(m.bonds, body);
+    std::vector<double>& beta = yield_scales<D>(m, body, rows);
     with_influence(body.constants.influence,
-                   [&]<scene::Influence Omega>() { state_based_forces<D, Omega, true>(m, body, 0.0, rows, beta.data()); });
-    if (history_dt > 0.0) commit_plastic_extension<D>(m, body, beta);
+                   [&]<scene::Influence Omega>() { state_based_forces<D, Omega, true>(m, body, 0.0, &rows, beta.data()); });
+    if (history_dt > 0.0) commit_plastic_extension<D>(m, body, rows, beta);
   }
   /// e_p committed at an equilibrium (dynamic relaxation's load step), from the last force evaluation's dilatations.
   template <int D>
   static void commit(Model<D>& m, const BodyInfo& body) {
-    commit_plastic_extension<D>(m, body, yield_scales<D>(m, body));
+    const RowStates rows = whole_rows(m.bonds, body);
+    commit_plastic_extension<D>(m, body, rows, yield_scales<D>(m, body, rows));
   }
 
   template <int D>
@@ -73,10 +75,10 @@ struct Eps {
  private:
   /// beta of every particle of the window (the ghosts' from their owners): the calling thread's buffer.
   template <int D>
-  static std::vector<double>& yield_scales(const Model<D>& m, const BodyInfo& body) {
+  static std::vector<double>& yield_scales(const Model<D>& m, const BodyInfo& body, const RowStates& rows) {
     static thread_local std::vector<double> beta;
     beta.assign(m.size(), 1.0);
-    with_influence(body.constants.influence, [&]<scene::Influence Omega>() { plastic_yield_scales<D, Omega>(m, body, beta); });
+    with_influence(body.constants.influence, [&]<scene::Influence Omega>() { plastic_yield_scales<D, Omega>(m, body, rows, beta); });
     m.refresh_ghosts(beta);
     return beta;
   }
