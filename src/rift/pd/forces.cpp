@@ -60,9 +60,8 @@ void compute_forces(Model<D>& m, Contact<D>* contact, double history_dt) {
 
 template <int D>
 void commit_at_equilibrium(Model<D>& m, Contact<D>* contact) {
-  const bool any = std::any_of(m.bodies.begin(), m.bodies.end(), [](const BodyInfo& b) {
-    return with_law(b.constants.model, []<class Law>() { return Law::commits_at_equilibrium; });
-  });
+  const bool any =
+      std::any_of(m.bodies.begin(), m.bodies.end(), [](const BodyInfo& b) { return law_traits(b.constants.model).commits_at_equilibrium; });
   if (!any) return;
   compute_forces<D>(m, contact);
   for (const auto& body : m.bodies) with_law(body.constants.model, [&]<class Law>() { Law::template commit<D>(m, body); });

@@ -18,15 +18,12 @@
 
 namespace rift::pd::laws {
 
-struct Eps {
+struct Eps : OrdinaryStateBased<true> {
   static constexpr scene::ModelKind kind = scene::ModelKind::eps;
   static constexpr const char* name = "EPS";
   static constexpr const char* keyword = "eps";  // [materials] model = "eps"
   static constexpr const char* example_material = "yield_stress = 1.0e12\n";  // the material lines it needs beyond the elastic constants
-  static constexpr bool state_based = true;
-  static constexpr bool bond_history = true;  // e_p of each direction of every bond (bonds.hpp back_extension)
   static constexpr bool commits_at_equilibrium = true;  // a history that dynamic relaxation commits at each load step
-  static constexpr int energy_moment_power = 2;
 
   /// sigma_Y; lambda = 1: the deviatoric term is measured from e_p.
   static void take_constants(MaterialConstants& c, const scene::Material& m) {
@@ -34,11 +31,10 @@ struct Eps {
     c.viscous_fraction = 1.0;
   }
 
-  static double separation_work_per_stretch2(const MaterialConstants& c) { return pd::separation_work_per_stretch2(c, true); }
-
+  /// The LPS's: the dilatation (and P), breaking the bonds past their limits.
   template <int D>
-  static void first_pass(Model<D>& m, const BodyInfo& body, double /*history_dt*/, RowStates* rows) {
-    with_influence(body.constants.influence, [&]<scene::Influence Omega>() { lps_dilatation<D, Omega>(m, body, rows); });
+  static void first_pass(Model<D>& m, const BodyInfo& body, double history_dt, RowStates* rows) {
+    Lps::first_pass<D>(m, body, history_dt, rows);
   }
   /// beta of each particle, the pair forces with the returned deviatoric states, and, where the step
   /// advances (history_dt > 0), e_p committed.
@@ -55,21 +51,6 @@ struct Eps {
   static void commit(Model<D>& m, const BodyInfo& body) {
     const RowStates rows = whole_rows(m.bonds, body);
     commit_plastic_extension<D>(m, body, rows, yield_scales<D>(m, body, rows));
-  }
-
-  template <int D>
-  static void energy_densities(const Model<D>& m, const BodyInfo& body, double* w) {
-    if (body.constants.surface_correction) strain_energy_densities<D, true, true, true>(m, body, w);
-    else strain_energy_densities<D, true, true, false>(m, body, w);
-  }
-  template <int D>
-  static double energy_density(const Model<D>& m, const BodyInfo& body, std::size_t i) {
-    return state_based_energy_density<D, true>(m, body, i);
-  }
-  template <int D>
-  static double pair_force_density(const Model<D>& m, const BodyInfo& body, std::size_t i, std::size_t j, std::int64_t k,
-                                   double e, double xi, double omega) {
-    return state_based_pair_force_density<D, true>(m, body, i, j, k, e, xi, omega);
   }
 
  private:

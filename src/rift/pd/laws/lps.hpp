@@ -33,20 +33,42 @@ double state_based_pair_force_density(const Model<D>& m, const BodyInfo& body, s
          force_state(b_j, pressure_j, a_j, g_j.correction, omega, e - m.dilatation[j] * xi / D - eb_j);
 }
 
-struct Lps {
+/// What the ordinary state-based laws share: the dilatation read by the force pass, the LPS's
+/// separation work, and the strain energy and bond-pair force of t = b p + a sigma (e_d - lambda e_h)
+/// (History: a stored extension e_h of each direction of every bond, VES's e_b or EPS's e_p).
+template <bool History>
+struct OrdinaryStateBased {
+  static constexpr bool state_based = true;  // the force pass reads the dilatations (and P) of both ends
+  static constexpr bool bond_history = History;
+  static constexpr int energy_moment_power = 2;  // the surface correction matches int omega |xi|^2 (the weighted volume)
+
+  static double separation_work_per_stretch2(const MaterialConstants& c) { return pd::separation_work_per_stretch2(c, true); }
+
+  template <int D>
+  static void energy_densities(const Model<D>& m, const BodyInfo& body, double* w) {
+    if (body.constants.surface_correction) strain_energy_densities<D, true, History, true>(m, body, w);
+    else strain_energy_densities<D, true, History, false>(m, body, w);
+  }
+  template <int D>
+  static double energy_density(const Model<D>& m, const BodyInfo& body, std::size_t i) {
+    return state_based_energy_density<D, History>(m, body, i);
+  }
+  template <int D>
+  static double pair_force_density(const Model<D>& m, const BodyInfo& body, std::size_t i, std::size_t j, std::int64_t k,
+                                   double e, double xi, double omega) {
+    return state_based_pair_force_density<D, History>(m, body, i, j, k, e, xi, omega);
+  }
+};
+
+struct Lps : OrdinaryStateBased<false> {
   static constexpr scene::ModelKind kind = scene::ModelKind::lps;
   static constexpr const char* name = "LPS";
   static constexpr const char* keyword = "lps";  // [materials] model = "lps"
   static constexpr const char* example_material = "";  // the material lines it needs beyond the elastic constants
-  static constexpr bool state_based = true;  // the force pass reads the dilatations (and P) of both ends
-  static constexpr bool bond_history = false;
   static constexpr bool commits_at_equilibrium = false;  // a history that dynamic relaxation commits at each load step
-  static constexpr int energy_moment_power = 2;  // the surface correction matches int omega |xi|^2 (the weighted volume)
 
   /// The law's own constants from the scene's material (make_constants does the elastic ones).
   static void take_constants(MaterialConstants&, const scene::Material&) {}
-
-  static double separation_work_per_stretch2(const MaterialConstants& c) { return pd::separation_work_per_stretch2(c, true); }
 
   /// The dilatation (and P) of a body's particles, breaking the bonds past their limits.
   template <int D>
@@ -62,21 +84,6 @@ struct Lps {
   /// The history committed at an equilibrium (dynamic relaxation's load step): none.
   template <int D>
   static void commit(Model<D>&, const BodyInfo&) {}
-
-  template <int D>
-  static void energy_densities(const Model<D>& m, const BodyInfo& body, double* w) {
-    if (body.constants.surface_correction) strain_energy_densities<D, true, false, true>(m, body, w);
-    else strain_energy_densities<D, true, false, false>(m, body, w);
-  }
-  template <int D>
-  static double energy_density(const Model<D>& m, const BodyInfo& body, std::size_t i) {
-    return state_based_energy_density<D, false>(m, body, i);
-  }
-  template <int D>
-  static double pair_force_density(const Model<D>& m, const BodyInfo& body, std::size_t i, std::size_t j, std::int64_t k,
-                                   double e, double xi, double omega) {
-    return state_based_pair_force_density<D, false>(m, body, i, j, k, e, xi, omega);
-  }
 };
 
 }  // namespace rift::pd::laws

@@ -21,10 +21,10 @@ struct Pmb {
   static constexpr bool commits_at_equilibrium = false;  // a history that dynamic relaxation commits at each load step
   static constexpr int energy_moment_power = 1;  // the surface correction matches int omega |xi| s^2 (surface_correction.cpp)
 
-  /// The work to separate two half-spaces per unit area over s0^2 (G0 = gamma s0^2; critical_stretch.cpp).
   /// The law's own constants from the scene's material (make_constants does the elastic ones).
   static void take_constants(MaterialConstants&, const scene::Material&) {}
 
+  /// The work to separate two half-spaces per unit area over s0^2 (G0 = gamma s0^2; critical_stretch.cpp).
   static double separation_work_per_stretch2(const MaterialConstants& c) { return pmb_separation_work_per_stretch2(c); }
 
   /// The forces and the breaking of a body's bonds (history_dt and rows unused: no state between passes).

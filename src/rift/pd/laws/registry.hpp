@@ -43,12 +43,14 @@ decltype(auto) with_law(scene::ModelKind kind, F&& f) {
 /// What the code around the passes asks of a law (the law's constants of the same names).
 struct LawTraits {
   const char* name;
-  bool state_based, bond_history;
+  bool state_based, bond_history, commits_at_equilibrium;
   int energy_moment_power;
 };
 
 inline LawTraits law_traits(scene::ModelKind kind) {
-  return with_law(kind, []<class Law>() { return LawTraits{Law::name, Law::state_based, Law::bond_history, Law::energy_moment_power}; });
+  return with_law(kind, []<class Law>() {
+    return LawTraits{Law::name, Law::state_based, Law::bond_history, Law::commits_at_equilibrium, Law::energy_moment_power};
+  });
 }
 
 /// The traits of each body's law, by body number (for loops over particles of several bodies).

@@ -8,22 +8,17 @@
 
 namespace rift::pd::laws {
 
-struct Ves {
+struct Ves : OrdinaryStateBased<true> {
   static constexpr scene::ModelKind kind = scene::ModelKind::ves;
   static constexpr const char* name = "VES";
   static constexpr const char* keyword = "ves";  // [materials] model = "ves"
   static constexpr const char* example_material = "viscous_fraction = 0.5\nrelaxation_time = 1.0e-4\n";  // the material lines it needs beyond the elastic constants
-  static constexpr bool state_based = true;
-  static constexpr bool bond_history = true;  // e_b of each direction of every bond (bonds.hpp back_extension)
   static constexpr bool commits_at_equilibrium = false;  // a history that dynamic relaxation commits at each load step
-  static constexpr int energy_moment_power = 2;
 
   static void take_constants(MaterialConstants& c, const scene::Material& m) {
     c.viscous_fraction = m.viscous_fraction;
     c.relaxation_time = m.relaxation_time;
   }
-
-  static double separation_work_per_stretch2(const MaterialConstants& c) { return pd::separation_work_per_stretch2(c, true); }
 
   /// The dilatation, breaking, and the history's sums over each row (ves.hpp ves_dilatation).
   template <int D>
@@ -45,21 +40,6 @@ struct Ves {
   /// The history committed at an equilibrium (dynamic relaxation's load step): none.
   template <int D>
   static void commit(Model<D>&, const BodyInfo&) {}
-
-  template <int D>
-  static void energy_densities(const Model<D>& m, const BodyInfo& body, double* w) {
-    if (body.constants.surface_correction) strain_energy_densities<D, true, true, true>(m, body, w);
-    else strain_energy_densities<D, true, true, false>(m, body, w);
-  }
-  template <int D>
-  static double energy_density(const Model<D>& m, const BodyInfo& body, std::size_t i) {
-    return state_based_energy_density<D, true>(m, body, i);
-  }
-  template <int D>
-  static double pair_force_density(const Model<D>& m, const BodyInfo& body, std::size_t i, std::size_t j, std::int64_t k,
-                                   double e, double xi, double omega) {
-    return state_based_pair_force_density<D, true>(m, body, i, j, k, e, xi, omega);
-  }
 };
 
 }  // namespace rift::pd::laws
