@@ -22,7 +22,7 @@
 //     pd/bond_states.hpp): over passes that break bonds and a change by hand between them, forces,
 //     states and VES histories the same bits as passes that make every row afresh, and the kept rows
 //     current after each pass without being made again, giving the fluid's counts of each row's
-//     intact and broken bonds (fluid_network.hpp count_bond_states) without its states;
+//     intact and broken bonds (hf/fluid_network.hpp count_bond_states) without its states;
 // (9) the one-loop form of a PMB run whose upper ends are lower ends further on adds each bond to
 //     its ends in the bonds' order, the bits of the bonds taken one at a time, on every clone.
 // (10) a history row's damage (forces.hpp summarize_and_update_damage) from the kept rows' bits
@@ -48,11 +48,11 @@
 #include <utility>
 
 #include "rift/core/vector_isa.hpp"
+#include "rift/hf/fluid_network.hpp"
 #include "rift/pd/bond_runs.hpp"
-#include "rift/pd/pmb.hpp"
 #include "rift/pd/discretize.hpp"
-#include "rift/pd/fluid_network.hpp"
 #include "rift/pd/forces.hpp"
+#include "rift/pd/pmb.hpp"
 #include "rift/pd/ves.hpp"
 #include "rift/pd/window.hpp"
 #include "rift/scene/parse.hpp"
@@ -477,11 +477,11 @@ TEST(BondRuns, RowsLeftByTheDilatationPassEqualRowsMadeAfresh) {
         if (whole[i] == rift::pd::bond_intact) continue;  // a whole row's bits are not read
         for (std::size_t w = 0; w < left.words; ++w) ASSERT_EQ(words[w * left.stride + i], fresh.intact[w * fresh.stride + i]) << model << " row " << i;
       }
-      // the fluid's counts of each row's intact and broken bonds (fluid_network.hpp
+      // the fluid's counts of each row's intact and broken bonds (hf/fluid_network.hpp
       // count_bond_states) from the rows kept (kept_row_count) equal those from the states
       std::vector<std::uint64_t> by_rows(m.size()), by_states(m.size());
-      ASSERT_EQ(rift::pd::count_bond_states(b, 0, m.size(), by_rows, true), 0);
-      ASSERT_EQ(rift::pd::count_bond_states(b, 0, m.size(), by_states, false), 0);
+      ASSERT_EQ(rift::hf::count_bond_states(b, 0, m.size(), by_rows, true), 0);
+      ASSERT_EQ(rift::hf::count_bond_states(b, 0, m.size(), by_states, false), 0);
       EXPECT_EQ(by_rows, by_states) << model;
       EXPECT_GT(std::count_if(by_states.begin(), by_states.end(), [](std::uint64_t c) { return (c >> 32) > 0; }), 20) << model;
     }

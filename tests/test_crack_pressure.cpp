@@ -11,11 +11,10 @@
 #include <sstream>
 #include <vector>
 
-#include "rift/load/boundary.hpp"
+#include "rift/hf/fluid_network.hpp"
+#include "rift/hf/lumped_fluid.hpp"
 #include "rift/pd/discretize.hpp"
 #include "rift/pd/dynamic_relaxation.hpp"
-#include "rift/pd/fluid_network.hpp"
-#include "rift/pd/lumped_fluid.hpp"
 #include "rift/run/runner.hpp"
 #include "rift/run/simulation.hpp"
 #include "rift/scene/parse.hpp"
@@ -68,12 +67,12 @@ TEST(CrackPressure, CutBondsPutTheTractionOnEachFace) {
     };
     if (dim == 2) {
       auto m = rift::pd::discretize<2>(scene);
-      rift::load::Boundaries<2> loads(scene, m);
+      rift::run::SceneLoads<2> loads(scene, m);
       ASSERT_FALSE(m.crack_bonds.neighbor.empty());
       check(m, loads, 1, n * dx * 0.001);
     } else {
       auto m = rift::pd::discretize<3>(scene);
-      rift::load::Boundaries<3> loads(scene, m);
+      rift::run::SceneLoads<3> loads(scene, m);
       check(m, loads, 2, n * dx * n * dx);
     }
   }
@@ -99,7 +98,7 @@ TEST(CrackPressure, BoreholeSitesPushTheWallWithThePressure) {
       << "[[boreholes]]\nregion = \"hole\"\npressure = " << p << "\n[solver]\nend_time = 1e-6\n";
     auto scene = rift::scene::parse_string(s.str(), "borehole.toml");
     auto m = rift::pd::discretize<2>(scene);
-    rift::load::Boundaries<2> loads(scene, m);
+    rift::run::SceneLoads<2> loads(scene, m);
     loads.apply_body_forces(m, 0.0);
     double middle = 0.0, fx = 0.0, fy = 0.0, scale = 0.0;
     for (std::size_t i = 0; i < m.size(); ++i) {
@@ -156,7 +155,7 @@ end_time = 1e-6
   for (double broken_from : {0.012, 0.016}) {
     auto scene = rift::scene::parse_string(text, "grown.toml");
     auto m = rift::pd::discretize<2>(scene);
-    rift::load::Boundaries<2> loads(scene, m);
+    rift::run::SceneLoads<2> loads(scene, m);
     auto& b = m.bonds;
     for (std::size_t i = 0; i < m.size(); ++i)
       for (auto k = b.offset[i]; k < b.offset[i + 1]; ++k) {
@@ -191,7 +190,7 @@ end_time = 1e-6
       const double w = 1e-7;
       for (std::size_t i = 0; i < m.size(); ++i)
         if (m.reference_position[i][1] > line) m.position[i][1] += w;
-      const double dV = rift::pd::cavity_volume_change<2>(m, 0);
+      const double dV = rift::hf::cavity_volume_change<2>(m, 0);
       std::printf("cavity volume of a crack opened by w: %.6f w A (force on the face / p A: %.6f)\n", dV / (w * 0.024 * 0.001),
                   upper / (p * 0.024 * 0.001));
       EXPECT_NEAR(dV / (w * upper / p), 1.0, 1e-4);  // to second order in w / |xi| = 1e-4
@@ -273,7 +272,7 @@ end_time = 1e-6
 )";
   auto scene = rift::scene::parse_string(text, "dry.toml");
   auto m = rift::pd::discretize<2>(scene);
-  rift::load::Boundaries<2> loads(scene, m);
+  rift::run::SceneLoads<2> loads(scene, m);
   loads.apply_body_forces(m, 0.0);
   double middle = 0.0;
   for (std::size_t i = 0; i < m.size(); ++i) {
@@ -344,7 +343,7 @@ TEST(EffectiveStretch, OnlyBondsAcrossTheCrackOrItsExtensionAreShifted) {
   const std::string text = borehole_and_dry_crack;
   auto scene = rift::scene::parse_string(text, "crossing.toml");
   auto m = rift::pd::discretize<2>(scene);
-  rift::pd::update_fluid_network<2>(m);
+  rift::hf::update_fluid_network<2>(m);
   const auto& f = m.fluid_network;
   auto marked_bond = [&](std::size_t i, std::size_t j) {
     return rift::pd::pierces_crack<2>(f.crack_surface, m.reference_position[i], m.reference_position[j]);
@@ -401,7 +400,7 @@ TEST(EffectiveStretch, OnlyBondsAcrossTheCrackOrItsExtensionAreShifted) {
   const auto across_k = break_bond(0.0125, 0.0075, 0.0125, 0.0085);
   rift::pd::record_crossing_breaks<2>(m, {{particle_at(0.0125, 0.0075), static_cast<std::int64_t>(across_k)}});  // as the bond pass would
   break_bond(0.0085, 0.0095, 0.0085, 0.0105);
-  rift::pd::update_fluid_network<2>(m);
+  rift::hf::update_fluid_network<2>(m);
   const double above = 0.010;
   long extension = 0;
   for (std::size_t i = 0; i < m.size(); ++i)
@@ -437,13 +436,13 @@ namespace {
 TEST(InjectedFluid, LumpedCavityHoldsNoLessThanNothing) {
   const double v0 = 3.17e-6, k_f = 2.2e9;
   const double fluid = v0 * (1.0 + 1e-3);  // the fluid's volume at zero pressure
-  const auto shut = rift::pd::lumped_fluid_state(v0, 0.0, 0.0, fluid, false, 0.0, k_f);
+  const auto shut = rift::hf::lumped_fluid_state(v0, 0.0, 0.0, fluid, false, 0.0, k_f);
   EXPECT_NEAR(shut.pressure / (k_f * 1e-3), 1.0, 1e-12);
   EXPECT_EQ(shut.cavity_volume, v0);
   EXPECT_EQ(shut.escaped_volume, 0.0);
   double escaped = 0.0;
   for (const double change : {-1e-6, -7.26e-6, -4.09e-6, -1e-6}) {
-    const auto vented = rift::pd::lumped_fluid_state(v0, change, 0.0, fluid, true, escaped, k_f);
+    const auto vented = rift::hf::lumped_fluid_state(v0, change, 0.0, fluid, true, escaped, k_f);
     EXPECT_EQ(vented.pressure, 0.0) << change;
     EXPECT_EQ(vented.cavity_volume, std::max(0.0, v0 + change)) << change;
     EXPECT_GE(vented.escaped_volume, escaped) << change;  // what escaped stays out
@@ -452,14 +451,14 @@ TEST(InjectedFluid, LumpedCavityHoldsNoLessThanNothing) {
   }
   EXPECT_EQ(escaped, fluid);  // the measure went to zero room: every drop left
   // shut again with 3e-6 m^3 more injected into a room of 2.17e-6 m^3: p = K_f (3 / 2.17 - 1)
-  const auto refilled = rift::pd::lumped_fluid_state(v0, -1e-6, 0.0, fluid + 3e-6, false, escaped, k_f);
+  const auto refilled = rift::hf::lumped_fluid_state(v0, -1e-6, 0.0, fluid + 3e-6, false, escaped, k_f);
   EXPECT_NEAR(refilled.pressure / (k_f * (3e-6 / 2.17e-6 - 1.0)), 1.0, 1e-9);
   // no room at all, shut: no finite pressure holds the fluid; zero, not an infinity or a NaN
-  const auto closed = rift::pd::lumped_fluid_state(v0, -2.0 * v0, 0.0, fluid, false, 0.0, k_f);
+  const auto closed = rift::hf::lumped_fluid_state(v0, -2.0 * v0, 0.0, fluid, false, 0.0, k_f);
   EXPECT_EQ(closed.pressure, 0.0);
   EXPECT_EQ(closed.cavity_volume, 0.0);
   // the injection system's volume holds fluid whatever the cavity's measure says
-  const auto system = rift::pd::lumped_fluid_state(v0, -2.0 * v0, 1e-5, (v0 + 1e-5) * (1.0 + 1e-3), false, 0.0, k_f);
+  const auto system = rift::hf::lumped_fluid_state(v0, -2.0 * v0, 1e-5, (v0 + 1e-5) * (1.0 + 1e-3), false, 0.0, k_f);
   EXPECT_NEAR(system.pressure / (k_f * ((v0 + 1e-5) * (1.0 + 1e-3) / 1e-5 - 1.0)), 1.0, 1e-12);
 }
 
@@ -515,7 +514,7 @@ TEST(InjectedFluid, BreakthroughToTheOuterSurfaceVentsTheFluid) {
 
 namespace {
 
-// A flake off a borehole's wall (fluid_network.hpp, mark_immersed_fragments): the particle of the
+// A flake off a borehole's wall (hf/fluid_network.hpp, mark_immersed_fragments): the particle of the
 // wall on the x axis with every bond broken sits in the fluid, whose pressure on its closed surface
 // has no resultant, and so does its mirror on the -x side, held by one bond that lets it turn. They
 // get no load (their neighbours on the rock side still do: the fluid fills the crack the flake
@@ -526,7 +525,7 @@ namespace {
 TEST(InjectedFluid, AFlakeInTheFluidGetsNoLoadAndNoVolume) {
   auto scene = rift::scene::parse_string(block_with_injected_borehole(0.02, 0.0035, 1e-9), "flake.toml");
   auto m = rift::pd::discretize<2>(scene);
-  rift::load::Boundaries<2> loads(scene, m);
+  rift::run::SceneLoads<2> loads(scene, m);
   std::size_t flake = m.size();
   double nearest = 1e9;
   for (std::size_t i = 0; i < m.size(); ++i) {
@@ -566,10 +565,10 @@ TEST(InjectedFluid, AFlakeInTheFluidGetsNoLoadAndNoVolume) {
   }
   EXPECT_EQ(immersed, 2) << "only the flake and the particle hanging by one bond";
   EXPECT_EQ(loaded_behind, 1) << "the rock behind the flake carries the fluid's pressure, outward";
-  const double before = rift::pd::cavity_volume_change<2>(m, 0);
+  const double before = rift::hf::cavity_volume_change<2>(m, 0);
   m.position[flake][0] -= 0.001;
   m.position[hanging][1] += 0.001;
-  EXPECT_EQ(rift::pd::cavity_volume_change<2>(m, 0), before);
+  EXPECT_EQ(rift::hf::cavity_volume_change<2>(m, 0), before);
 }
 
 }  // namespace

@@ -28,7 +28,7 @@
 #include <cstdio>
 #include <string>
 
-#include "rift/load/boundary.hpp"
+#include "rift/run/scene_loads.hpp"
 #include "rift/pd/discretize.hpp"
 #include "rift/pd/dynamic_relaxation.hpp"
 #include "rift/pd/effective_stretch.hpp"
@@ -57,7 +57,7 @@ Initiation initiation(const std::string& material_keys, double pressure_per_K = 
   // line are broken
   const double pre_crack_end = grown ? tip_x_of_probe - radius + 0.5 * delta : 0.25 * h;
   // the boundary layer; for a grown crack it also holds the particles the pre-crack's cut bonds
-  // load and those the network's load next to them (crack_pressure.hpp, network_load.hpp)
+  // load and those the network's load next to them (hf/crack_pressure.hpp, hf/network_load.hpp)
   const double layer = grown ? 4.0 * delta : delta;
   // sites at (i, j) h; the cut between rows 0 and 1 ends at x = h/4 (the vertical bond of column 0
   // is cut, that of column 1 intact), and the K field is centred between those columns
@@ -93,7 +93,7 @@ Initiation initiation(const std::string& material_keys, double pressure_per_K = 
     m.position[i] = {m.reference_position[i][0] + u[0] + compression * x, m.reference_position[i][1] + u[1] + compression * y};
     if (std::hypot(x, y) > radius - layer) m.constrained[i] = 0b11;  // the rest: the interior's first guess
   }
-  const rift::load::Boundaries<2> face_pressure(scene, m);
+  const rift::run::SceneLoads<2> face_pressure(scene, m);
   {
     rift::pd::DynamicRelaxation<2> dr(m);
     rift::pd::HeldBreaking<2> held(m);
@@ -178,7 +178,7 @@ TEST(CrackTipInitiation, PressurizedCrackIsTougherOnTheTotalStretch) {
 // horizons deep) under pressure is the dry crack plus a uniform compression, exactly, in the discrete
 // model: the fluid's load on the network is the one that keeps that compression in equilibrium
 // (pd/network_load.hpp), and the bonds break on the effective stretch. Measured: LPS dry 0.9535,
-// pressurized 0.9536 K_Ic; PMB 0.9717 and 0.9718 (with the force flux of crack_pressure.hpp on the
+// pressurized 0.9536 K_Ic; PMB 0.9717 and 0.9718 (with the force flux of hf/crack_pressure.hpp on the
 // cut bonds of a pre-crack instead: 0.972 and 1.023, LPS).
 // One test per model, so each fits its time limit in the sanitizer build.
 namespace {

@@ -10,7 +10,7 @@
 
 #include "rift/pd/forces.hpp"
 #include "rift/pd/held_breaking.hpp"
-#include "rift/pd/in_situ_strain.hpp"
+#include "rift/geomech/in_situ_strain.hpp"
 #include "rift/pd/stress.hpp"
 #include "rift/run/simulation.hpp"
 #include "rift/scene/parse.hpp"
@@ -141,7 +141,7 @@ TEST(InSituStress, UniformStrainStartReachesTheSameEquilibriumSooner) {
     rift::run::Simulation<2> sim(s);
     auto& m = sim.model;
     if (start) {
-      const auto eps = rift::pd::in_situ_strain<2>(m.bodies[0].constants, s.in_situ);
+      const auto eps = rift::geomech::in_situ_strain<2>(m.bodies[0].constants, s.in_situ);
       EXPECT_NEAR(eps[0], eps_H, 1e-12 * std::abs(eps_H));
       EXPECT_NEAR(eps[1], eps_h, 1e-12 * std::abs(eps_H));
     }
@@ -174,7 +174,7 @@ void check_measured_density(const std::string& text) {
   rift::run::Simulation<D> sim(s);
   auto& m = sim.model;
   rift::pd::HeldBreaking<D> held(m);
-  rift::pd::apply_in_situ_strain<D>(m, s.in_situ);
+  rift::geomech::apply_in_situ_strain<D>(m, s.in_situ);
   rift::pd::DynamicRelaxation<D> dr(m);
   const std::size_t n = m.size(), N = n * D;
   std::vector<double> bound(n);

@@ -9,9 +9,9 @@
 #include <cstdio>
 #include <string>
 
-#include "rift/pd/crack_junction.hpp"
+#include "rift/hf/crack_junction.hpp"
+#include "rift/hf/fluid_network.hpp"
 #include "rift/pd/discretize.hpp"
-#include "rift/pd/fluid_network.hpp"
 #include "rift/pd/forces.hpp"
 #include "rift/pd/interface_law.hpp"
 #include "rift/pd/interface_outcome.hpp"
@@ -326,7 +326,7 @@ pressure = 1e6
     for (std::size_t i = 0; i < m.size(); ++i)
       if (m.reference_position[i][1] > 0.0) m.position[i][1] += lift;
     m.fluid_network.pressure.assign(m.fluid_network.dry.size(), 1e6);
-    rift::pd::update_fluid_network<2>(m);
+    rift::hf::update_fluid_network<2>(m);
     if (wet)
       for (std::size_t i = 0; i < m.size(); ++i)
         if (std::abs(m.reference_position[i][0] - 0.0065) < 1e-6 && std::abs(m.reference_position[i][1] - 0.0005) < 1e-6)
@@ -385,11 +385,11 @@ TEST(InterfaceOutcome, BreakthroughThroughAnInterfaceIsKeptWhenItShuts) {
   const std::size_t source = s.cracks.size();  // the borehole
   for (std::size_t i = 0; i < m.size(); ++i)
     if (m.reference_position[i][1] > 0.0) m.position[i][1] += 1e-5;
-  rift::pd::update_fluid_network<2>(m);
+  rift::hf::update_fluid_network<2>(m);
   EXPECT_TRUE(m.fluid_network.vented.at(source));
   EXPECT_TRUE(m.fluid_network.broke_through.at(source));
   m.position = m.reference_position;
-  rift::pd::update_fluid_network<2>(m);
+  rift::hf::update_fluid_network<2>(m);
   EXPECT_FALSE(m.fluid_network.vented.at(source));
   EXPECT_TRUE(m.fluid_network.broke_through.at(source));
 }
@@ -473,7 +473,7 @@ TEST(InterfaceLaw, FailedInterfaceBondsAcrossTheFluidsCrackCarryNoContact) {
     }
   for (auto k : ib.slot) b.intact.set(static_cast<std::size_t>(k), rift::pd::bond_interface_failed);
   m.fluid_network.pressure.assign(m.fluid_network.dry.size(), 1e6);
-  rift::pd::update_fluid_network<2>(m);  // the crack's surface, and the marks
+  rift::hf::update_fluid_network<2>(m);  // the crack's surface, and the marks
   const double w = 10e-6;
   for (std::size_t i = 0; i < m.size(); ++i) {
     const auto& X = m.reference_position[i];

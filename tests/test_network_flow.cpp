@@ -15,8 +15,8 @@
 #include <thread>
 #include <vector>
 
+#include "rift/hf/network_flow.hpp"
 #include "rift/pd/discretize.hpp"
-#include "rift/pd/network_flow.hpp"
 #include "rift/scene/parse.hpp"
 #include "rock_scene.hpp"
 
@@ -66,7 +66,7 @@ Slot poiseuille(double angle, double w, double exx, double eyy, const std::strin
     m.position[i] = {X[0] * (1.0 + exx), X[1] * (1.0 + eyy)};
     if (side(i)) m.position[i] = m.position[i] + w * n;
   }
-  const auto bonds = rift::pd::flow_bonds<2>(m, viscosity, [](std::size_t, std::size_t) { return true; });
+  const auto bonds = rift::hf::flow_bonds<2>(m, viscosity, [](std::size_t, std::size_t) { return true; });
   // nodes: every particle; those no broken bond reaches and those far along the crack are held
   const std::size_t N = m.size();
   std::vector<std::uint8_t> wet(N, 0), fixed(N, 1);
@@ -78,7 +78,7 @@ Slot poiseuille(double angle, double w, double exx, double eyy, const std::strin
     // within 15 mm of the middle along the crack, and a horizon inside the block's edges
     fixed[i] = !wet[i] || std::abs(s) > 0.015;
   }
-  const auto p = rift::pd::solve_network_pressure(bonds, zero, zero, zero, fixed, value);
+  const auto p = rift::hf::solve_network_pressure(bonds, zero, zero, zero, fixed, value);
   Slot out;
   for (const auto& f : bonds) {
     const double si = rift::dot<2>(m.reference_position[f.i], t), sj = rift::dot<2>(m.reference_position[f.j], t);
@@ -93,7 +93,7 @@ Slot poiseuille(double angle, double w, double exx, double eyy, const std::strin
 }
 
 // Between two rows of the lattice: the family's transverse moment is 30 spacings^3 (tabled in
-// network_flow.hpp), and the cubic law's flux comes out to round-off.
+// hf/network_flow.hpp), and the cubic law's flux comes out to round-off.
 TEST(NetworkFlow, PoiseuilleAlongALatticeRowIsTheCubicLaw) {
   const auto r = poiseuille(0.0, 20e-6, 0.0, 0.0);
   EXPECT_NEAR(r.flux / r.expected, 1.0, 1e-9);
@@ -119,7 +119,7 @@ TEST(NetworkFlow, SlipAlongAFailedInterfaceOpensNothing) {
   for (auto q : ib.slot) m.bonds.intact.set(static_cast<std::size_t>(q), rift::pd::bond_interface_failed);
   for (std::size_t i = 0; i < m.size(); ++i)
     if (m.reference_position[i][1] > 0.0) m.position[i] = m.position[i] + rift::Vec<2>{3.0 * w, w};
-  const auto bonds = rift::pd::flow_bonds<2>(m, viscosity, [](std::size_t, std::size_t) { return true; });
+  const auto bonds = rift::hf::flow_bonds<2>(m, viscosity, [](std::size_t, std::size_t) { return true; });
   ASSERT_EQ(bonds.size(), ib.slot.size() / 2);
   for (const auto& f : bonds) EXPECT_NEAR(f.opening, w, 1e-15);
 }
@@ -155,7 +155,7 @@ TEST(NetworkFlow, PoiseuilleAt30DegreesIsTheCubicLawWithinOnePercent) {
 // bonds, and each particle's share of the slot's volume (the node's storage).
 struct RigidSlot {
   rift::pd::Model<2> m;
-  std::vector<rift::pd::FlowBond> bonds;
+  std::vector<rift::hf::FlowBond> bonds;
   std::vector<double> stored;
 };
 RigidSlot rigid_slot(double w) {
@@ -168,7 +168,7 @@ RigidSlot rigid_slot(double w) {
         b.intact.set(k, rift::pd::bond_broken);
   for (std::size_t i = 0; i < m.size(); ++i)
     if (m.reference_position[i][1] > 0.0) m.position[i][1] += w;
-  slot.bonds = rift::pd::flow_bonds<2>(m, viscosity, [](std::size_t, std::size_t) { return true; });
+  slot.bonds = rift::hf::flow_bonds<2>(m, viscosity, [](std::size_t, std::size_t) { return true; });
   slot.stored.assign(m.size(), 0.0);
   for (const auto& f : slot.bonds) slot.stored[f.i] += 0.5 * f.volume, slot.stored[f.j] += 0.5 * f.volume;
   return slot;
@@ -198,7 +198,7 @@ TEST(NetworkFlow, PressureDiffusesIntoARigidSlot) {
     value[i] = stored[i] == 0.0 || !inlet ? 0.0 : p0;
     storage[i] = stored[i] / (bulk_modulus * dt);
   }
-  for (int s = 0; s < steps; ++s) p = rift::pd::solve_network_pressure(bonds, storage, p, zero, fixed, value);
+  for (int s = 0; s < steps; ++s) p = rift::hf::solve_network_pressure(bonds, storage, p, zero, fixed, value);
   // the mean pressure of the fluid's particles in the column 15 mm into the slot, against erfc(1/2)
   double sum = 0.0;
   int count = 0;
@@ -231,7 +231,7 @@ TEST(NetworkFlow, AKeptAnalysisGivesTheBitsOfAFreshOne) {
     for (std::size_t i = 0; i < N; ++i) fixed[i] = stored[i] == 0.0 || std::abs(m.reference_position[i][0]) > 0.027 - 0.002 * h;
     return fixed;
   };
-  auto solve = [&](int h) { return rift::pd::solve_network_pressure(bonds, storage, previous, zero, held(h), value); };
+  auto solve = [&](int h) { return rift::hf::solve_network_pressure(bonds, storage, previous, zero, held(h), value); };
   int solves = 0;
   for (int h : {0, 0, 1, 0, 2, 3, 4, 1, 5, 6, 0, 5, 6, 6, 3}) {
     const std::vector<double> kept = solve(h);

@@ -3,8 +3,8 @@
 // network's broken bonds held intact: g_s,i = (F_i - F^s_i) / (eps d kappa_i). rift evaluates the
 // difference itself on the particles within reach of the network alone, under a unit expansion
 // (every model is linear in it), or without the surface correction by the runs of bonds over the
-// whole body (network_load_runs.hpp); here g is made from the definition with the model's own passes over
-// the whole body (pmb.hpp, lps.hpp: what network_load.hpp did before), from the positions of the
+// whole body (hf/network_load_runs.hpp); here g is made from the definition with the model's own passes over
+// the whole body (pmb.hpp, lps.hpp: what hf/network_load.hpp did before), from the positions of the
 // expansion eps = 0.5, on a 2D and a 3D block whose crack grew from a pressurized pre-crack, PMB, LPS
 // with and without the surface correction and VES (by its LPS response). Tolerance 1e-12 of the
 // largest |g|: the same formulas summed in another order, the rounding of the extensions
@@ -20,11 +20,11 @@
 #include <string>
 #include <vector>
 
-#include "rift/pd/discretize.hpp"
-#include "rift/pd/fluid_network.hpp"
-#include "rift/pd/held_breaking.hpp"
+#include "rift/hf/fluid_network.hpp"
+#include "rift/hf/network_load.hpp"
 #include "rift/pd/crack_crossing.hpp"
-#include "rift/pd/network_load.hpp"
+#include "rift/pd/discretize.hpp"
+#include "rift/pd/held_breaking.hpp"
 #include "rift/scene/parse.hpp"
 
 namespace {
@@ -97,13 +97,13 @@ void check(const std::string& material) {
   // the crack grown along y = 8 mm beyond the pre-crack's end, to x = 20 mm
   grow_crack<D>(m, 0.012, 0.020);
   auto& b = m.bonds;
-  rift::pd::update_fluid_network<D>(m);
-  const auto network = rift::pd::network_bond_list<D>(m, 0);
+  rift::hf::update_fluid_network<D>(m);
+  const auto network = rift::hf::network_bond_list<D>(m, 0);
   ASSERT_GT(network.size(), 20u);
   const auto state = b.intact;
-  // without the surface correction g is made by the runs (network_load_runs.hpp), else by the rows
-  EXPECT_EQ(rift::pd::detail::load_by_runs<D>(m), material.find("surface_correction = false") != std::string::npos);
-  rift::pd::update_network_load<D>(m);
+  // without the surface correction g is made by the runs (hf/network_load_runs.hpp), else by the rows
+  EXPECT_EQ(rift::hf::detail::load_by_runs<D>(m), material.find("surface_correction = false") != std::string::npos);
+  rift::hf::update_network_load<D>(m);
   ASSERT_EQ(b.intact, state);  // the model as it was
   const auto local = m.fluid_network.network_load.at(0);
   const auto reference = load_by_passes<D>(m, network);
@@ -127,7 +127,7 @@ double load_difference(const std::vector<double>& incremental, const std::vector
 }
 
 // update_network_load evaluates g again only where the network or a bond's state changed since its
-// last call (network_load.hpp): on those particles by the sum made from scratch, on their neighbours
+// last call (hf/network_load.hpp): on those particles by the sum made from scratch, on their neighbours
 // by the change of the changed ends' terms. After the crack grew in two stages, with a dry bond
 // broken near it in between (a state change outside the network), g is the one made from scratch
 // within 1e-13 of its largest entry (the corrections' rounding: a few 1e-16 each).
@@ -135,8 +135,8 @@ template <int D>
 void check_incremental(const std::string& material) {
   auto m = rift::pd::discretize<D>(rift::scene::parse_string(grown_crack_scene(D, material), "grown.toml"));
   grow_crack<D>(m, 0.012, 0.016);
-  rift::pd::update_fluid_network<D>(m);
-  rift::pd::update_network_load<D>(m);
+  rift::hf::update_fluid_network<D>(m);
+  rift::hf::update_network_load<D>(m);
   // a bond between two particles a few rows above the crack, dry: its own state change
   auto& b = m.bonds;
   std::size_t above = 0;
@@ -148,12 +148,12 @@ void check_incremental(const std::string& material) {
   }
   b.intact.set(static_cast<std::size_t>(b.offset[above]), rift::pd::bond_broken);
   grow_crack<D>(m, 0.016, 0.020);
-  rift::pd::update_fluid_network<D>(m);
-  rift::pd::update_network_load<D>(m);
+  rift::hf::update_fluid_network<D>(m);
+  rift::hf::update_network_load<D>(m);
   const auto incremental = m.fluid_network.network_load.at(0);
   auto& f = m.fluid_network;
-  rift::pd::forget_network_load(f);
-  rift::pd::update_network_load<D>(m);
+  rift::hf::forget_network_load(f);
+  rift::hf::update_network_load<D>(m);
   const auto& scratch = f.network_load.at(0);
   ASSERT_EQ(incremental.size(), scratch.size());
   std::size_t nonzero = 0;
@@ -163,13 +163,13 @@ void check_incremental(const std::string& material) {
   EXPECT_GT(nonzero, 0u);
   EXPECT_LT(difference, 1e-13);
   // by the runs (no surface correction) the blocks made again are the whole pass's bits
-  if (rift::pd::detail::load_by_runs<D>(m)) {
+  if (rift::hf::detail::load_by_runs<D>(m)) {
     EXPECT_EQ(incremental, scratch);
   }
 }
 
 // While a network only grows (bonds break, no failed interface, one fluid), update_fluid_network
-// goes on from the particles whose bonds broke (fluid_network.hpp): the labels, the immersed
+// goes on from the particles whose bonds broke (hf/fluid_network.hpp): the labels, the immersed
 // fragments, the crack surface (crack_crossing.hpp) and the network load follow from what changed.
 // After the crack grew further, with a flake cut loose at its face and bonds broken beside it, they
 // equal those made from scratch, bit for bit (the network load within 1e-13 of its largest entry,
@@ -189,8 +189,8 @@ void check_growth(const std::string& material) {
     rift::pd::record_crossing_breaks<D>(m, crossed);
   };
   grow_across(0.012, 0.016);
-  rift::pd::update_fluid_network<D>(m);
-  rift::pd::update_network_load<D>(m);
+  rift::hf::update_fluid_network<D>(m);
+  rift::hf::update_network_load<D>(m);
   const std::size_t patches = m.fluid_network.crack_surface.planes.size();
   grow_across(0.016, 0.020);
   // a flake: every bond of the particle just above the crack at x = 17 mm; and a bond a row higher
@@ -214,9 +214,9 @@ void check_growth(const std::string& material) {
   const std::size_t beside = nearest(0.014, 0.0095);
   b.intact.set(static_cast<std::size_t>(b.offset[beside]), rift::pd::bond_broken);
   auto& f = m.fluid_network;
-  ASSERT_TRUE(rift::pd::fluid_network_grows(f, 0));
-  rift::pd::update_fluid_network<D>(m);
-  rift::pd::update_network_load<D>(m);
+  ASSERT_TRUE(rift::hf::fluid_network_grows(f, 0));
+  rift::hf::update_fluid_network<D>(m);
+  rift::hf::update_network_load<D>(m);
   ASSERT_TRUE(f.immersed[flake]);
   ASSERT_GT(f.crack_surface.planes.size(), patches);  // the crack's surface grew too
   auto scratch = m;
@@ -224,9 +224,9 @@ void check_growth(const std::string& material) {
   s.relabel = true;
   s.crack_surface = {};
   s.crack_surface.made = true;
-  rift::pd::forget_network_load(s);
-  rift::pd::update_fluid_network<D>(scratch);
-  rift::pd::update_network_load<D>(scratch);
+  rift::hf::forget_network_load(s);
+  rift::hf::update_fluid_network<D>(scratch);
+  rift::hf::update_network_load<D>(scratch);
   EXPECT_EQ(f.source, s.source);
   EXPECT_EQ(f.in_crack, s.in_crack);
   EXPECT_EQ(f.immersed, s.immersed);
@@ -272,7 +272,7 @@ TEST(FluidNetwork, UpdatesWhileItGrowsEqualTheNetworkMadeFromScratch) {
   }
 }
 
-// The peeling of the fragments (fluid_network.hpp peel_fragments) stops reading a row once a part
+// The peeling of the fragments (hf/fluid_network.hpp peel_fragments) stops reading a row once a part
 // of its shape tensor passes the test at the whole row's bound. Against the definition: after
 // bonds near the crack broke at random (94% of them, both directions), every wet particle left
 // not immersed has intact bonds to particles not immersed whose sum n n^T passes
@@ -282,7 +282,7 @@ template <int D>
 void check_peeling() {
   auto m = rift::pd::discretize<D>(rift::scene::parse_string(grown_crack_scene(D, "model = \"lps\"\n"), "grown.toml"));
   grow_crack<D>(m, 0.012, 0.020);
-  rift::pd::update_fluid_network<D>(m);
+  rift::hf::update_fluid_network<D>(m);
   auto& b = m.bonds;
   std::mt19937_64 engine(12345);  // a fixed sequence (the standard's engine)
   auto coin = [&] { return engine() % 100 < 94; };
@@ -296,7 +296,7 @@ void check_peeling() {
         if (static_cast<std::size_t>(b.neighbor[r]) == i) b.intact.set(static_cast<std::size_t>(r), rift::pd::bond_broken);
     }
   }
-  rift::pd::mark_immersed_fragments<D>(m);
+  rift::hf::mark_immersed_fragments<D>(m);
   const auto& f = m.fluid_network;
   auto spans = [&](std::size_t i) {  // the definition, over the whole row
     Eigen::Matrix<double, D, D> shape = Eigen::Matrix<double, D, D>::Zero();
@@ -332,7 +332,7 @@ TEST(FluidNetwork, PeeledFragmentsFollowTheSpanningTestOverWholeRows) {
 }
 
 // Without the surface correction and interface laws, the ends' sums of the network load are made
-// without a branch on a bond's state (network_load.hpp uncorrected_network_end): the same bits as
+// without a branch on a bond's state (hf/network_load.hpp uncorrected_network_end): the same bits as
 // the rows' form (network_end) at every particle, an end or not, after the crack grew and bonds
 // around it broke at random.
 template <int D>
@@ -344,17 +344,17 @@ void check_uncorrected_ends(const std::string& material) {
     for (auto k = b.offset[i]; k < b.offset[i + 1]; ++k)
       if ((i * 7 + static_cast<std::size_t>(k)) % 5 == 0 && std::abs(m.reference_position[i][1] - 0.008) < 0.002)
         b.intact.set(static_cast<std::size_t>(k), rift::pd::bond_broken);
-  rift::pd::update_fluid_network<D>(m);
-  ASSERT_TRUE(rift::pd::detail::load_by_runs<D>(m));
-  const auto terms = rift::pd::detail::family_terms<D>(m);
+  rift::hf::update_fluid_network<D>(m);
+  ASSERT_TRUE(rift::hf::detail::load_by_runs<D>(m));
+  const auto terms = rift::hf::detail::family_terms<D>(m);
   const auto& f = m.fluid_network;
   long ends = 0;
   for (std::size_t i = 0; i < m.size(); ++i) {
     bool row_end = false, end = false;
-    auto z = rift::pd::detail::network_end<D>(
+    auto z = rift::hf::detail::network_end<D>(
         m, i, true, [&](std::size_t p, std::int64_t k) { return rift::pd::network_of_bond(f, b, p, k) == 0; }, row_end);
     if (!row_end) z = {};
-    const auto u = rift::pd::detail::uncorrected_network_end<D>(m, i, 0, terms, end);
+    const auto u = rift::hf::detail::uncorrected_network_end<D>(m, i, 0, terms, end);
     ASSERT_EQ(end, row_end) << "particle " << i;
     EXPECT_EQ(u.theta, z.theta);
     EXPECT_EQ(u.d_theta, z.d_theta);

@@ -17,7 +17,7 @@
 #include "rift/pd/coarse_space.hpp"
 #include "rift/pd/forces.hpp"
 #include "rift/pd/held_breaking.hpp"
-#include "rift/pd/in_situ_strain.hpp"
+#include "rift/geomech/in_situ_strain.hpp"
 #include "rift/pd/rigid_motion.hpp"
 #include "rift/run/simulation.hpp"
 #include "rift/scene/parse.hpp"
@@ -222,7 +222,7 @@ type = "dynamic_relaxation"
   rift::run::Simulation<2> sim(s);
   auto& m = sim.model;
   rift::pd::HeldBreaking<2> held_bonds(m);
-  rift::pd::apply_in_situ_strain<2>(m, s.in_situ);
+  rift::geomech::apply_in_situ_strain<2>(m, s.in_situ);
   const std::size_t n = m.size(), N = 2 * n;
   ASSERT_EQ(n, 324u);
   const Eigen::MatrixXd K = rift::test::dense_stiffness<2>(m, 1e-9);

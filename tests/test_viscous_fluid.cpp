@@ -8,8 +8,8 @@
 #include <string>
 #include <vector>
 
+#include "rift/hf/viscous_fluid.hpp"
 #include "rift/pd/dynamic_relaxation.hpp"
-#include "rift/pd/viscous_fluid.hpp"
 #include "rift/run/simulation.hpp"
 #include "rift/scene/parse.hpp"
 #include "rock_scene.hpp"
@@ -70,7 +70,7 @@ Injected inject(const std::string& viscosity_key) {
   const auto& f = m.fluid_network;
   out.pressure = f.pressure[1], out.volume = f.cavity_volume[1];
   out.reference = f.reference_volume[1];
-  out.wall_volume = f.reference_volume[1] + rift::pd::cavity_volume_change<2>(m, 1, true);
+  out.wall_volume = f.reference_volume[1] + rift::hf::cavity_volume_change<2>(m, 1, true);
   out.sealed = f.sealed[1] != 0;
   if (!f.viscous.empty() && f.viscous[1].viscosity > 0.0) {
     out.held = f.viscous[1].trial_inlet;
@@ -82,7 +82,7 @@ Injected inject(const std::string& viscosity_key) {
 // Where the fluid flows freely (mu = 1e-9 Pa s: the pressure drop along the pre-crack is nothing)
 // the viscous fluid is the lumped one: one pressure p = K_f (V_fluid / V - 1). Its nodes' volumes
 // share out the lumped fluid's cavity volume (the work conjugate of the pressure forces,
-// fluid_network.hpp) by the openings, so the pressures agree to the relaxation's tolerance
+// hf/fluid_network.hpp) by the openings, so the pressures agree to the relaxation's tolerance
 // (measured 1.00000; 1e-4). And every load step conserves the fluid: the nodes hold
 // V0 (1 + p0 / K_f) + Q t, to round-off (1e-9).
 TEST(ViscousFluid, FreelyFlowingFluidIsTheLumpedFluid) {
@@ -149,10 +149,10 @@ TEST(ViscousFluid, BreakdownPressureKeepsThePreCrackDryUntilReached) {
 // volume, or to the borehole's node (0) where none is open; the fluid held in all is unchanged.
 TEST(ViscousFluid, AShutNodeSqueezesItsFluidIntoItsOpenNeighbour) {
   // nodes 0..4; bonds 1-2, 1-3 (3 the larger), 4-1 (both shut: 4 has no open neighbour)
-  const std::vector<rift::pd::FlowBond> bonds{{1, 2, 0.0, 0.0, 0.0}, {1, 3, 0.0, 0.0, 0.0}, {4, 1, 0.0, 0.0, 0.0}};
+  const std::vector<rift::hf::FlowBond> bonds{{1, 2, 0.0, 0.0, 0.0}, {1, 3, 0.0, 0.0, 0.0}, {4, 1, 0.0, 0.0, 0.0}};
   const std::vector<double> volume{5.0, 0.0, 1.0, 2.0, 0.0};
   std::vector<double> held{4.0, 3.0, 1.0, 2.0, 0.5};
-  rift::pd::squeeze_out_closed_nodes(bonds, volume, held);
+  rift::hf::squeeze_out_closed_nodes(bonds, volume, held);
   EXPECT_DOUBLE_EQ(held[0], 4.5);  // node 4's, through no open neighbour
   EXPECT_DOUBLE_EQ(held[1], 0.0);
   EXPECT_DOUBLE_EQ(held[2], 1.0);

@@ -20,7 +20,7 @@
 // dissipated per unit area; l / l_KGD over the load steps of the second half 0.978 to 1.019, mean
 // 0.997 (the crack grows a column at a time: the pressure climbs while it is stuck, then it jumps);
 // 85 min on one thread.
-// The fluid's load on its network is the unjacketed one (pd/network_load.hpp), so a grown tip under
+// The fluid's load on its network is the unjacketed one (hf/network_load.hpp), so a grown tip under
 // pressure starts at the dry tip's K (tests/test_crack_tip_initiation.cpp): 0.954 to 1.039 K_Ic with
 // the tip anywhere between two columns. With the force flux of -p I on the broken bonds instead the
 // pressurized tip needed up to 1.10 K_Ic. A grown tip is tougher than a sharp cut: shallow bonds

@@ -2,7 +2,7 @@
 // (examples/hf_kgd_viscosity.toml). Plane strain LPS rock (E = 10 GPa, nu = 0.25, G0 = 50 J/m^2)
 // under an isotropic in-situ stress sigma0 = 15 MPa; a fluid of viscosity mu = 0.675 Pa s injected at
 // Q per unit height into a borehole with a short notch; the fluid flows along the crack by the cubic
-// law (pd/viscous_fluid.hpp) and the rock relaxes with it at each load step.
+// law (hf/viscous_fluid.hpp) and the rock relaxes with it at each load step.
 // The zero-lag plane strain KGD solution (Detournay 2004; Garagash 2006) depends on one number, the
 // dimensionless toughness K_m = K' / (E'^3 mu' Q)^(1/4), K' = sqrt(32 / pi) K_Ic, mu' = 12 mu,
 // E' = E / (1 - nu^2):

@@ -1,7 +1,7 @@
 // Hydraulic fracture validation 2: Kirsch's borehole (examples/hf_kirsch.toml). A borehole of radius
 // a = 10 mm in a 200 mm square, plane strain LPS, in-situ stresses S_H = -10 MPa (x) and
 // S_h = -5 MPa (y) as tractions on the faces, p = 2 MPa of fluid on the wall (the bonds to the
-// borehole's lattice sites, pd/crack_pressure.hpp), brought to equilibrium by the in-situ stage. The
+// borehole's lattice sites, hf/crack_pressure.hpp), brought to equilibrium by the in-situ stage. The
 // hoop stress of the PD stress tensor (pd/stress.hpp) on the two lattice rows along theta = 0 and
 // 90 degrees, at every particle with a + horizon <= r <= 3 a, must be within 5% of
 //   sigma_tt = (S_H + S_h)/2 (1 + a^2/r^2) - (S_H - S_h)/2 (1 + 3 a^4/r^4) cos 2 theta + p a^2/r^2

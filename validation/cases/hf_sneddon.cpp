@@ -1,6 +1,6 @@
 // Hydraulic fracture validation 1: Sneddon's pressurized line crack (examples/hf_sneddon.toml), 2D
 // plane strain LPS, a = 10 mm in a 200 mm plate, p = 1 MPa carried by the bonds the crack cuts
-// (pd/crack_pressure.hpp), no growth, adaptive dynamic relaxation. The opening
+// (hf/crack_pressure.hpp), no growth, adaptive dynamic relaxation. The opening
 //   w(x) = 4 (1 - nu^2) p / E sqrt(a^2 - x^2)   (Sneddon 1946; plane strain)
 // is read at the crack faces: each face's displacement extrapolated linearly from the two lattice
 // rows next to it (at dx/2 and 3 dx/2; crack_face_opening.hpp). Its L2 error over |x| <= 0.9 a must be within 5% and the

@@ -26,7 +26,7 @@
 // only with the fluid above the compression sigma_n the in-situ stresses put across it
 // (pd/interface_outcome.hpp, the thesis' EQ 4.7).
 // The fluid is Zhou's guar (135 mPa s; the thesis, section 4.3.2), flowing along the cracks by the
-// cubic law (pd/viscous_fluid.hpp, validated by hf_kgd_viscosity): for this scene's injection (3e-6
+// cubic law (hf/viscous_fluid.hpp, validated by hf_kgd_viscosity): for this scene's injection (3e-6
 // m^2/s per unit height) the KGD fracture's dimensionless toughness K' / (E'^3 mu' Q)^(1/4) is 0.6,
 // viscosity-dominated, its inlet net pressure 0.545 (mu' E'^2 / t)^(1/3) (Adachi and Detournay 2002)
 // 2.2 MPa when the fracture reaches the interface (t = 2 s). What the experiment asks of it
@@ -264,9 +264,9 @@
 // fracture stopped a spacing past the plane (2-1 at 2 mm, and at 3 mm with the lattice moved half a
 // spacing). At 3 mm the 90-degree interfaces ran through a column of lattice sites, which were on
 // neither side of the line, so their rock bonds bridged the interface and 2-1 and 2-2 crossed
-// through that column. Both fixed (pd/network_flow.hpp, geometry/precrack.cpp: a site on the line
+// through that column. Both fixed (hf/network_flow.hpp, geometry/precrack.cpp: a site on the line
 // counts with one side); failed interface bonds across the fluid's crack carry no contact
-// (pd/crack_junction.hpp). Before (traction faces): 7 of 9 at 3 mm as well, 2-8 arrested 17.1 mm past the plane and
+// (hf/crack_junction.hpp). Before (traction faces): 7 of 9 at 3 mm as well, 2-8 arrested 17.1 mm past the plane and
 // 2-6 8.5 mm.
 // At 2 mm (the second horizon, 12-62 min a row) with the platens (2026-11-24/25, rows run so far):
 // 2-1 crossed (41 mm past the plane at t = 4 s), 2-4 crossed (28.9 mm at t = 3.6 s), 2-6 crossed

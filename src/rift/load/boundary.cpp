@@ -2,16 +2,11 @@
 
 #include <algorithm>
 
-#include "rift/core/phase_times.hpp"
 #include "rift/geometry/region.hpp"
 #include "rift/load/time_function.hpp"
 #include "rift/load/traction_layer.hpp"
 #include "rift/parallel/exact_sum.hpp"
 #include "rift/parallel/team.hpp"
-#include "rift/pd/crack_pressure.hpp"
-#include "rift/pd/lumped_fluid.hpp"
-#include "rift/pd/network_load.hpp"
-#include "rift/pd/viscous_fluid.hpp"
 
 namespace rift::load {
 
@@ -45,14 +40,6 @@ Boundaries<D>::Boundaries(const scene::Scene& s, pd::Model<D>& m) {
     applied_.push_back(std::move(a));
   }
   if (s.in_situ.enabled) add_in_situ_tractions(s.in_situ, m);
-  for (const auto& c : s.cracks) pressure_sources_.push_back({c.pressure, c.pressure_time, false, 0.0, 0.0, 0.0, {}});
-  for (const auto& b : s.boreholes)
-    pressure_sources_.push_back({b.pressure, b.pressure_time, b.injection_rate.has_value(), b.injection_rate.value_or(0.0), b.fluid_bulk_modulus,
-                                 b.injection_system_volume, b.breakdown_pressure});
-  // a viscous injected fluid keeps its nodes' fluid on the model (pd/viscous_fluid.hpp)
-  m.fluid_network.viscous.assign(pressure_sources_.size(), {});
-  for (std::size_t h = 0; h < s.boreholes.size(); ++h)
-    if (s.boreholes[h].injection_rate) m.fluid_network.viscous[s.cracks.size() + h].viscosity = s.boreholes[h].fluid_viscosity;
   for (const auto& name : s.output.reactions) {
     reaction_names_.push_back(name);
     reaction_particles_.push_back(select<D>(s, m, name));
@@ -119,49 +106,6 @@ void Boundaries<D>::apply_body_forces(pd::Model<D>& m, double t) const {
         if (a.def.value[k]) m.body_force[i][k] += scale * *a.def.value[k];
     }
   }
-  if (!m.fluid_network.pressure_bonds) return;  // on every rank alike (the fluid's sums are over every rank)
-  // the fluid of each source also fills the cracks grown from it
-  PhaseClock clock(Phase::fluid_pressure);
-  {
-    PhaseClock network_clock(Phase::fluid_network);
-    pd::update_fluid_network<D>(m);
-  }
-  {
-    PhaseClock load_clock(Phase::network_load);
-    pd::update_network_load<D>(m);
-  }
-  auto& fluid = m.fluid_network;
-  fluid.pressure.assign(pressure_sources_.size(), 0.0);
-  fluid.cavity_volume.resize(pressure_sources_.size(), 0.0);
-  fluid.escaped_volume.resize(pressure_sources_.size(), 0.0);
-  for (std::size_t c = 0; c < pressure_sources_.size(); ++c) {
-    const auto& src = pressure_sources_[c];
-    if (!src.injected) {
-      fluid.pressure[c] = src.pressure * evaluate(src.time, t);
-      continue;
-    }
-    if (fluid.flows(c)) {  // flow along the cracks by the cubic law
-      fluid.pressure[c] = pd::viscous_fluid_pressure<D>(m, c, t, src.injection_rate, src.fluid_bulk_modulus, src.pressure, src.system_volume);
-      continue;
-    }
-    // mass balance of a lumped compressible fluid (pd/lumped_fluid.hpp)
-    const double injected = (fluid.reference_volume[c] + src.system_volume) * (1.0 + src.pressure / src.fluid_bulk_modulus) + src.injection_rate * t;
-    const pd::LumpedFluidState state =
-        pd::lumped_fluid_state(fluid.reference_volume[c], pd::cavity_volume_change<D>(m, static_cast<int>(c)), src.system_volume, injected,
-                               c < fluid.vented.size() && fluid.vented[c], fluid.escaped_volume[c], src.fluid_bulk_modulus);
-    fluid.cavity_volume[c] = state.cavity_volume;
-    fluid.escaped_volume[c] = state.escaped_volume;
-    fluid.pressure[c] = state.pressure;
-  }
-  // a wall breaks down once its fluid's pressure first reaches the breakdown pressure: from the next
-  // evaluation on, its fluid enters the dry pre-cracks that start in it (the network is made again)
-  for (std::size_t c = 0; c < pressure_sources_.size() && c < fluid.sealed.size(); ++c)
-    if (fluid.sealed[c] && pressure_sources_[c].breakdown_pressure && fluid.pressure[c] >= *pressure_sources_[c].breakdown_pressure) {
-      fluid.sealed[c] = 0;
-      fluid.relabel = true;
-    }
-  pd::add_crack_pressure<D>(m, fluid.pressure);
-  pd::add_network_pressure<D>(m, fluid.pressure);
 }
 
 template <int D>

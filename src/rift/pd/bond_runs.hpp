@@ -195,7 +195,7 @@ inline RowStates whole_rows(const Bonds& b, const BodyInfo& body) {
   return rows;
 }
 
-/// The intact and broken bonds of row i (intact | broken << 32, as fluid_network.hpp
+/// The intact and broken bonds of row i (intact | broken << 32, as hf/fluid_network.hpp
 /// count_bond_states counts them) from the rows r kept at the states' version now (whole_rows),
 /// where every state is intact or broken (no interface law): 17 bytes a particle read, where its
 /// states are a byte a bond (a thesis-size step's counts read 509 MB). False where r does not hold

@@ -5,7 +5,7 @@
 // set() or replace(), or through writable() followed by changed(): a write that bypassed them would
 // leave the kept rows stale, so there is no other way to write. A change takes its version from one
 // count of the whole process, so that two states that are not copies of each other never share a
-// version (a cache made from one is never taken for the other's: fluid_network.hpp).
+// version (a cache made from one is never taken for the other's: hf/fluid_network.hpp).
 #pragma once
 #include <atomic>
 #include <cstddef>

@@ -154,7 +154,7 @@ struct Bonds {
   }
 };
 
-/// Bonds that carry fluid pressure (crack_pressure.hpp), row i listing those of particle i: bonds a
+/// Bonds that carry fluid pressure (hf/crack_pressure.hpp), row i listing those of particle i: bonds a
 /// pressurized pre-crack cuts (never created in Bonds), and bonds from the material to the fluid
 /// sites of a borehole (neighbor -1: a lattice site of the body inside the borehole).
 struct CrackBonds {
@@ -189,14 +189,14 @@ struct InterfaceBonds {
   std::vector<std::uint16_t> interface;    // the scene's interface
   std::vector<InterfaceLaw> laws;          // per scene interface
   std::vector<std::array<double, 3>> slip; // per entry: the slip of the failed bond's faces so far (interface_law.hpp)
-  std::vector<std::uint8_t> across_crack;  // per entry: the failed bond joins the two faces of a crack the fluid fills (crack_junction.hpp)
+  std::vector<std::uint8_t> across_crack;  // per entry: the failed bond joins the two faces of a crack the fluid fills (hf/crack_junction.hpp)
   std::vector<std::int32_t> particles;     // the particles with a bond across an interface, ascending
   std::vector<std::array<double, 9>> strain;  // per particle above: the rock's strain around it (bulk_strain.hpp), refreshed with the law
 
   bool empty() const { return slot.empty(); }
 };
 
-/// An injected fluid that flows along its cracks by the cubic law (viscous_fluid.hpp): what each
+/// An injected fluid that flows along its cracks by the cubic law (hf/viscous_fluid.hpp): what each
 /// node of its network holds, as the volume the fluid takes at zero pressure.
 struct ViscousFluid {
   double viscosity = 0.0;  // Pa s; 0: the lumped fluid, one pressure
@@ -224,37 +224,37 @@ struct CrackSurface {
 };
 
 /// What the network load reads of a particle with bonds in a fluid's network (an end of the
-/// network), under a unit uniform expansion (network_load.hpp).
+/// network), under a unit uniform expansion (hf/network_load.hpp).
 struct NetworkEnd {
   double theta = 0.0, d_theta = 0.0;  // its dilatation with the network's bonds held intact, and their share of it
   double a = 0.0;                     // A_dev / m
   double held = 0.0, change = 0.0;    // its p with the network held intact, and the network's share (times d / m without the surface correction)
 };
 
-/// What the network load's runs read of each particle for one source (network_load_runs.hpp): its
+/// What the network load's runs read of each particle for one source (hf/network_load_runs.hpp): its
 /// terms as an end, from its NetworkEnd (its held term NaN where the source's fluid did not reach
 /// it), and per block of network_load_block particles whether one of them has a nonzero term. A
 /// cache kept with the ends (made again where they are), not state: empty, it is made from the ends.
 struct NetworkRunTerms {
-  std::vector<double> change, held;  // held: NaN where the source's fluid is not (network_load_runs.hpp)
+  std::vector<double> change, held;  // held: NaN where the source's fluid is not (hf/network_load_runs.hpp)
   std::vector<std::uint8_t> block_has_end;
 };
 inline constexpr std::size_t network_load_block = 64;
 
-/// The fluid each pressure source has in the cracks grown from it (fluid_network.hpp); empty
+/// The fluid each pressure source has in the cracks grown from it (hf/fluid_network.hpp); empty
 /// without pressure sources.
 struct FluidNetwork {
   std::vector<int> source;                    // per particle: the source whose fluid reaches it, -1 none
   bool relabel = true;                        // the labels are to be made from scratch (the first time, a wall broke down)
-  bool pressure_bonds = false;                // the whole model has pressure bonds (crack_pressure.hpp; a rank's window may hold none)
-  std::vector<std::uint64_t> bond_counts;     // per particle at the last update: its intact and broken bonds counted (fluid_network.hpp)
+  bool pressure_bonds = false;                // the whole model has pressure bonds (pressure_bonds.hpp; a rank's window may hold none)
+  std::vector<std::uint64_t> bond_counts;     // per particle at the last update: its intact and broken bonds counted (hf/fluid_network.hpp)
   // the bond states' version (BondStates::version) bond_counts were counted at, and the failed
   // interface bonds of the owned rows then: a cache, not state (0: not counted)
   std::uint64_t counted_states = 0;
   std::int64_t counted_interface_failed = 0;
-  std::vector<std::uint8_t> outer_surface;    // per particle: on the body's outer free surface (fluid_network.hpp)
+  std::vector<std::uint8_t> outer_surface;    // per particle: on the body's outer free surface (pressure_bonds.hpp)
   std::vector<std::uint8_t> in_crack;         // per particle: the fluid reaches it across a crack (a broken or cut bond), not only at a borehole's wall
-  std::vector<std::uint8_t> immersed;         // per particle: wet, in a fragment its intact bonds no longer join to the body (fluid_network.hpp): no fluid load
+  std::vector<std::uint8_t> immersed;         // per particle: wet, in a fragment its intact bonds no longer join to the body (hf/fluid_network.hpp): no fluid load
   std::vector<double> pore_stretch;           // per particle: p / (d kappa) where the fluid is in the cracked rock, 0 elsewhere; empty: nowhere (effective_stretch.hpp)
   std::vector<std::vector<std::int64_t>> open_interface_bonds;  // per source: the failed interface bonds its fluid fills (both entries), ascending
   CrackSurface crack_surface;                 // the cracks' surface the fluid fills (crack_crossing.hpp)
@@ -285,7 +285,7 @@ struct FluidNetwork {
     return all;
   }
   // the particles whose bonds changed state, or whose bonds joined or left a network, since the
-  // network load was last made (network_load.hpp); all of them while load_from_scratch
+  // network load was last made (hf/network_load.hpp); all of them while load_from_scratch
   std::vector<std::size_t> load_changed;
   std::vector<std::uint8_t> load_changed_mark;  // per particle: in load_changed
   /// load_changed made again from load_changed_mark, ascending (after the marks were copied)
@@ -295,10 +295,10 @@ struct FluidNetwork {
       if (load_changed_mark[i]) load_changed.push_back(i);
   }
   bool load_from_scratch = true;
-  std::vector<std::vector<double>> network_load;         // per source: the force density on each particle per unit pressure (n x d, 1/m); empty: none (network_load.hpp)
+  std::vector<std::vector<double>> network_load;         // per source: the force density on each particle per unit pressure (n x d, 1/m); empty: none (hf/network_load.hpp)
   std::vector<std::vector<std::uint8_t>> is_end;         // per source, per particle: it has a bond in the network
   std::vector<std::vector<NetworkEnd>> network_ends;     // per source, per particle: an end's NetworkEnd as network_load was last made (zero: not an end)
-  std::vector<NetworkRunTerms> network_run_terms;       // per source: the runs' terms of its ends (a cache, network_load.hpp)
+  std::vector<NetworkRunTerms> network_run_terms;       // per source: the runs' terms of its ends (a cache, hf/network_load.hpp)
   // per pressure source (the scene's cracks, then its boreholes)
   std::vector<std::uint8_t> dry;         // a crack without pressure of its own: its cut bonds carry a fluid that reaches them
   std::vector<std::uint8_t> sealed;      // a borehole whose wall has not broken down yet: the dry pre-cracks stay shut to its fluid
@@ -321,7 +321,7 @@ struct FluidNetwork {
     sealed = g.sealed, has_network = g.has_network, pressure = g.pressure, pore_pressure = g.pore_pressure;
     cavity_volume = g.cavity_volume, vented = g.vented, broke_through = g.broke_through, escaped_volume = g.escaped_volume;
   }
-  /// Whether source s's fluid flows along its cracks by the cubic law (viscous_fluid.hpp).
+  /// Whether source s's fluid flows along its cracks by the cubic law (hf/viscous_fluid.hpp).
   bool flows(std::size_t s) const { return s < viscous.size() && viscous[s].viscosity > 0.0; }
   /// Whether source s's fluid enters the dry pre-cracks it meets (its wall broke down, or has no breakdown pressure).
   bool enters_dry_cracks(int s) const { return s >= 0 && (static_cast<std::size_t>(s) >= sealed.size() || !sealed[static_cast<std::size_t>(s)]); }

@@ -117,7 +117,7 @@ void visit(A& a, CrackSurface& c) {
 template <class A>
 void visit(A& a, FluidNetwork& f) {
   f.settle_crossing_broken();  // the recent ones saved in the one list (and none left beside a restored one)
-  f.network_run_terms.clear();  // a cache of the network ends' terms (network_load.hpp): made again from the ends saved
+  f.network_run_terms.clear();  // a cache of the network ends' terms (hf/network_load.hpp): made again from the ends saved
   a("fluid.source", f.source), a("fluid.relabel", f.relabel), a("fluid.pressure_bonds", f.pressure_bonds), a("fluid.bond_counts", f.bond_counts);
   a("fluid.outer_surface", f.outer_surface), a("fluid.in_crack", f.in_crack), a("fluid.immersed", f.immersed);
   a("fluid.pore_stretch", f.pore_stretch), a("fluid.open_interface_bonds", f.open_interface_bonds);

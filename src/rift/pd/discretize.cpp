@@ -9,11 +9,11 @@
 #include "rift/geometry/region.hpp"
 #include "rift/pd/bond_runs.hpp"
 #include "rift/pd/bond_slabs.hpp"
-#include "rift/pd/crack_pressure.hpp"
 #include "rift/pd/influence.hpp"
 #include "rift/pd/interface_law.hpp"
 #include "rift/pd/laws/registry.hpp"
 #include "rift/pd/normal_stress_failure.hpp"
+#include "rift/pd/pressure_bonds.hpp"
 #include "rift/pd/surface_correction.hpp"
 #include "rift/pd/ves.hpp"
 #include "rift/parallel/team.hpp"
@@ -142,7 +142,7 @@ void build_bonds(const scene::Scene& s, Model<D>& m, const std::vector<std::arra
   b.offset.assign(n + 1, 0);
   // bonds across pre-existing fractures (interface_law.hpp): their place in row i and the interface
   std::vector<std::vector<std::pair<std::uint32_t, std::uint16_t>>> across(n);
-  // pressure bonds (crack_pressure.hpp): bonds the cracks cut (when the scene has a fluid) and bonds
+  // pressure bonds (hf/crack_pressure.hpp): bonds the cracks cut (when the scene has a fluid) and bonds
   // to the fluid sites of boreholes
   std::vector<std::vector<std::int32_t>> wet_nb(n);
   std::vector<std::vector<float>> wet_frac(n);
@@ -282,7 +282,7 @@ void build_bonds(const scene::Scene& s, Model<D>& m, const std::vector<std::arra
           for (auto c : cutting) {
             if (!cracks[c].cuts(pi, pj)) continue;
             // with a fluid in the scene, a cut bond carries its crack's pressure or, for a crack
-            // without one, the fluid that reaches it (fluid_network.hpp)
+            // without one, the fluid that reaches it (hf/fluid_network.hpp)
             if (!cut && any_fluid && fill) {
               std::array<double, 3> xi{0, 0, 0};
               for (int k = 0; k < D; ++k) xi[k] = pj[k] - pi[k];
@@ -418,7 +418,7 @@ Model<D> discretize(const scene::Scene& s) {
   }
   compute_dilatation_weights<D>(m, factor_row_owners);
   prepare_viscous_history<D>(m, [](const BodyInfo& body) { return law_traits(body.constants.model).bond_history; });
-  prepare_crack_pressure<D>(m);
+  prepare_pressure_bonds<D>(m);
   prepare_interfaces<D>(s, m);
 
   for (const auto& iv : s.initial_velocities) {

@@ -38,7 +38,7 @@ DynamicRelaxation<D>::DynamicRelaxation(const Model<D>& m) {
 }
 
 template <int D>
-double DynamicRelaxation<D>::measure_fictitious_density(Model<D>& m, const load::Boundaries<D>& loads, Contact<D>* contact, double t,
+double DynamicRelaxation<D>::measure_fictitious_density(Model<D>& m, const Loads<D>& loads, Contact<D>* contact, double t,
                                                         int iterations, double safety) {
   const std::size_t n = m.size();
   // sums and maxima over the owned particles (a distributed run's: every rank's, in the one-rank
@@ -121,7 +121,7 @@ RigidAcceleration<D> rigid_acceleration(const Model<D>& m, const std::vector<dou
 }
 
 template <int D>
-RelaxationResult DynamicRelaxation<D>::relax(Model<D>& m, const load::Boundaries<D>& loads, Contact<D>* contact,
+RelaxationResult DynamicRelaxation<D>::relax(Model<D>& m, const Loads<D>& loads, Contact<D>* contact,
                                               double t, int max_iterations, double tolerance) {
   const std::size_t n = m.size();
   // a load step a stop cut short goes on where it stood: the model holds its positions, velocities
@@ -244,7 +244,7 @@ std::size_t broken_through_sources(const Model<D>& m) {
 }  // namespace
 
 template <int D>
-RelaxationResult DynamicRelaxation<D>::relax_breaking_at_equilibrium(Model<D>& m, const load::Boundaries<D>& loads,
+RelaxationResult DynamicRelaxation<D>::relax_breaking_at_equilibrium(Model<D>& m, const Loads<D>& loads,
                                                                       Contact<D>* contact, double t, int max_iterations,
                                                                       double tolerance, int max_passes) {
   RelaxationResult total;

@@ -6,9 +6,9 @@
 #include <functional>
 #include <vector>
 
-#include "rift/load/boundary.hpp"
 #include "rift/pd/contact.hpp"
 #include "rift/pd/held_breaking.hpp"
+#include "rift/pd/loads.hpp"
 #include "rift/pd/model.hpp"
 
 namespace rift::pd {
@@ -33,19 +33,19 @@ class DynamicRelaxation {
   /// Relax to equilibrium for the loads at time t (positions of displacement BCs set first). Each
   /// iteration reads the stop signal (every rank alike); a stop leaves the iterations where they
   /// are (unfinished(), stopped = true) for a checkpoint, and the next call goes on from there.
-  RelaxationResult relax(Model<D>& m, const load::Boundaries<D>& loads, Contact<D>* contact, double t,
+  RelaxationResult relax(Model<D>& m, const Loads<D>& loads, Contact<D>* contact, double t,
                          int max_iterations, double tolerance);
   /// Measures the largest eigenvalue mu of the stiffness over the row-sum bound (eq. 10 without its
   /// factor) by power iteration at the current state, and sets the fictitious density to
   /// `safety` mu / 4 times that bound (stable for dt = 1 where mu / 4 is the largest). Returns the
   /// factor. Call with the bonds held (HeldBreaking): the probes move the particles by a millionth
   /// of a bond.
-  double measure_fictitious_density(Model<D>& m, const load::Boundaries<D>& loads, Contact<D>* contact, double t, int iterations = 50,
+  double measure_fictitious_density(Model<D>& m, const Loads<D>& loads, Contact<D>* contact, double t, int iterations = 50,
                                     double safety = 1.25);
   /// lambda_i per particle (eq. 10, time step 1), per unit volume.
   const std::vector<double>& fictitious_density() const { return fictitious_density_; }
   /// Damping from Rayleigh's quotient of the displacement since the start of each relax call
-  /// instead of since the reference state (in_situ_strain.hpp: a start already near equilibrium).
+  /// instead of since the reference state (geomech/in_situ_strain.hpp: a start already near equilibrium).
   void measure_damping_from_start(bool on) { damping_from_start_ = on; }
   /// Every member, for a checkpoint (pd/checkpoint_state.hpp).
   template <class A>
@@ -77,7 +77,7 @@ class DynamicRelaxation {
   /// pressure, say) have not yet found the deformation they belong to. The passes stop once an
   /// injected fluid breaks through to the outer surface: a laboratory test ends there, its pressure
   /// lost, and the bonds keep the crack it had then (what a cut block shows).
-  RelaxationResult relax_breaking_at_equilibrium(Model<D>& m, const load::Boundaries<D>& loads, Contact<D>* contact, double t,
+  RelaxationResult relax_breaking_at_equilibrium(Model<D>& m, const Loads<D>& loads, Contact<D>* contact, double t,
                                                  int max_iterations, double tolerance, int max_passes);
 
  private:

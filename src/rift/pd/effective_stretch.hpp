@@ -43,7 +43,7 @@ template <int D>
 void update_pore_stretch(Model<D>& m) {
   FluidNetwork& f = m.fluid_network;
   const std::size_t n = m.size();
-  // a viscous fluid's pressure at the particle (viscous_fluid.hpp), a lumped one's everywhere
+  // a viscous fluid's pressure at the particle (hf/viscous_fluid.hpp), a lumped one's everywhere
   const bool local = f.local_pore_pressure.size() == n;
   auto pore_pressure = [&](std::size_t i) {
     const int s = f.source[i];

@@ -31,7 +31,7 @@ std::int64_t interface_entry(const Model<D>& m, std::size_t i, std::int64_t k) {
 }
 
 /// Whether the failed interface bond of entry q joins the two faces of a crack the fluid fills
-/// (crack_junction.hpp): its ends are apart, no contact.
+/// (hf/crack_junction.hpp): its ends are apart, no contact.
 inline bool across_crack(const InterfaceBonds& ib, std::int64_t q) {
   return q >= 0 && static_cast<std::size_t>(q) < ib.across_crack.size() && ib.across_crack[static_cast<std::size_t>(q)] != 0;
 }

@@ -2,7 +2,7 @@
 // blocks of Zhou et al. 2008). The bonds that cross one keep the rock's stiffness until the
 // interface law fails; then each is a frictional contact (interface_contact.hpp, bonds.hpp
 // bond_interface_failed): the faces press on each other and slide with Coulomb friction, or open,
-// and the fluid that reaches them enters where they are apart (fluid_network.hpp).
+// and the fluid that reaches them enters where they are apart (hf/fluid_network.hpp).
 // The law of bond i-j, evaluated before each force evaluation with the positions of the last one, on
 // the traction t = sigma n of the mean stress of i and j, the stress of the rock around each from
 // the strain of its intact bonds (bulk_strain.hpp, rock_stress below; the strain is kept as the

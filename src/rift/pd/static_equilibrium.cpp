@@ -19,7 +19,7 @@
 namespace rift::pd {
 
 template <int D>
-RelaxationResult solve_static_equilibrium(Model<D>& m, const load::Boundaries<D>& loads, Contact<D>* contact, double t,
+RelaxationResult solve_static_equilibrium(Model<D>& m, const Loads<D>& loads, Contact<D>* contact, double t,
                                           const std::vector<double>& diagonal, int max_iterations, double tolerance) {
   const std::size_t n = m.size();
   m.time = t;
@@ -231,9 +231,9 @@ RelaxationResult solve_static_equilibrium(Model<D>& m, const load::Boundaries<D>
   return result;
 }
 
-template RelaxationResult solve_static_equilibrium<2>(Model<2>&, const load::Boundaries<2>&, Contact<2>*, double, const std::vector<double>&,
+template RelaxationResult solve_static_equilibrium<2>(Model<2>&, const Loads<2>&, Contact<2>*, double, const std::vector<double>&,
                                                        int, double);
-template RelaxationResult solve_static_equilibrium<3>(Model<3>&, const load::Boundaries<3>&, Contact<3>*, double, const std::vector<double>&,
+template RelaxationResult solve_static_equilibrium<3>(Model<3>&, const Loads<3>&, Contact<3>*, double, const std::vector<double>&,
                                                        int, double);
 
 }  // namespace rift::pd

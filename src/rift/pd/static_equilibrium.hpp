@@ -17,9 +17,9 @@
 #pragma once
 #include <vector>
 
-#include "rift/load/boundary.hpp"
 #include "rift/pd/contact.hpp"
 #include "rift/pd/dynamic_relaxation.hpp"
+#include "rift/pd/loads.hpp"
 #include "rift/pd/model.hpp"
 
 namespace rift::pd {
@@ -33,7 +33,7 @@ namespace rift::pd {
 /// with the particles at the last iterate whose forces were evaluated; stopped = true where a stop
 /// signal came (core/stop_signal.hpp: read at each iteration, the solve is not resumable).
 template <int D>
-RelaxationResult solve_static_equilibrium(Model<D>& m, const load::Boundaries<D>& loads, Contact<D>* contact, double t,
+RelaxationResult solve_static_equilibrium(Model<D>& m, const Loads<D>& loads, Contact<D>* contact, double t,
                                           const std::vector<double>& diagonal, int max_iterations, double tolerance);
 
 }  // namespace rift::pd

@@ -1,10 +1,10 @@
 // Explicit dynamics: velocity-Verlet (kick-drift-kick), as LAMMPS fix nve.
 //   v(t+dt/2) = v(t) + dt/2 a(t);  x(t+dt) = x(t) + dt v(t+dt/2);  forces;  v(t+dt) = v(t+dt/2) + dt/2 a(t+dt)
 #pragma once
-#include "rift/load/boundary.hpp"
 #include "rift/pd/contact.hpp"
 #include "rift/pd/effective_stretch.hpp"
 #include "rift/pd/forces.hpp"
+#include "rift/pd/loads.hpp"
 #include "rift/pd/model.hpp"
 #include "rift/parallel/team.hpp"
 
@@ -30,7 +30,7 @@ void drift(Model<D>& m, double dt) {
 
 /// One velocity-Verlet step from m.time to m.time + dt. Forces of m.time must be current.
 template <int D>
-void velocity_verlet_step(Model<D>& m, const load::Boundaries<D>& loads, Contact<D>* contact, double dt) {
+void velocity_verlet_step(Model<D>& m, const Loads<D>& loads, Contact<D>* contact, double dt) {
   auto mass = [&](std::size_t i) { return m.constants_of(i).density * m.volume[i]; };
   kick<D>(m, 0.5 * dt);
   move_with_platens(m, mass);  // a rigid plate's momentum is its particles' (pd/platens.hpp)

@@ -163,9 +163,9 @@ void drop_runs_of_ghosts(BodyInfo& part, const std::vector<IndexRange>& owned) {
   part.slab_runs = std::move(slab_runs);
 }
 
-/// The window's pressure bonds (crack_pressure.hpp), each row cut to the fluid sites and the
+/// The window's pressure bonds (hf/crack_pressure.hpp), each row cut to the fluid sites and the
 /// neighbours inside the window (only ghosts' rows lose bonds), and its fluid: the sources' state as
-/// it is, the particles' labels left to be made again on this rank's particles (fluid_network.hpp:
+/// it is, the particles' labels left to be made again on this rank's particles (hf/fluid_network.hpp:
 /// they follow from the bonds' states and the sources'), the outer surface cut to the window.
 template <int D>
 void window_pressure_bonds(const Model<D>& m, const Numbering& window, Model<D>& w) {

@@ -47,14 +47,14 @@ template <int D>
 std::array<int, 2> choose_pencils(const Model<D>& m, int ranks);
 
 /// How many bonds' reaches a window holds past its owned range where a fluid fills cracks that
-/// grow (fluid_network.hpp) or flows (fluid_reads_far): the network load of an owned particle reads the network ends among its
+/// grow (hf/fluid_network.hpp) or flows (fluid_reads_far): the network load of an owned particle reads the network ends among its
 /// neighbours, each end its whole row (two reaches of whole rows); the crack surface an owned bond
 /// may cross has its patches and their normals from the short bonds around the bond's ends, a
 /// spacing or two further.
 inline constexpr std::size_t fluid_ghost_reaches = 3;
 
 /// Whether the scene's fluid fills cracks that can grow (pressure bonds in rock whose bonds break),
-/// or flows along them (viscous_fluid.hpp: a flow bond's conductance reads the bulk strain and the
+/// or flows along them (hf/viscous_fluid.hpp: a flow bond's conductance reads the bulk strain and the
 /// family moments of its ends, an owned particle's neighbour among them, each over its whole row),
 /// or the scene has interfaces (interface_law.hpp: the law of a bond with an owned end reads the
 /// fluid in the interface at its other end, over that end's whole row).

@@ -330,7 +330,7 @@ Result run_dim(const scene::Scene& s, const Options& o) {
     for (const char* q : {"crossed", "dilated", "crossing_distance", "opened_length"})
       columns.push_back(std::string(q) + "_interface_" + std::to_string(k));
   const char* comp[3] = {"x", "y", "z"};
-  for (const auto& r : p.loads.reaction_names())
+  for (const auto& r : p.loads.boundaries.reaction_names())
     for (int k = 0; k < D; ++k) columns.push_back("reaction_" + r + "_" + comp[k]);
   const bool at_equilibrium = s.solver.breaking == scene::Solver::Breaking::at_equilibrium;
   if (s.solver.kind == scene::SolverKind::dynamic_relaxation) columns.insert(columns.end(), {"iterations", "residual"});
@@ -365,7 +365,7 @@ Result run_dim(const scene::Scene& s, const Options& o) {
     for (const auto& o : outcomes) row.insert(row.end(), {double(o.crossed), double(o.dilated), o.crossing_distance, o.opened_length});
     if (vent_time < 0.0) outcomes_at_breakthrough = outcomes;
     if (vented && vent_time < 0.0) vent_time = m.time;
-    for (const auto& r : p.loads.reactions(m, comm)) row.insert(row.end(), r.begin(), r.end());
+    for (const auto& r : p.loads.boundaries.reactions(m, comm)) row.insert(row.end(), r.begin(), r.end());
     row.insert(row.end(), extra.begin(), extra.end());
     if (history) history->row(row);
     return e;

@@ -10,18 +10,18 @@
 #include <string>
 
 #include "rift/core/error.hpp"
-#include "rift/load/boundary.hpp"
 #include "rift/parallel/communicator.hpp"
 #include "rift/parallel/halo.hpp"
 #include "rift/parallel/ordered_sum.hpp"
 #include "rift/pd/contact.hpp"
 #include "rift/pd/discretize.hpp"
 #include "rift/pd/dynamic_relaxation.hpp"
-#include "rift/pd/in_situ_strain.hpp"
+#include "rift/geomech/in_situ_strain.hpp"
 #include "rift/pd/static_equilibrium.hpp"
 #include "rift/pd/forces.hpp"
 #include "rift/pd/velocity_verlet.hpp"
 #include "rift/pd/window.hpp"
+#include "rift/run/scene_loads.hpp"
 #include "rift/run/time_step.hpp"
 #include "rift/scene/scene.hpp"
 
@@ -30,7 +30,7 @@ namespace rift::run {
 template <int D>
 struct Simulation {
   pd::Model<D> model;
-  load::Boundaries<D> loads;
+  SceneLoads<D> loads;
   pd::Contact<D> contact;
   double stable_dt = 0.0, dt = 0.0;
   long steps = 0;  // explicit: time steps to end_time; relaxation: load steps
@@ -91,7 +91,7 @@ struct Simulation {
     if (D == 2 || grid[1] == 1) partition = pd::partition_by_bonds<D>(model, ranks, reaches);
     processor_grid_ = grid;
     const auto r = static_cast<std::size_t>(comm.rank());
-    loads.restrict_to(pd::Numbering(partition.window[r]), partition.owned[r]);
+    loads.boundaries.restrict_to(pd::Numbering(partition.window[r]), partition.owned[r]);
     model = pd::window_of<D>(model, partition, comm.rank());
     halo = std::make_unique<parallel::Halo>(comm.rank(), partition.owned, partition.window, model.numbering);
     model.ghosts = halo.get();
@@ -109,7 +109,7 @@ struct Simulation {
     const auto initial_velocity = model.velocity;
     pd::DynamicRelaxation<D> dr(model);
     if (in_situ.start == scene::InSituStress::Start::uniform_strain) {
-      pd::apply_in_situ_strain<D>(model, in_situ);
+      geomech::apply_in_situ_strain<D>(model, in_situ);
       dr.measure_damping_from_start(true);
     }
     pd::RelaxationResult cg;

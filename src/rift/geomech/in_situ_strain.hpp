@@ -1,21 +1,21 @@
 // The in-situ stage's starting point: the uniform strain that Hooke's law gives the far-field
 // principal stresses, eps_kk = (sigma_k - lambda tr(eps)) / 2G with tr(eps) = tr(sigma) / (d kappa)
-// (kappa and lambda of the body's dimension and plane condition, material_constants.hpp; the first d
+// (kappa and lambda of the body's dimension and plane condition, pd/material_constants.hpp; the first d
 // principal stresses of [in_situ_stress]). It is the block's equilibrium away from its faces, its
 // edges and the borehole, so the relaxation from it has only their local fields left to find
-// (dynamic_relaxation.hpp: the damping then measured on the motion away from this start).
+// (pd/dynamic_relaxation.hpp: the damping then measured on the motion away from this start).
 // Displacements count from the lowest lattice coordinate on each axis, which a platen holds
-// (platens.hpp); a component that a boundary condition constrains keeps its position.
+// (pd/platens.hpp); a component that a boundary condition constrains keeps its position.
 #pragma once
 #include "rift/parallel/communicator.hpp"
 #include "rift/pd/model.hpp"
 #include "rift/scene/scene.hpp"
 
-namespace rift::pd {
+namespace rift::geomech {
 
 /// Strain of the far-field stresses in a body with these constants (principal axes = coordinate axes).
 template <int D>
-Vec<D> in_situ_strain(const MaterialConstants& c, const scene::InSituStress& s) {
+Vec<D> in_situ_strain(const pd::MaterialConstants& c, const scene::InSituStress& s) {
   double trace_sigma = 0.0;
   for (int k = 0; k < D; ++k) trace_sigma += s.principal(k);
   const double trace_eps = trace_sigma / (D * c.kappa);
@@ -26,7 +26,7 @@ Vec<D> in_situ_strain(const MaterialConstants& c, const scene::InSituStress& s) 
 
 /// Moves every particle to the uniform in-situ strain of its body.
 template <int D>
-void apply_in_situ_strain(Model<D>& m, const scene::InSituStress& s) {
+void apply_in_situ_strain(pd::Model<D>& m, const scene::InSituStress& s) {
   Vec<D> low = m.reference_bounds()[0];
   if (m.ghosts)  // a distributed run's window: the whole block's lowest coordinates
     for (int k = 0; k < D; ++k) low[k] = parallel::Communicator::world().min(low[k]);
@@ -39,4 +39,4 @@ void apply_in_situ_strain(Model<D>& m, const scene::InSituStress& s) {
   }
 }
 
-}  // namespace rift::pd
+}  // namespace rift::geomech

@@ -31,7 +31,7 @@
 // The rock is loaded by p_i g_s,i (network_load.hpp), p_i the pressure at particle i; a particle the
 // network's load reaches but the fluid does not (LPS coupling) takes the mean of the wet particles
 // of its family.
-// On N ranks (window.hpp) every rank solves the whole network: the flow bonds of its owned rows
+// On N ranks (pd/window.hpp) every rank solves the whole network: the flow bonds of its owned rows
 // and its owned nodes, gathered and put in the one-rank order, give every rank the one-rank system
 // and its bits; each keeps its owned particles' pressures and the ghosts take their owners'.
 #pragma once
@@ -39,11 +39,12 @@
 #include <cstdint>
 #include <vector>
 
-#include "rift/pd/fluid_network.hpp"
+#include "rift/hf/fluid_network.hpp"
+#include "rift/hf/network_flow.hpp"
+#include "rift/hf/pd_names.hpp"
 #include "rift/pd/ghost_fields.hpp"
-#include "rift/pd/network_flow.hpp"
 
-namespace rift::pd {
+namespace rift::hf {
 
 /// A node with no room left (every bond of it shut, or the network's whole volume gone) cannot keep
 /// the fluid it held: the faces squeeze it out into the open neighbour of largest volume, or
@@ -257,4 +258,4 @@ double viscous_fluid_pressure(Model<D>& m, std::size_t s, double t, double injec
   return p[0];
 }
 
-}  // namespace rift::pd
+}  // namespace rift::hf

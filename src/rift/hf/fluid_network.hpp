@@ -24,59 +24,20 @@
 #include <vector>
 
 #include "rift/core/phase_times.hpp"
+#include "rift/hf/crack_junction.hpp"
+#include "rift/hf/pd_names.hpp"
+#include "rift/parallel/indices_where.hpp"
+#include "rift/parallel/ordered_sum.hpp"
+#include "rift/parallel/sort.hpp"
+#include "rift/parallel/team.hpp"
 #include "rift/pd/bond_runs.hpp"
-#include "rift/pd/crack_junction.hpp"
 #include "rift/pd/effective_stretch.hpp"
 #include "rift/pd/ghost_fields.hpp"
 #include "rift/pd/influence.hpp"
 #include "rift/pd/interface_law.hpp"
-#include "rift/parallel/indices_where.hpp"
-#include "rift/parallel/ordered_sum.hpp"
 #include "rift/pd/model.hpp"
-#include "rift/parallel/sort.hpp"
-#include "rift/parallel/team.hpp"
 
-namespace rift::pd {
-
-/// Whole-family weighted volumes m_i = sum omega |xi|^2 V_j over every bond ever in i's family
-/// (intact or broken) and the bonds a pressurized pre-crack cut, without the surface correction.
-template <int D>
-std::vector<double> whole_family_weighted_volumes(const Model<D>& m) {
-  const std::size_t n = m.size();
-  std::vector<double> whole(n, 0.0);
-  const Bonds& b = m.bonds;
-  const CrackBonds& w = m.crack_bonds;
-#pragma omp parallel for if(rift::parallel::worth_a_team(n)) schedule(static)
-  for (std::size_t i = 0; i < n; ++i) {
-    const auto& c = m.constants_of(i);
-    double sum = 0.0;
-    for (auto k = b.offset[i]; k < b.offset[i + 1]; ++k)
-      sum += influence(c.influence, b.length(k), c.horizon) * b.length(k) * b.length(k) * b.volume(k);
-    if (!w.offset.empty())
-      for (auto k = w.offset[i]; k < w.offset[i + 1]; ++k) {
-        const double xi = w.length(static_cast<std::size_t>(k));
-        sum += influence(c.influence, xi, c.horizon) * xi * xi * w.volume[k];
-      }
-    whole[i] = sum;
-  }
-  return whole;
-}
-
-/// Particles on the outer free surface of their body: whole-family weighted volume (every bond ever
-/// in the family, and those a pre-crack or borehole cut) under `outer_surface_fraction` of a full
-/// family's, the continuum int omega |xi|^2 dV. With a horizon of 3 spacings a particle on a flat
-/// face keeps 0.57 of it, one a row deeper 0.73 (2D); the faces of cracks and boreholes keep all of it.
-inline constexpr double outer_surface_fraction = 0.65;
-
-template <int D>
-std::vector<std::uint8_t> outer_surface_particles(const Model<D>& m, const std::vector<double>& whole) {
-  std::vector<std::uint8_t> outer(m.size(), 0);
-  for (std::size_t i = 0; i < m.size(); ++i) {
-    const auto& c = m.constants_of(i);
-    outer[i] = whole[i] < outer_surface_fraction * family_moment(D, c.influence, c.horizon, c.thickness, 2) ? 1 : 0;
-  }
-  return outer;
-}
+namespace rift::hf {
 
 /// The source whose pressure the pressure bond k of row i carries: its own, or for a crack without
 /// pressure of its own (dry) the fluid that reaches both ends (-1: none).
@@ -145,7 +106,7 @@ int source_next_to(const Model<D>& m, std::size_t i) {
 /// Per particle of rows [first, last): its intact and its broken bonds counted (bond states never
 /// heal, so any change of state among its bonds changes these). Returns the failed interface bonds
 /// of those rows. Where every state is intact or broken (`no_interface`: the model has no interface
-/// law), a row the kept rows hold at the states' version is counted from them (bond_runs.hpp
+/// law), a row the kept rows hold at the states' version is counted from them (pd/bond_runs.hpp
 /// kept_row_count), without its states.
 inline std::int64_t count_bond_states(const Bonds& b, std::size_t first, std::size_t last, std::vector<std::uint64_t>& counts,
                                       bool no_interface = false) {
@@ -680,7 +641,7 @@ void update_fluid_network(Model<D>& m) {
       }
     std::fill(f.has_network.begin(), f.has_network.end(), 0);
     // over every row of the window: a ghost row's bonds lie in the window, their states, labels and
-    // (interface_law.hpp) ends' strains its owner's, and its failed interface bonds that the fluid
+    // (pd/interface_law.hpp) ends' strains its owner's, and its failed interface bonds that the fluid
     // fills belong in open_interface_bonds (the crack surface and the network load read them)
     std::vector<std::vector<std::int64_t>> open(f.dry.size());
     for (std::size_t i = 0; i < n; ++i) {
@@ -789,4 +750,4 @@ double cavity_volume_change(const Model<D>& m, int s, bool wall_only = false) {
   return sums[0];
 }
 
-}  // namespace rift::pd
+}  // namespace rift::hf

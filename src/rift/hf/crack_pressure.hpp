@@ -1,7 +1,7 @@
 // Fluid pressure on the faces of a pre-crack and on the wall of a borehole. The bonds the crack cuts
 // are not part of the solid, nor are those from the material to the borehole's lattice sites, but
 // the fluid that fills the crack or the hole carries the isotropic stress -p I across them. Its force state
-// is the one whose bond-pair stress (stress.hpp) is -p I for a whole family,
+// is the one whose bond-pair stress (pd/stress.hpp) is -p I for a whole family,
 //   T_i<xi> = -p d omega xi / m_i   (sum_j T_i<xi_ij> (x) xi_ij V_j = -p I, since sum omega xi (x) xi V = m I / d),
 // so each cut bond pushes its two ends apart with the force density
 //   f_i = -p d omega (1/m_i + 1/m_j) |xi| V_j y_ij / |y_ij|,
@@ -15,31 +15,13 @@
 #include <cmath>
 #include <vector>
 
-#include "rift/pd/fluid_network.hpp"
+#include "rift/hf/fluid_network.hpp"
+#include "rift/hf/pd_names.hpp"
+#include "rift/parallel/team.hpp"
 #include "rift/pd/influence.hpp"
 #include "rift/pd/model.hpp"
-#include "rift/parallel/team.hpp"
 
-namespace rift::pd {
-
-/// The coefficients d omega V_j (1/m_i + 1/m_j) of the pressure-carrying bonds (after the weighted
-/// volumes; m over whole families), and which particles are on the outer surface (fluid_network.hpp).
-template <int D>
-void prepare_crack_pressure(Model<D>& m) {
-  CrackBonds& w = m.crack_bonds;
-  if (w.neighbor.empty()) return;
-  m.fluid_network.pressure_bonds = true;
-  const std::vector<double> whole = whole_family_weighted_volumes<D>(m);
-  m.fluid_network.outer_surface = outer_surface_particles<D>(m, whole);
-  w.coefficient.assign(w.neighbor.size(), 0.0);
-  for (std::size_t i = 0; i < m.size(); ++i) {
-    const auto& c = m.constants_of(i);
-    for (auto k = w.offset[i]; k < w.offset[i + 1]; ++k) {
-      const double m_j = w.neighbor[k] >= 0 ? whole[static_cast<std::size_t>(w.neighbor[k])] : w.fluid_weighted_volume[k];
-      w.coefficient[k] = D * influence(c.influence, w.length(static_cast<std::size_t>(k)), c.horizon) * w.volume[k] * (1.0 / whole[i] + 1.0 / m_j);
-    }
-  }
-}
+namespace rift::hf {
 
 /// Adds the pressure forces to m.body_force; pressure[s] is source s's current pressure (the scene's
 /// cracks, then its boreholes). Between two particles the force follows the deformed bond; toward a
@@ -69,4 +51,4 @@ void add_crack_pressure(Model<D>& m, const std::vector<double>& pressure) {
     }
 }
 
-}  // namespace rift::pd
+}  // namespace rift::hf

@@ -1,5 +1,5 @@
 // The network load (network_load.hpp) of the bodies without the surface correction, in one pass over
-// the runs of bonds (bond_runs.hpp). Without the correction every factor of a bond is one, and t of
+// the runs of bonds (pd/bond_runs.hpp). Without the correction every factor of a bond is one, and t of
 // end e of a bond under the unit expansion (network_load.hpp end_force_state) is omega |xi| times a
 // number of e alone, from its NetworkEnd z:
 //   a network bond: t_e = omega |xi| held_e,   held_e = z.held + z.a (1 - z.theta / d),
@@ -16,12 +16,13 @@
 #include <cstddef>
 
 #include "rift/core/vector_isa.hpp"
+#include "rift/hf/pd_names.hpp"
 #include "rift/pd/bond_runs.hpp"
 
-namespace rift::pd {
+namespace rift::hf {
 
 /// One run of the network load pass: the lower ends' arrays start at a, the upper ends' at b;
-/// `mask` (Masked: bond_runs.hpp run_mask): which bonds are intact; held: NaN where the network's
+/// `mask` (Masked: pd/bond_runs.hpp run_mask): which bonds are intact; held: NaN where the network's
 /// fluid did not reach the particle (FluidNetwork::source); k: -omega V xi of the run's family; g:
 /// the sums, per component.
 struct NetworkLoadRun {
@@ -30,7 +31,7 @@ struct NetworkLoadRun {
   RunMask mask;  // Masked
   double kx = 0.0, ky = 0.0, kz = 0.0;
   double *fxa = nullptr, *fya = nullptr, *fza = nullptr, *fxb = nullptr, *fyb = nullptr, *fzb = nullptr;
-  bool ends_apart = false;  // bond_runs.hpp ends_apart_in_vectors: the one-loop form
+  bool ends_apart = false;  // pd/bond_runs.hpp ends_apart_in_vectors: the one-loop form
 };
 
 /// s_i + s_j of a bond (the file's comment): the ends' changes for an intact bond, their held values
@@ -41,7 +42,7 @@ struct NetworkLoadRun {
   return intact ? change_i + change_j : network;
 }
 
-/// The pair terms (s_i + s_j) k of a run's bonds, bond t's to out(t, ...) (bond_runs.hpp
+/// The pair terms (s_i + s_j) k of a run's bonds, bond t's to out(t, ...) (pd/bond_runs.hpp
 /// PairForcesToEnds, PairForcesToBuffers).
 template <int D, bool Masked, class Out>
 [[gnu::always_inline]] inline void network_load_run_terms(std::size_t length, const double* __restrict change_a,
@@ -62,7 +63,7 @@ struct NetworkLoadRunKernel {
     alignas(64) double own_alive[max_run_length];
     const double* alive = nullptr;
     if constexpr (Masked) alive_from_mask(a.mask, a.length, own_alive, alive);  // a broken bond adds where it is the network's
-    if (a.ends_apart) {  // in one loop (bond_runs.hpp ends_apart_in_vectors)
+    if (a.ends_apart) {  // in one loop (pd/bond_runs.hpp ends_apart_in_vectors)
       network_load_run_terms<D, Masked>(a.length, a.change_a, a.change_b, a.held_a, a.held_b, alive, a.kx, a.ky, a.kz,
                                         PairForcesToEnds<D, false>(a));
       return false;
@@ -75,4 +76,4 @@ struct NetworkLoadRunKernel {
   }
 };
 
-}  // namespace rift::pd
+}  // namespace rift::hf

@@ -15,11 +15,11 @@
 // the broken bonds of a straight crack hold w per unit area.
 // The opening of a broken bond is the jump of displacement across the crack: its deformed vector
 // less what the rock around its ends strains over it, y - (I + eps) xi, eps the mean of its ends'
-// bulk strains (bulk_strain.hpp). The rock's own strain over a bond of three spacings is not small
+// bulk strains (pd/bulk_strain.hpp). The rock's own strain over a bond of three spacings is not small
 // beside a hydraulic fracture's opening (5 MPa over E = 8.4 GPa: 5 um over 9 mm, against openings
 // of 20-30 um). Its normal is the jump's direction (an opening, mode I, crack); across a failed
 // interface bond it is the interface's normal and the opening its faces' normal opening
-// (interface_contact.hpp interface_opening, as the interface law and the outcome reader take it:
+// (pd/interface_contact.hpp interface_opening, as the interface law and the outcome reader take it:
 // slip along the interface opens nothing). A bond across an interface that broke as rock (the
 // fracture crossing it) is a crack's bond like any other: taken for an interface contact, its
 // opening was the interface's shut faces' (none), and the fluid could not follow a fracture
@@ -39,11 +39,12 @@
 #include <unordered_map>
 #include <vector>
 
+#include "rift/hf/pd_names.hpp"
 #include "rift/pd/bulk_strain.hpp"
 #include "rift/pd/interface_contact.hpp"
 #include "rift/pd/model.hpp"
 
-namespace rift::pd {
+namespace rift::hf {
 
 /// The jump of displacement across a bond i-j of reference vector xi: y_ij - (I + eps) xi, eps the
 /// mean of the two ends' bulk strains (3 x 3, row-major).
@@ -242,4 +243,4 @@ inline std::vector<double> solve_network_pressure(const std::vector<FlowBond>& b
   return p;
 }
 
-}  // namespace rift::pd
+}  // namespace rift::hf

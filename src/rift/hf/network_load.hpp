@@ -2,7 +2,7 @@
 // A solid whose cracks all hold fluid at p, and whose outer boundary carries -p too, is compressed
 // uniformly by -p I with no effective stress (Biot coefficient 1: the unjacketed compression test;
 // Detournay and Cheng 1993, section 2.2). Terzaghi's split of a pressurized crack into a dry crack under
-// the effective stress and that uniform state (effective_stretch.hpp) holds in the discrete model
+// the effective stress and that uniform state (pd/effective_stretch.hpp) holds in the discrete model
 // only if the fluid's forces keep the uniform compression in equilibrium there. The force flux of
 // -p I across each broken bond (the cut bonds of crack_pressure.hpp) does so in the continuum limit
 // only: with a horizon of 3 spacings the uniform state is left with a residual of 60% of the face
@@ -37,19 +37,20 @@
 #include <limits>
 #include <vector>
 
-#include "rift/pd/fluid_network.hpp"
+#include "rift/hf/fluid_network.hpp"
+#include "rift/hf/network_load_runs.hpp"
+#include "rift/hf/pd_names.hpp"
+#include "rift/parallel/sort.hpp"
+#include "rift/parallel/team.hpp"
 #include "rift/pd/ghost_fields.hpp"
 #include "rift/pd/influence.hpp"
 #include "rift/pd/laws/registry.hpp"
-#include "rift/pd/network_load_runs.hpp"
-#include "rift/parallel/sort.hpp"
-#include "rift/parallel/team.hpp"
 
 #ifdef _OPENMP
 #include <omp.h>
 #endif
 
-namespace rift::pd {
+namespace rift::hf {
 
 namespace detail {
 
@@ -506,4 +507,4 @@ inline void forget_network_load(FluidNetwork& f) {
   f.load_from_scratch = true;
 }
 
-}  // namespace rift::pd
+}  // namespace rift::hf

@@ -1,9 +1,9 @@
 // Where a fluid-filled crack meets a pre-existing fracture (an interface): the junction. A failed
-// interface bond is a frictional contact between its ends (interface_contact.hpp), the faces of
+// interface bond is a frictional contact between its ends (pd/interface_contact.hpp), the faces of
 // the interface pressing and sliding on each other. But a failed bond whose ends lie on the two
 // faces of a crack the fluid fills, one that runs into the interface or through it, joins rock that
 // the fluid holds apart: its ends do not touch, and it carries no contact force, as a broken bond
-// carries none. Such a bond crosses the crack's surface (crack_crossing.hpp: within half a spacing
+// carries none. Such a bond crosses the crack's surface (pd/crack_crossing.hpp: within half a spacing
 // of a patch of broken rock or of a pre-crack, the crack itself and not its extension past the
 // tip). Without this the contact read the fracture's opening at the junction as a slip along the
 // interface and held it with friction, mu sigma_n, as if the rock on the two faces touched.
@@ -14,14 +14,15 @@
 #pragma once
 #include <cstdint>
 
+#include "rift/hf/pd_names.hpp"
+#include "rift/parallel/team.hpp"
 #include "rift/pd/crack_crossing.hpp"
 #include "rift/pd/model.hpp"
-#include "rift/parallel/team.hpp"
 
-namespace rift::pd {
+namespace rift::hf {
 
 /// Marks the failed interface bonds that cross the surface of a crack the fluid fills
-/// (InterfaceBonds::across_crack). Call after the crack surface is made (crack_crossing.hpp).
+/// (InterfaceBonds::across_crack). Call after the crack surface is made (pd/crack_crossing.hpp).
 template <int D>
 void mark_bonds_across_crack(Model<D>& m) {
   InterfaceBonds& ib = m.interface_bonds;
@@ -47,4 +48,4 @@ void mark_bonds_across_crack(Model<D>& m) {
   }
 }
 
-}  // namespace rift::pd
+}  // namespace rift::hf

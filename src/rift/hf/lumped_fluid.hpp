@@ -16,7 +16,7 @@
 #pragma once
 #include <algorithm>
 
-namespace rift::pd {
+namespace rift::hf {
 
 struct LumpedFluidState {
   double cavity_volume = 0.0;   // the cavity's room, V >= 0 (m^3), without the injection system's
@@ -42,4 +42,4 @@ inline LumpedFluidState lumped_fluid_state(double reference_volume, double chang
   return s;
 }
 
-}  // namespace rift::pd
+}  // namespace rift::hf
