@@ -27,7 +27,7 @@
 #include <cstdio>
 
 #include "case.hpp"
-#include "rift/load/time_function.hpp"
+#include "rift/scene/time_function.hpp"
 #include "rift/pd/dynamic_relaxation.hpp"
 #include "rift/run/simulation.hpp"
 #include "rift/scene/parse.hpp"
@@ -74,7 +74,7 @@ Result hf_breakdown(const Settings&) {
   const auto in_situ = sim.equilibrate_in_situ(s.in_situ);
   const std::int64_t broken_by_in_situ = pd::summarize<2>(m).broken_bonds;
   pd::DynamicRelaxation<2> dr(m);
-  auto pressure = [&](double t) { return s.boreholes[0].pressure * load::evaluate(s.boreholes[0].pressure_time, t); };
+  auto pressure = [&](double t) { return s.boreholes[0].pressure * scene::evaluate(s.boreholes[0].pressure_time, t); };
   double breakdown = 0.0, step_width = 0.0, first_break = 0.0, stable_extent = 0.0;
   DamageExtent at_breakdown;
   for (long step = 1; step <= sim.steps; ++step) {

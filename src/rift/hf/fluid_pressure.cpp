@@ -5,7 +5,7 @@
 #include "rift/hf/lumped_fluid.hpp"
 #include "rift/hf/network_load.hpp"
 #include "rift/hf/viscous_fluid.hpp"
-#include "rift/load/time_function.hpp"
+#include "rift/scene/time_function.hpp"
 
 namespace rift::hf {
 
@@ -40,7 +40,7 @@ void FluidPressure<D>::add_pressure_forces(pd::Model<D>& m, double t) const {
   for (std::size_t c = 0; c < sources_.size(); ++c) {
     const auto& src = sources_[c];
     if (!src.injected) {
-      fluid.pressure[c] = src.pressure * load::evaluate(src.time, t);
+      fluid.pressure[c] = src.pressure * scene::evaluate(src.time, t);
       continue;
     }
     if (fluid.flows(c)) {  // flow along the cracks by the cubic law

@@ -8,6 +8,8 @@
 #include <filesystem>
 #include <stdexcept>
 
+#include "rift/core/fnv1a.hpp"
+
 namespace rift::io {
 
 namespace {
@@ -15,19 +17,10 @@ namespace {
 constexpr char magic[8] = {'R', 'I', 'F', 'T', 'C', 'K', 'P', 'T'};
 constexpr char end_mark[8] = {'E', 'N', 'D', 'C', 'K', 'P', 'T', '\0'};
 constexpr std::uint32_t format_version = 1;
-constexpr std::uint64_t fnv_offset = 14695981039346656037ull, fnv_prime = 1099511628211ull;
 constexpr std::size_t trailer_bytes = sizeof end_mark + 2 * sizeof(std::uint64_t);
-
-/// FNV-1a over a byte stream, fed in pieces of any size.
-std::uint64_t fnv1a(std::uint64_t h, const void* data, std::size_t bytes) {
-  const auto* p = static_cast<const unsigned char*>(data);
-  for (std::size_t k = 0; k < bytes; ++k) h = (h ^ p[k]) * fnv_prime;
-  return h;
-}
 
 }  // namespace
 
-std::uint64_t checkpoint_fingerprint(const std::string& text) { return fnv1a(fnv_offset, text.data(), text.size()); }
 
 CheckpointWriter::CheckpointWriter(std::string path, const CheckpointHeader& header)
     : path_(std::move(path)), tmp_path_(path_ + ".tmp"), checksum_(fnv_offset) {

@@ -11,6 +11,8 @@
 // archive("name", member) for every member, and CheckpointWriter writes them where
 // CheckpointReader reads them back into the same members, checking each name, size and count.
 #pragma once
+#include <Eigen/Core>
+
 #include <cstdint>
 #include <cstdio>
 #include <string>
@@ -30,6 +32,13 @@ concept visitable = requires(Archive& a, T& t) { visit(a, t); };
 /// fixed-size Eigen matrix is its coefficients alone, though its copy is user-provided).
 template <class T>
 struct written_as_bytes : std::is_trivially_copyable<T> {};
+/// A fixed-size Eigen matrix (the material point method's state) is its coefficients, column after
+/// column, and nothing else.
+template <class Scalar, int Rows, int Cols, int Options, int MaxRows, int MaxCols>
+  requires(Rows > 0 && Cols > 0)
+struct written_as_bytes<Eigen::Matrix<Scalar, Rows, Cols, Options, MaxRows, MaxCols>> : std::true_type {
+  static_assert(sizeof(Eigen::Matrix<Scalar, Rows, Cols, Options, MaxRows, MaxCols>) == sizeof(Scalar) * Rows * Cols);
+};
 
 namespace detail {
 template <class T>
@@ -44,14 +53,10 @@ inline constexpr bool one_by_one = is_vector<E>::value || visitable<Archive, E> 
 
 /// What a checkpoint says of itself, checked against the scene before anything is read.
 struct CheckpointHeader {
-  std::uint64_t scene_fingerprint = 0;  // checkpoint_fingerprint of the scene's text
+  std::uint64_t scene_fingerprint = 0;  // scene::Scene::fingerprint
   std::int64_t step = 0;                // the steps (or load steps) completed
   double time = 0.0;                    // the model's time then, s
 };
-
-/// A fingerprint of a scene's text (FNV-1a, 64 bits): a restart refuses a checkpoint written for
-/// another scene, or for the same file since edited.
-std::uint64_t checkpoint_fingerprint(const std::string& text);
 
 class CheckpointWriter {
  public:

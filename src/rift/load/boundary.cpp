@@ -3,8 +3,8 @@
 #include <algorithm>
 
 #include "rift/geometry/region.hpp"
-#include "rift/load/time_function.hpp"
-#include "rift/load/traction_layer.hpp"
+#include "rift/scene/time_function.hpp"
+#include "rift/scene/traction_layer.hpp"
 #include "rift/parallel/exact_sum.hpp"
 #include "rift/parallel/team.hpp"
 
@@ -30,7 +30,7 @@ Boundaries<D>::Boundaries(const scene::Scene& s, pd::Model<D>& m) {
       for (auto i : a.particles)
         if (b.layer_depth < (1.0 - 1e-9) * m.constants_of(i).spacing)
           throw SceneError(b.where, "boundaries[" + std::to_string(bi) + "].layer_depth",
-                           thinner_than_a_row(b.layer_depth, m.constants_of(i).spacing));
+                           scene::thinner_than_a_row(b.layer_depth, m.constants_of(i).spacing));
     if (b.kind == K::fixed || b.kind == K::velocity || b.kind == K::displacement) {
       any_kinematic_ = true;
       for (auto i : a.particles)
@@ -95,7 +95,7 @@ void Boundaries<D>::apply_body_forces(pd::Model<D>& m, double t) const {
   for (std::size_t i = 0; i < n; ++i) m.body_force[i] = Vec<D>{};
   for (const auto& a : applied_) {
     if (a.def.kind != K::traction && a.def.kind != K::body_force) continue;
-    const double amp = evaluate(a.def.time, t);
+    const double amp = scene::evaluate(a.def.time, t);
     for (auto i : a.particles) {
       double scale = amp;
       if (a.def.kind == K::traction) {
@@ -115,13 +115,13 @@ void Boundaries<D>::prescribe_velocity(pd::Model<D>& m, double t, double dt) con
     if (a.def.kind == K::fixed) {
       for (auto i : a.particles) m.velocity[i] = Vec<D>{};
     } else if (a.def.kind == K::velocity) {
-      const double amp = evaluate(a.def.time, t + 0.5 * dt);
+      const double amp = scene::evaluate(a.def.time, t + 0.5 * dt);
       for (auto i : a.particles)
         for (int k = 0; k < D; ++k)
           if (a.def.value[k]) m.velocity[i][k] = amp * *a.def.value[k];
     } else if (a.def.kind == K::displacement) {
       if (dt <= 0.0) continue;  // end of step: keep the drift velocity
-      const double du = (evaluate(a.def.time, t + dt) - evaluate(a.def.time, t)) / dt;
+      const double du = (scene::evaluate(a.def.time, t + dt) - scene::evaluate(a.def.time, t)) / dt;
       for (auto i : a.particles)
         for (int k = 0; k < D; ++k)
           if (a.def.value[k]) m.velocity[i][k] = du * *a.def.value[k];
@@ -136,7 +136,7 @@ void Boundaries<D>::prescribe_position(pd::Model<D>& m, double t) const {
     if (a.def.kind == K::fixed) {
       for (auto i : a.particles) m.position[i] = m.reference_position[i];
     } else if (a.def.kind == K::displacement) {
-      const double amp = evaluate(a.def.time, t);
+      const double amp = scene::evaluate(a.def.time, t);
       for (auto i : a.particles)
         for (int k = 0; k < D; ++k)
           if (a.def.value[k]) m.position[i][k] = m.reference_position[i][k] + amp * *a.def.value[k];

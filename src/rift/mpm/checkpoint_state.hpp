@@ -7,18 +7,8 @@
 #pragma once
 #include <Eigen/Core>
 
-#include "rift/io/checkpoint.hpp"
 #include "rift/mpm/crack.hpp"
 #include "rift/mpm/model.hpp"
-
-namespace rift::io {
-/// A fixed-size Eigen matrix is its coefficients, column after column, and nothing else.
-template <class Scalar, int Rows, int Cols, int Options, int MaxRows, int MaxCols>
-  requires(Rows > 0 && Cols > 0)
-struct written_as_bytes<Eigen::Matrix<Scalar, Rows, Cols, Options, MaxRows, MaxCols>> : std::true_type {
-  static_assert(sizeof(Eigen::Matrix<Scalar, Rows, Cols, Options, MaxRows, MaxCols>) == sizeof(Scalar) * Rows * Cols);
-};
-}  // namespace rift::io
 
 namespace rift::material {
 

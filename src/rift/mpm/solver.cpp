@@ -9,8 +9,8 @@
 
 #include "rift/core/error.hpp"
 #include "rift/geometry/region.hpp"
-#include "rift/load/time_function.hpp"
-#include "rift/load/traction_layer.hpp"
+#include "rift/scene/time_function.hpp"
+#include "rift/scene/traction_layer.hpp"
 #include "rift/mpm/energy.hpp"
 #include "rift/mpm/stencil.hpp"
 #include "rift/parallel/shared_blocks.hpp"
@@ -57,7 +57,7 @@ Solver<D>::Solver(const scene::Scene& s, Model<D>& m) : settings_(s.mpm) {
       if (b.kind == K::traction)
         for (auto p : l.particles) {
           const double spacing = s.mpm.cell_size / s.bodies[m.particles.body[p]].particles_per_cell;
-          if (depth < (1.0 - 1e-9) * spacing) throw SceneError(b.where, key + ".layer_depth", load::thinner_than_a_row(depth, spacing));
+          if (depth < (1.0 - 1e-9) * spacing) throw SceneError(b.where, key + ".layer_depth", scene::thinner_than_a_row(depth, spacing));
         }
       for (int a = 0; a < D; ++a) l.density[a] = b.value[a].value_or(0.0) / (b.kind == K::traction ? depth : 1.0);
       l.time = b.time;
@@ -283,7 +283,7 @@ void Solver<D>::apply_grid_conditions(Model<D>& m, std::size_t node, const std::
 template <int D>
 std::vector<double> Solver<D>::condition_amplitudes(double t) const {
   std::vector<double> amplitude(conditions_.size());
-  for (std::size_t c = 0; c < conditions_.size(); ++c) amplitude[c] = load::evaluate(conditions_[c].time, t);
+  for (std::size_t c = 0; c < conditions_.size(); ++c) amplitude[c] = scene::evaluate(conditions_[c].time, t);
   return amplitude;
 }
 
@@ -505,7 +505,7 @@ void Solver<D>::step(Model<D>& m, double dt) {
   if (!loads_.empty()) {
     for (auto& f : ps.external_force) f = Vec<D>{};
     for (const auto& l : loads_) {
-      const double amp = load::evaluate(l.time, t);
+      const double amp = scene::evaluate(l.time, t);
       for (auto p : l.particles)
         for (int a = 0; a < D; ++a) ps.external_force[p][a] += amp * l.density[a] * ps.volume[p];
     }

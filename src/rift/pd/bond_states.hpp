@@ -11,7 +11,7 @@
 #include <cstddef>
 #include <cstdint>
 
-#include "rift/core/uninitialized_vector.hpp"
+#include "rift/parallel/uninitialized_vector.hpp"
 
 namespace rift::pd {
 

@@ -11,7 +11,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "rift/core/uninitialized_vector.hpp"
+#include "rift/parallel/uninitialized_vector.hpp"
 #include "rift/pd/bond_states.hpp"
 
 namespace rift::pd {
@@ -66,7 +66,7 @@ struct BondView {
 
 struct Bonds {
   std::vector<std::int64_t> offset;    // size n+1; row i is [offset[i], offset[i+1])
-  // the per-bond arrays are first touched by the passes that fill them (core/uninitialized_vector.hpp)
+  // the per-bond arrays are first touched by the passes that fill them (parallel/uninitialized_vector.hpp)
   uninitialized_vector<std::int32_t> neighbor;  // j
   uninitialized_vector<std::uint16_t> family;   // the bond's lattice offset, an index into `families`
   BondStates intact;                            // bond_intact, bond_broken (never heals) or bond_interface_failed

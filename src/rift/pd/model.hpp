@@ -40,7 +40,7 @@ struct BodyInfo {
 };
 
 /// Refreshes the ghost particles' copies of a per-particle field from the ranks that own them, in a
-/// distributed run (pd/window.hpp, parallel/halo.hpp).
+/// distributed run (pd/window.hpp, pd/halo.hpp).
 class Ghosts {
  public:
   virtual ~Ghosts() = default;

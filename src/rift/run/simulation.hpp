@@ -11,7 +11,7 @@
 
 #include "rift/core/error.hpp"
 #include "rift/parallel/communicator.hpp"
-#include "rift/parallel/halo.hpp"
+#include "rift/pd/halo.hpp"
 #include "rift/parallel/ordered_sum.hpp"
 #include "rift/pd/contact.hpp"
 #include "rift/pd/discretize.hpp"
@@ -93,14 +93,14 @@ struct Simulation {
     const auto r = static_cast<std::size_t>(comm.rank());
     loads.boundaries.restrict_to(pd::Numbering(partition.window[r]), partition.owned[r]);
     model = pd::window_of<D>(model, partition, comm.rank());
-    halo = std::make_unique<parallel::Halo>(comm.rank(), partition.owned, partition.window, model.numbering);
+    halo = std::make_unique<pd::Halo>(comm.rank(), partition.owned, partition.window, model.numbering);
     model.ghosts = halo.get();
     contact = pd::Contact<D>(s.contact, model);  // its pairs among the window's particles and those beyond it within reach
   }
   pd::Partition partition;  // a distributed run's (empty on one rank)
   /// A distributed run's processor grid, 1 x .. (distribute).
   const std::vector<int>& processor_grid() const { return processor_grid_; }
-  std::unique_ptr<parallel::Halo> halo;
+  std::unique_ptr<pd::Halo> halo;
   /// The in-situ stage ([in_situ_stress]): static equilibrium under the far-field stresses and
   /// every other load at t = 0, with no bond allowed to break; the run starts from it at rest.
   /// A stop signal ends it early (stopped = true): the run then starts again from the beginning.

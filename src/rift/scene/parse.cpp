@@ -10,7 +10,7 @@
 #include <map>
 #include <sstream>
 
-#include "rift/io/checkpoint.hpp"
+#include "rift/core/fnv1a.hpp"
 #include "rift/scene/toml_reader.hpp"
 
 namespace rift::scene {
@@ -797,7 +797,7 @@ Scene parse_text(const std::string& text, const std::string& name) {
                      "TOML syntax: " + std::string(e.description()));
   }
   Scene s = parse_table(tbl, name);
-  s.fingerprint = io::checkpoint_fingerprint(text);
+  s.fingerprint = fnv1a(fnv_offset, text.data(), text.size());
   return s;
 }
 

@@ -279,7 +279,7 @@ struct Checkpoint {
 
 struct Scene {
   std::string file;
-  std::uint64_t fingerprint = 0;  // of the scene's text: a restart refuses another scene's checkpoint
+  std::uint64_t fingerprint = 0;  // of the scene's text (FNV-1a): a restart refuses another scene's checkpoint, or one of this file since edited
   std::string name;
   int dimension = 3;
   Method method = Method::peridynamics;

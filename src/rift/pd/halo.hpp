@@ -12,13 +12,13 @@
 #include "rift/pd/model.hpp"
 #include "rift/pd/numbering.hpp"
 
-namespace rift::parallel {
+namespace rift::pd {
 
-class Halo final : public pd::Ghosts {
+class Halo final : public Ghosts {
  public:
   /// owned, windows: every rank's owned particles and window as ranges of the whole numbering
   /// (ascending; each window holds its rank's owned ranges); `here` numbers this rank's window.
-  Halo(int rank, const std::vector<std::vector<IndexRange>>& owned, const std::vector<std::vector<IndexRange>>& windows, const pd::Numbering& here);
+  Halo(int rank, const std::vector<std::vector<IndexRange>>& owned, const std::vector<std::vector<IndexRange>>& windows, const Numbering& here);
   void refresh(double* field, std::size_t width) const override;
   /// Particles received per refresh (the ghosts), and sent.
   std::size_t ghosts() const;
@@ -32,4 +32,4 @@ class Halo final : public pd::Ghosts {
   std::vector<Peer> receive_, send_;
 };
 
-}  // namespace rift::parallel
+}  // namespace rift::pd

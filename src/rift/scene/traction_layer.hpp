@@ -6,7 +6,7 @@
 
 #include <string>
 
-namespace rift::load {
+namespace rift::scene {
 
 inline std::string thinner_than_a_row(double depth, double spacing) {
   return fmt::format("a traction layer {:g} m deep is thinner than one row of particles ({:g} m apart), whose row would carry "
@@ -14,4 +14,4 @@ inline std::string thinner_than_a_row(double depth, double spacing) {
                      depth, spacing, spacing / depth);
 }
 
-}  // namespace rift::load
+}  // namespace rift::scene

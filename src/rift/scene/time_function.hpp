@@ -2,10 +2,10 @@
 #pragma once
 #include "rift/scene/scene.hpp"
 
-namespace rift::load {
+namespace rift::scene {
 
-inline double evaluate(const scene::TimeFunction& f, double t) {
-  using K = scene::TimeFunctionKind;
+inline double evaluate(const TimeFunction& f, double t) {
+  using K = TimeFunctionKind;
   switch (f.kind) {
     case K::constant: return 1.0;
     case K::ramp: return t <= f.start ? 0.0 : t >= f.end ? 1.0 : (t - f.start) / (f.end - f.start);
@@ -25,4 +25,4 @@ inline double evaluate(const scene::TimeFunction& f, double t) {
   return 1.0;
 }
 
-}  // namespace rift::load
+}  // namespace rift::scene

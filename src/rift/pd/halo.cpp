@@ -1,4 +1,4 @@
-#include "rift/parallel/halo.hpp"
+#include "rift/pd/halo.hpp"
 
 #include <mpi.h>
 
@@ -6,7 +6,7 @@
 
 #include "rift/parallel/communicator.hpp"
 
-namespace rift::parallel {
+namespace rift::pd {
 
 namespace {
 
@@ -25,7 +25,7 @@ std::vector<IndexRange> common(const std::vector<IndexRange>& a, const std::vect
 }  // namespace
 
 Halo::Halo(int rank, const std::vector<std::vector<IndexRange>>& owned, const std::vector<std::vector<IndexRange>>& windows,
-           const pd::Numbering& here) {
+           const Numbering& here) {
   const auto me = static_cast<std::size_t>(rank);
   for (std::size_t q = 0; q < owned.size(); ++q) {
     if (q == me) continue;
@@ -37,7 +37,7 @@ Halo::Halo(int rank, const std::vector<std::vector<IndexRange>>& owned, const st
 }
 
 void Halo::refresh(double* field, std::size_t width) const {
-  MpiClock clock;
+  parallel::MpiClock clock;
   static thread_local std::vector<MPI_Request> requests;  // kept from call to call: no allocation per step
   static thread_local std::vector<std::vector<double>> packed;  // a peer's entries where they are several ranges
   requests.clear();
@@ -89,4 +89,4 @@ std::size_t Halo::sent() const {
   return n;
 }
 
-}  // namespace rift::parallel
+}  // namespace rift::pd
