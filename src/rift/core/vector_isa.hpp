@@ -1,14 +1,11 @@
-// The vector instructions the passes' run kernels use (pd/bond_runs.hpp). The default build targets
-// the x86-64 baseline (SSE2: two doubles a vector), so that one binary runs everywhere; the kernels
-// are also compiled for AVX2 (four) and AVX-512 and chosen once, at run time, by what the processor
-// has. The AVX-512 clone keeps to vectors of four doubles (AVX-512VL: its masks and 32 registers on
-// 256-bit vectors): a run is a few dozen bonds, and vectors of eight leave more of each to the
-// remainder loops (measured slower on a Sapphire Rapids Xeon, bench/README.md). On an AMD processor
-// with AVX-512 (Zen 4) the AVX2 clone is taken: it measured faster there than the AVX-512 clone
-// (bench/README.md). Every clone does the same IEEE operations
-// in the same order (no fused multiply-add: -ffp-contract=off; square roots and divisions are
-// correctly rounded at every width), so results are the same bits whichever runs
-// (tests/test_bond_runs.cpp).
+// The vector instructions the passes' run kernels use (pd/bond_runs.hpp). The default build targets the
+// x86-64 baseline (SSE2: two doubles a vector), so that one binary runs everywhere; the kernels are also
+// compiled for AVX2 (four) and AVX-512 and chosen once, at run time, by what the processor has. The
+// AVX-512 clone keeps to vectors of four doubles (AVX-512VL); on an AMD processor with AVX-512 (Zen 4)
+// the AVX2 clone is taken. Every clone does the same IEEE operations in the same order (no fused
+// multiply-add: -ffp-contract=off; square roots and divisions are correctly rounded at every width), so
+// results are the same bits whichever runs (tests/test_bond_runs.cpp).
+// Why, and what was measured: docs/decisions/method-notes.md and bench/README.md.
 #pragma once
 
 namespace rift {

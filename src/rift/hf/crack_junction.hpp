@@ -1,16 +1,13 @@
-// Where a fluid-filled crack meets a pre-existing fracture (an interface): the junction. A failed
-// interface bond is a frictional contact between its ends (pd/interface_contact.hpp), the faces of
-// the interface pressing and sliding on each other. But a failed bond whose ends lie on the two
-// faces of a crack the fluid fills, one that runs into the interface or through it, joins rock that
-// the fluid holds apart: its ends do not touch, and it carries no contact force, as a broken bond
-// carries none. Such a bond crosses the crack's surface (pd/crack_crossing.hpp: within half a spacing
-// of a patch of broken rock or of a pre-crack, the crack itself and not its extension past the
-// tip). Without this the contact read the fracture's opening at the junction as a slip along the
-// interface and held it with friction, mu sigma_n, as if the rock on the two faces touched.
-// The fluid's way is not changed: it enters a failed interface bond only where the interface's
-// faces are apart (fluid_network.hpp carries_fluid). A bond across the near side's open crack that
-// ends on the far side of a shut interface joins two faces that do not touch, but the fluid would
-// reach its far end only through the interface.
+// Where a fluid-filled crack meets a pre-existing fracture (an interface): the junction. A failed interface
+// bond is a frictional contact between its ends (pd/interface_contact.hpp), the interface's faces pressing
+// and sliding on each other. But a failed bond whose ends lie on the two faces of a crack the fluid fills,
+// one that runs into the interface or through it, joins rock the fluid holds apart: its ends do not touch,
+// and it carries no contact force, as a broken bond carries none. Such a bond crosses the crack's surface
+// (pd/crack_crossing.hpp: within half a spacing of a patch of broken rock or of a pre-crack, the crack
+// itself and not its extension past the tip). The fluid's way is not changed: it enters a failed interface
+// bond only where the interface's faces are apart (fluid_network.hpp carries_fluid); a bond across the
+// near side's open crack that ends beyond a shut interface carries no contact force, but the fluid reaches
+// its far end only through the interface. Why: docs/decisions/hydraulic-fracture-notes.md.
 #pragma once
 #include <cstdint>
 

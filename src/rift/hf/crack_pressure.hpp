@@ -1,15 +1,15 @@
-// Fluid pressure on the faces of a pre-crack and on the wall of a borehole. The bonds the crack cuts
-// are not part of the solid, nor are those from the material to the borehole's lattice sites, but
-// the fluid that fills the crack or the hole carries the isotropic stress -p I across them. Its force state
-// is the one whose bond-pair stress (pd/stress.hpp) is -p I for a whole family,
-//   T_i<xi> = -p d omega xi / m_i   (sum_j T_i<xi_ij> (x) xi_ij V_j = -p I, since sum omega xi (x) xi V = m I / d),
+// Fluid pressure on the faces of a pre-crack and on the wall of a borehole. The bonds the crack cuts are
+// not part of the solid, nor are those from the material to the borehole's lattice sites, but the fluid
+// that fills the crack or the hole carries the isotropic stress -p I across them. Its force state is the
+// one whose bond-pair stress (pd/stress.hpp) is -p I for a whole family,
+//   T_i<xi> = -p d omega xi / m_i   (sum_j T_i<xi_ij> (x) xi_ij V_j = -p I: sum omega xi (x) xi V = m I / d),
 // so each cut bond pushes its two ends apart with the force density
 //   f_i = -p d omega (1/m_i + 1/m_j) |xi| V_j y_ij / |y_ij|,
-// m_i = sum omega |xi|^2 V_j over i's whole family: its bonds and the cut ones, without the surface
-// correction (which would count the crack faces as free surfaces and scale the kept bonds up). Summed over the cut bonds of a
-// particle next to a straight crack this is the traction p on the face (Lehoucq and Silling 2008:
-// the force flux of -p I across the crack plane). A fluid site of a borehole has the weighted
-// volume of a whole family.
+// m_i = sum omega |xi|^2 V_j over i's whole family, its bonds and the cut ones, without the surface
+// correction (which would count the crack faces as free surfaces and scale the kept bonds up). Summed over
+// the cut bonds of a particle next to a straight crack this is the traction p on the face (Lehoucq and
+// Silling 2008: the force flux of -p I across the crack plane). A fluid site of a borehole has the
+// weighted volume of a whole family.
 #pragma once
 #include <array>
 #include <cmath>

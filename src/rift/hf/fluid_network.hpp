@@ -1,17 +1,15 @@
-// Fluid in the cracks that grow from a pressurized borehole or pre-crack. The fluid of a pressure
-// source reaches every particle joined to it by a chain of broken bonds: the particles next to the
-// source (those with pressure bonds, crack_pressure.hpp) and, through the bonds broken since, the
-// faces of every crack connected to it. The broken bonds between particles the same fluid reaches
-// form its network, and the fluid loads the rock around them with the forces that keep a uniform
-// compression in equilibrium there (network_load.hpp), so the pressure acts on the crack faces as
-// the crack grows (the toughness-dominated limit of hydraulic fracture: no pressure drop along the
-// crack). A crack that no fluid reaches stays dry, and
-// so does a pre-crack without pressure of its own until a fluid reaches it across broken bonds or
-// the borehole it starts from: then its cut bonds carry that fluid's pressure. A borehole with a
-// breakdown pressure keeps its fluid out of the dry pre-cracks until its pressure first reaches it
-// (FluidNetwork::sealed): the breakdown of a wall the lattice does not resolve.
-// A network that reaches the body's outer surface is open to the outside (breakthrough): an injected
-// fluid escapes there, and its pressure falls to zero while the crack stays open to the surface.
+// Fluid in the cracks that grow from a pressurized borehole or pre-crack. The fluid of a pressure source
+// reaches every particle joined to it by a chain of broken bonds: those next to the source (pressure bonds,
+// crack_pressure.hpp) and the faces of every crack connected to it. The broken bonds between particles the
+// same fluid reaches form its network; the fluid loads the rock around them with the forces that keep a
+// uniform compression in equilibrium there (network_load.hpp), so the pressure acts on the crack faces as
+// the crack grows (the toughness-dominated limit of hydraulic fracture: no pressure drop along the crack).
+// A crack no fluid reaches stays dry, as does a pre-crack without pressure of its own until a fluid reaches
+// it across broken bonds or the borehole it starts from; then its cut bonds carry that fluid's pressure. A
+// borehole with a breakdown pressure keeps its fluid out of the dry pre-cracks until its pressure first
+// reaches it (FluidNetwork::sealed): the breakdown of a wall the lattice does not resolve. A network that
+// reaches the outer surface is open (breakthrough): an injected fluid escapes there, and its pressure
+// falls to zero while the crack stays open to the surface.
 #pragma once
 #include <Eigen/Dense>
 #include <algorithm>

@@ -1,18 +1,12 @@
-// The mass balance of a lumped compressible fluid injected into a cavity (a borehole and the cracks
-// joined to it), one pressure for all of it. The fluid's volume at zero pressure, (V0 + V_s) (1 +
-// p0 / K_f) + Q t less what escaped, fills the cavity V and the injection system's fixed V_s at
+// The mass balance of a lumped compressible fluid injected into a cavity (a borehole and the cracks joined
+// to it), one pressure for all of it. The fluid's volume at zero pressure, (V0 + V_s) (1 + p0 / K_f) + Q t
+// less what escaped, fills the cavity V and the injection system's fixed V_s at
 //   p = K_f (V_fluid / (V + V_s) - 1),
-// and takes no tension (p >= 0: it cavitates). Once the cavity is open to the outer surface
-// (vented) it keeps the fluid it has room for at zero pressure, and the rest escapes.
-// The cavity's volume is V0 plus cavity_volume_change (fluid_network.hpp), the work conjugate of the
-// pressure's load, linear in the displacements. That measure is not bounded below: crack faces that
-// overlap before the short-range contact holds them, and fragments that move into a crack, count
-// as negative openings, and after breakthrough at the thesis-size example's step 1800 it read
-// -4.09e-6 m^3 against V0 = 3.17e-6 m^3. A cavity holds no less than nothing: the room is taken as
-// max(V, 0). Without that, an escaped volume set while the measure was below zero, larger than all
-// the fluid injected, made the pressure positive again as the measure rose toward zero
-// ((V_fluid - escaped) / V > 1 with both negative), to any multiple of K_f, with the fluid open to
-// the outside (tests/test_crack_pressure.cpp).
+// and takes no tension (p >= 0: it cavitates). Once the cavity is open to the outer surface (vented) it
+// keeps the fluid it has room for at zero pressure, and the rest escapes.
+// V = V0 + cavity_volume_change (fluid_network.hpp), the work conjugate of the pressure's load, linear in
+// the displacements and not bounded below (overlapping faces, fragments moved into a crack): the room is
+// max(V, 0). Why, and what was measured: docs/decisions/hydraulic-fracture-notes.md.
 #pragma once
 #include <algorithm>
 

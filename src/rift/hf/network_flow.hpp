@@ -1,34 +1,15 @@
-// Viscous flow of the fracturing fluid along its network of broken bonds: lubrication theory, the
-// cubic law. A crack of opening w carries, per unit width, the flux q = -(w^3 / (12 mu)) grad p
-// (plane Poiseuille flow between its faces); the rock itself is impermeable. On the lattice the
-// fluid's pressure lives on the particles the fluid reaches, and a broken bond i-j carries the
-// volume flux C_ij (p_i - p_j) from i to j, with
+// Viscous flow of the fracturing fluid along its network of broken bonds: lubrication, the cubic law
+// q = -(w^3 / (12 mu)) grad p per unit width (plane Poiseuille flow); the rock is impermeable. The pressure
+// lives on the particles the fluid reaches; a broken bond i-j carries the volume flux C_ij (p_i - p_j),
 //   C_ij = V_ij w_ij^3 / (12 mu S(n)),   S(n) = sum_{xi . n > 0} (xi . n) (|xi|^2 - (xi . n)^2) / (D - 1) V_j / V_i,
-// w_ij the bond's opening, V_ij its neighbour's volume share (partial near the horizon's edge), n
-// the crack's normal and S summed over a whole family. Why: of the bonds of offset xi, (xi . n) / V
-// per unit area of crack cross it, and of those |xi . t| per unit width also cross a cut along n,
-// each carrying C (xi . t) grad p; their sum is the cubic law's q when C is as above (t averaged
-// over the crack's plane in 3D). A straight crack of any direction through a uniform lattice then
-// carries the cubic law's flux (tests/test_network_flow.cpp).
-// The crack's volume: (xi . n) / V bonds of offset xi cross a unit area of it, so a bond of
-// opening w stands for the volume V_ij w / N(n), N(n) = sum_{xi . n > 0} (xi . n) V_j / V_i, and
-// the broken bonds of a straight crack hold w per unit area.
-// The opening of a broken bond is the jump of displacement across the crack: its deformed vector
-// less what the rock around its ends strains over it, y - (I + eps) xi, eps the mean of its ends'
-// bulk strains (pd/bulk_strain.hpp). The rock's own strain over a bond of three spacings is not small
-// beside a hydraulic fracture's opening (5 MPa over E = 8.4 GPa: 5 um over 9 mm, against openings
-// of 20-30 um). Its normal is the jump's direction (an opening, mode I, crack); across a failed
-// interface bond it is the interface's normal and the opening its faces' normal opening
-// (pd/interface_contact.hpp interface_opening, as the interface law and the outcome reader take it:
-// slip along the interface opens nothing). A bond across an interface that broke as rock (the
-// fracture crossing it) is a crack's bond like any other: taken for an interface contact, its
-// opening was the interface's shut faces' (none), and the fluid could not follow a fracture
-// through the interface (Zhou's 2-1, hf_zhou_crossing: the far side's crack dry, its rock without
-// the fluid's pressure, the fracture stopped a spacing past the interface). S and N are the means
-// of the bond's two ends'.
-// The pressure solve (solve_network_pressure) is backward Euler of each node's mass balance, an SPD
-// system (Eigen's sparse LDLT). An injected borehole's fluid with a viscosity flows so
-// (viscous_fluid.hpp); without one it is the lumped, inviscid fluid of fluid_network.hpp.
+// and stands for the crack volume V_ij w_ij / N(n), N(n) = sum_{xi . n > 0} (xi . n) V_j / V_i (S, N: the
+// means of its ends' sums over a whole family; V_ij partial near the horizon's edge): a straight crack of
+// any direction carries the cubic law's flux and holds w per unit area (tests/test_network_flow.cpp).
+// w = |y - (I + eps) xi|, the displacement jump, eps the mean of its ends' bulk strains (pd/bulk_strain.hpp),
+// n its direction (mode I); across a failed interface bond n is the interface's normal and w its faces'
+// normal opening (pd/interface_contact.hpp); a bond across an interface that broke as rock is a crack's
+// bond. Pressure solve: backward Euler of each node's mass balance, SPD (Eigen's sparse LDLT).
+// Why, and what was measured: docs/decisions/hydraulic-fracture-notes.md.
 #pragma once
 #include <Eigen/Sparse>
 #include <algorithm>

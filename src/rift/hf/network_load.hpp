@@ -1,34 +1,15 @@
-// The load of a fluid on the rock around the cracks it has filled: the discrete unjacketed test.
-// A solid whose cracks all hold fluid at p, and whose outer boundary carries -p too, is compressed
-// uniformly by -p I with no effective stress (Biot coefficient 1: the unjacketed compression test;
-// Detournay and Cheng 1993, section 2.2). Terzaghi's split of a pressurized crack into a dry crack under
-// the effective stress and that uniform state (pd/effective_stretch.hpp) holds in the discrete model
-// only if the fluid's forces keep the uniform compression in equilibrium there. The force flux of
-// -p I across each broken bond (the cut bonds of crack_pressure.hpp) does so in the continuum limit
-// only: with a horizon of 3 spacings the uniform state is left with a residual of 60% of the face
-// load in the row at a tip, and a pressurized tip starts at 1.02-1.10 K_Ic where a dry one starts
-// at 0.97-1.06. So the fluid of source s loads particle i by p_s g_s,i, with g defined by the model
-// itself:
+// The load of a fluid on the rock around the cracks it has filled: the discrete unjacketed test. Cracks
+// holding fluid at p, with -p on the outer boundary too, compress a solid uniformly by -p I with no
+// effective stress (Biot coefficient 1; Detournay and Cheng 1993, section 2.2). The fluid of source s loads
+// particle i by p_s g_s,i, with g the model's own:
 //   g_s,i = (F_i(eps) - F_i^s(eps)) / (eps d kappa_i),
-// F(eps) the internal force density with every particle moved by a uniform expansion x = (1 + eps) X
-// and the bonds as they are, F^s the same with the broken bonds of s's network held intact. Every model
-// is linear in a uniform expansion (e = eps |xi|, y / |y| = xi / |xi|), so g does not depend on eps,
-// and the uniform strain -p / (d kappa) is an equilibrium of the network with its load: a grown tip
-// under pressure starts at the dry tip's K (tests/test_crack_tip_initiation.cpp). Over a flat crack
-// in the LPS g puts the traction p on each face (the lattice's virial is exact for a uniform strain;
-// tests/test_crack_pressure.cpp); it differs from the flux only where the families are not whole. The viscoelastic model loads with its
-// instantaneous (LPS) response. The pre-crack's cut bonds and a borehole's wall keep the force flux
-// (crack_pressure.hpp); the cavity volume is the work conjugate of both (fluid_network.hpp).
-// F and F^s differ only within reach of the network's bonds: on their ends, whose dilatation (and P)
-// change, and on those ends' neighbours. So g is evaluated bond by bond on those particles alone,
-// the rest of the body untouched: the thesis-size block (4 million particles) took two passes over
-// all its 494 million directed bonds whenever a crack grew. What g reads of each end (NetworkEnd)
-// is kept between calls and made again only where the end's bonds changed; the particles around an
-// end whose NetworkEnd changed take the change of its terms alone (changed_rows_pass). Without the
-// surface correction every factor of a bond is one, and g is made by the runs of bonds from the
-// ends' NetworkEnd (network_load_runs.hpp): a few vector instructions a bond, where the rows' pass
-// gathered each neighbour's NetworkEnd; on the blocks of particles within reach of the ends made
-// again alone, to the bits of a pass over every run (network_load_by_runs).
+// F(eps) the internal force density under the uniform expansion x = (1 + eps) X with the bonds as they are,
+// F^s the same with s's network's broken bonds held intact. Every model is linear in a uniform expansion,
+// so g does not depend on eps and the strain -p / (d kappa) is an equilibrium of the loaded network (LPS,
+// flat crack: traction p on each face). Viscoelastic: the instantaneous (LPS) response. Cut bonds and a
+// borehole's wall keep the force flux (crack_pressure.hpp). g is made only on the network's ends and their
+// neighbours, from each end's kept NetworkEnd; without the surface correction by runs of bonds
+// (network_load_runs.hpp). Why, and what was measured: docs/decisions/hydraulic-fracture-notes.md.
 #pragma once
 #include <algorithm>
 #include <array>

@@ -1,17 +1,15 @@
-// The network load (network_load.hpp) of the bodies without the surface correction, in one pass over
-// the runs of bonds (pd/bond_runs.hpp). Without the correction every factor of a bond is one, and t of
-// end e of a bond under the unit expansion (network_load.hpp end_force_state) is omega |xi| times a
-// number of e alone, from its NetworkEnd z:
+// The network load (network_load.hpp) of the bodies without the surface correction, in one pass over the
+// runs of bonds (pd/bond_runs.hpp). Without the correction every factor of a bond is one, and t of end e
+// of a bond under the unit expansion (network_load.hpp end_force_state) is omega |xi| times a number of e
+// alone, from its NetworkEnd z:
 //   a network bond: t_e = omega |xi| held_e,   held_e = z.held + z.a (1 - z.theta / d),
 //   an intact bond: t_e = omega |xi| change_e, change_e = z.change - z.a z.d_theta / d,
-// both zero where e has no network bond (z zero). A broken bond is the network's where the fluid
-// reached both ends: held_e is kept as NaN where it did not, so a broken bond's sum held_i + held_j
-// is a number exactly where it is the network's, and no array says which ends are wet. The pair
-// force of F - F^s along xi is -(t_i + t_j) V / |xi|, so a bond adds -omega V (s_i + s_j) xi to g_i
-// (and the opposite to g_j), s the ends' change or held by the bond's state: per run (one family
-// offset) a constant vector times a sum of two numbers read contiguously at both ends, a loop of a
-// few vector instructions where the rows' pass (changed_rows_pass) gathered every neighbour's
-// NetworkEnd (a fifth of a thesis-size step in the breaking regime).
+// both zero where e has no network bond (z zero). held_e is NaN where the fluid did not reach e, so a broken
+// bond's held_i + held_j is a number exactly where the bond is the network's (no array of wet ends). The
+// pair force of F - F^s along xi is -(t_i + t_j) V / |xi|: a bond adds -omega V (s_i + s_j) xi to g_i (the
+// opposite to g_j), s the ends' change or held by the bond's state; per run (one family offset) a constant
+// vector times a sum of two numbers read contiguously at both ends.
+// Why, and what was measured: docs/decisions/hydraulic-fracture-notes.md.
 #pragma once
 #include <cstddef>
 

@@ -1,39 +1,15 @@
-// An injected fluid that flows along its cracks: lubrication flow by the cubic law
-// (network_flow.hpp) in place of the lumped fluid's one pressure (fluid_network.hpp). This is what
-// makes a hydraulic fracture viscosity-dominated (Adachi and Detournay 2002; Detournay 2004): the
-// pressure falls from the borehole to the tip, most of it near the tip.
-// The network's nodes: the borehole, with the particles of its wall (those with bonds to its fluid
-// sites) and the faces of a dry pre-crack that starts in it (a notch), which share its pressure,
-// and every other particle the fluid reaches. A node holds half the crack volume of each flow bond
-// it ends (network_flow.hpp: w per unit crack area), the borehole's node also the borehole's own
-// volume (cavity_volume_change, wall_only) and the injection system's (a fixed volume at its
-// pressure). The bonds' volumes are scaled so that together they are
-// the work conjugate of the fluid's load on the network (the lumped fluid's cavity volume less the
-// borehole's): the openings say where the fluid is, the conjugate how much room there is. With it
-// the fluid's work p dV is the work of its load on the rock, so rock and fluid relax together as one
-// conservative system; and faces pressed together, which overlap by up to a tenth of a spacing
-// before the short-range contact holds them (|jump| counts that as opening), or a loose fragment in
-// the crack (whose every broken bond opens as it moves) add nothing to the room (they still take a
-// share of it, as the openings say). Under 15 MPa of confinement the
-// unscaled openings made the borehole's pressure fall below the confining stress, to zero, while
-// the crack took fluid; scaled, it stays above it and rises with the injection.
-// Each node's fluid, as the volume it takes at zero pressure, M = V (1 + p / K_f), obeys the mass
-// balance over a load step of length dt, backward Euler,
+// An injected fluid that flows along its cracks: lubrication flow by the cubic law (network_flow.hpp) in
+// place of the lumped fluid's one pressure, a viscosity-dominated hydraulic fracture (Adachi and Detournay
+// 2002; Detournay 2004). Nodes: the borehole (with its wall's particles and a notch's faces) and every other
+// particle the fluid reaches; a node holds half the volume of each flow bond it ends, the borehole's node
+// also the borehole's and the injection system's. The bonds' volumes are scaled to sum to the work
+// conjugate of the fluid's load (fluid_network.hpp): rock and fluid relax as one conservative system.
+// Each node's fluid, as the volume it takes at zero pressure, M = V (1 + p / K_f), obeys, backward Euler,
 //   V_a (1 + p_a / K_f) - M_a^n = dt (sum_b C_ab (p_b - p_a) + Q delta_a0),
-// with V and C from the current positions: solved at every relaxation iteration, as the lumped
-// fluid's pressure is, so that the relaxation finds rock and fluid in equilibrium together. Where
-// the conductances are large this is the lumped fluid: one pressure with K_f (sum M + Q dt) / sum V
-// - K_f (tests/test_viscous_fluid.cpp). A node the crack opens holds no fluid yet (M = 0) and fills
-// through its bonds. The fluid takes no tension: a node that would go below zero cavitates, held at
-// zero and partly filled (the fluid lag of Garagash and Detournay 2000; under a large confining
-// stress it vanishes, the zero-lag model of Adachi and Detournay 2002). Once the network reaches
-// the outer surface (breakthrough) the nodes there are held at zero pressure and the fluid escapes.
-// The rock is loaded by p_i g_s,i (network_load.hpp), p_i the pressure at particle i; a particle the
-// network's load reaches but the fluid does not (LPS coupling) takes the mean of the wet particles
-// of its family.
-// On N ranks (pd/window.hpp) every rank solves the whole network: the flow bonds of its owned rows
-// and its owned nodes, gathered and put in the one-rank order, give every rank the one-rank system
-// and its bits; each keeps its owned particles' pressures and the ghosts take their owners'.
+// V and C from the current positions, solved at every relaxation iteration; large C: the lumped fluid.
+// p >= 0 (cavitation: the fluid lag, Garagash and Detournay 2000); after breakthrough the outer surface's
+// nodes hold p = 0. The rock is loaded by p_i g_s,i (network_load.hpp). Every rank solves the whole network.
+// Why, and what was measured: docs/decisions/hydraulic-fracture-notes.md.
 #pragma once
 #include <algorithm>
 #include <cstdint>

@@ -1,20 +1,13 @@
-// Domain decomposition of a material point run over the ranks of `mpirun -np N` (as Uintah and
-// Karamelo decompose theirs): the grid's cells are cut by a processor grid of P_x x P_y (x P_z)
-// boxes, one per rank, each axis cut into P_a ranges of cells. A rank holds the material points
-// inside its box and the grid nodes they reach; a point in cell c reaches the nodes c - 1 .. c + 2
-// along an axis with every shape function here (linear, uGIMP, quadratic and cubic B-splines,
-// shape_functions.hpp), so a rank owning the cells [a, b) along an axis holds the nodes a - 1 ..
-// b + 1 along it: its cells' nodes and one layer beyond each face.
-//
-// One step of a distributed run (Solver::step):
-//   migration: points whose cell moved into a neighbour's box go to that rank, with every member;
-//   particle to grid: each rank scatters its points; the nodes that neighbours share (up to 2^D
-//     ranks at a corner) then hold each one's part, and they exchange and add them in the order of
-//     the ranks, on every rank that holds the node, so all hold the same sums: every node of a
-//     rank's grid then holds the whole run's sums;
-//   the grid update and grid to particles are local to a node and to a point.
-// The results equal the one-rank run's to round-off: the sums at the shared nodes add the same
-// terms in another order.
+// Domain decomposition of a material point run over the ranks of `mpirun -np N` (as Uintah and Karamelo
+// decompose theirs): the grid's cells are cut by a processor grid of P_x x P_y (x P_z) boxes, one per
+// rank. A rank holds the material points inside its box and the grid nodes they reach: with every shape
+// function here (linear, uGIMP, quadratic and cubic B-splines; shape_functions.hpp) a point in cell c
+// reaches the nodes c - 1 .. c + 2 along an axis, so a rank owning the cells [a, b) holds a - 1 .. b + 1.
+// One step (Solver::step): migration (points whose cell moved into a neighbour's box go to that rank,
+// with every member); particle to grid, after which the nodes that ranks share (up to 2^D at a corner)
+// exchange their parts and add them in the order of the ranks on every rank that holds the node, so every
+// node of a rank's grid holds the whole run's sums; the grid update and grid to particles are local.
+// The results equal the one-rank run's to round-off: the shared nodes add the same terms in another order.
 #pragma once
 #include <array>
 #include <cstdint>

@@ -1,26 +1,16 @@
-// J-integral and stress intensity factors at an explicit-crack tip (Guo and Nairn 2006, CMES 14;
-// seed 002, eqs. 7, 8 and 10-22). Particle stresses, displacement gradients and energy densities are
-// extrapolated to the grid per velocity field; J is integrated by the trapezoid rule along a
-// rectangular grid-line contour Gamma reaching 2 cells (or `cells`) from the tip on every side,
-// split where it crosses the crack so that each crack face uses its own field (eq. 7):
-//   J_m = int_Gamma [(W + K) n_m - sigma_ij n_j du_i/dx_m] dGamma   (crack-tip axes, m = 1, 2),
-// plus, for dynamic problems, the area term over the region A inside Gamma (eq. 8), with the
-// material points inside the contour as integration points:
-//   J_m += int_A rho (a_i du_i/dx_m - v_i dv_i/dx_m) dA  ~  sum_p m_p (a_p . du/dx_m - v_p . dv/dx_m).
-// G = J_1 (growth straight ahead, eq. 10). K_I and K_II partition G by the crack opening (d_n) and
-// sliding (d_t) displacements at the crack point next to the tip (stationary crack, eqs. 21-22):
-//   K_I = d_n / sqrt(d_n^2 + d_t^2) sqrt(G E'),  K_II = d_t / sqrt(d_n^2 + d_t^2) sqrt(G E'),
-// E' = E (plane stress) or E / (1 - nu^2) (plane strain), taken from the cracked body's material.
-// The COD ratio depends on where behind the tip it is read (the MPM surfaces smear the first cell:
-// in the 1 mm mixed-mode beam d_t/d_n runs from 1.26 at 0.5 mm to 0.69 at 3 mm against 0.76).
-// The default partition takes the ratio from the interaction integral on the same contour (Yau,
-// Wang and Corten 1980; dynamic form of Rethore et al. 2005), with the Williams near-tip fields of
-// unit K_I or K_II as auxiliary fields u~, sigma~, eps~:
+// J-integral and stress intensity factors at an explicit-crack tip (Guo and Nairn 2006, CMES 14; seed 002,
+// eqs. 7, 8, 10-22). Particle stresses, displacement gradients and energy densities are extrapolated to the
+// grid per velocity field; J is integrated (trapezoid rule) on a rectangular grid-line contour Gamma 2 cells
+// (or `cells`) from the tip, each crack face with its own field (eq. 7), plus the dynamic area term over A
+// inside Gamma (eq. 8), the material points inside as integration points (crack-tip axes, m = 1, 2):
+//   J_m = int_Gamma [(W + K) n_m - sigma_ij n_j du_i/dx_m] dGamma + int_A rho (a_i du_i/dx_m - v_i dv_i/dx_m) dA
+// G = J_1 (growth straight ahead, eq. 10) = (K_I^2 + K_II^2) / E', E' = E (plane stress) or E / (1 - nu^2)
+// (plane strain), with K_I : K_II = d_n : d_t, crack opening to sliding at the crack point next to the tip
+// (stationary crack, eqs. 21-22), or by default the interaction integral's on the same contour (Yau, Wang
+// and Corten 1980; dynamic: Rethore et al. 2005; auxiliary u~, sigma~, eps~: Williams fields of unit K_I or K_II):
 //   I = int_Gamma [sigma_ij eps~_ij n_1 - sigma_ij n_j du~_i/dx_1 - sigma~_ij n_j du_i/dx_1] dGamma
-//       + int_A rho a_i du~_i/dx_1 dA,      K = E' I / 2,
-// and splits sqrt(E' G) in the ratio K_I : K_II so found. (The interaction integral's own
-// magnitude converges more slowly than J's on MPM fields: +14% on 2 mm cells, +4% on 1 mm in the
-// DCB; its ratio is right on both.)
+//       + int_A rho a_i du~_i/dx_1 dA,   K = E' I / 2.
+// Why, and what was measured: docs/decisions/method-notes.md.
 #pragma once
 #include <vector>
 

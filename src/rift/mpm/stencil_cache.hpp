@@ -1,13 +1,10 @@
 // The shape functions of every material point for one step. Every transfer of an explicit MPM step
-// (particles to grid, grid to particles, MUSL's remap of the new momenta and the stress update)
-// uses S_ip and grad S_ip at the point's position at the start of the step, x_p^n (Sulsky et al.
-// 1994), so they are taken once per step (stencil.hpp) and read by each transfer, instead of being
-// taken again by each. Memory: support(shape)^D nodes
-// per point, each its index (32 bits), weight and gradient (2D quadratic B-splines: 9 x 28 bytes).
-// The cache is read three times a step (MUSL: the forces' scatter, grid to particles with the remap of
-// the new momenta, the stress update), so its indices are 32-bit (64-bit ones measured slower on two
-// threads). The products are stored, not formed in the transfers from each axis' 1D factors: the
-// transfers are bound by their work per node, not by the bytes they read (bench/README.md).
+// (particles to grid, grid to particles, MUSL's remap of the new momenta and the stress update) uses S_ip
+// and grad S_ip at the point's position at the start of the step, x_p^n (Sulsky et al. 1994), so they are
+// taken once per step (stencil.hpp) and read by each transfer. Memory: support(shape)^D nodes per point,
+// each its index (32 bits), weight and gradient (2D quadratic B-splines: 9 x 28 bytes). The products are
+// stored, not formed in the transfers from each axis' 1D factors.
+// Why, and what was measured: docs/decisions/method-notes.md and bench/README.md.
 #pragma once
 #include <cstddef>
 #include <cstdint>

@@ -1,21 +1,15 @@
 // A coarse space for the in-situ stage's conjugate gradients (static_equilibrium.cpp): the two-level
-// additive preconditioner M^-1 = D^-1 + P (P^T K P)^-1 P^T (Nicolaides 1987; Toselli and Widlund
-// 2005, section 2.3; P by unsmoothed aggregation, Vanek, Mandel and Brezina 1996). The particles are
-// grouped into cubes of edge H (aggregates), and P moves an aggregate's particles together: one
-// coarse unknown per aggregate and axis. A diagonal preconditioner leaves the smooth modes, whose
-// stiffness over the diagonal is of order (spacing / body)^2, to the iterations, which then go as the
-// lattice's sites along the body; the coarse solve takes them out, and the iterations go as H over
-// the spacing instead.
-//
-// The coarse operator K_c = P^T K P is assembled by probing the forces, 3^D colours of aggregates
-// times D axes: K couples particles up to two horizons apart (a state-based force reads both ends'
-// dilatations), so with H > 2 horizons the aggregates of one colour (two aggregates apart) reach no
-// particle together, and a particle's response to a colour's probe comes from the one aggregate of
-// that colour among its own and its 3^D - 1 neighbours. Its entries and the coarse right-hand sides
-// are sums in fixed point (parallel/fixed_point_sums.hpp), whose bits do not depend on the order
-// of the particles nor on how a distributed run cuts them. K_c is factored once (sparse LDL^T,
-// Eigen's SimplicialLDLT, in nested dissection order) at the first base of the Newton steps: the
-// geometric terms the later bases change are of the order of the strain.
+// additive preconditioner M^-1 = D^-1 + P (P^T K P)^-1 P^T (Nicolaides 1987; Toselli and Widlund 2005,
+// section 2.3; P by unsmoothed aggregation, Vanek, Mandel and Brezina 1996). Aggregates are cubes of
+// edge H; P moves an aggregate's particles together (one coarse unknown per aggregate and axis). The
+// coarse solve takes out the smooth modes, so the iterations go as H over the spacing instead of as the
+// lattice's sites along the body.
+// K_c = P^T K P is assembled by probing the forces, 3^D colours of aggregates times D axes, which needs
+// H > 2 horizons (K couples particles up to two horizons apart). Its entries and the coarse right-hand
+// sides are sums in fixed point (parallel/fixed_point_sums.hpp): their bits depend neither on the order
+// of the particles nor on the ranks' cut. K_c is factored once (sparse LDL^T, Eigen's SimplicialLDLT,
+// nested dissection order) at the first base of the Newton steps.
+// Why: docs/decisions/method-notes.md.
 #pragma once
 #include <Eigen/Sparse>
 #include <Eigen/SparseCholesky>

@@ -1,23 +1,15 @@
-// Short-range repulsive contact between particles that are not bonded (broken bonds, fragments,
-// separate bodies), so material does not interpenetrate. As LAMMPS PERI / EMU (Silling 2005,
-// EMU theory manual p. 18): when two particles come closer than d = distance * spacing, each feels
-// f = k V_j (d - r) / delta, k = stiffness * c, with c the PMB micromodulus of the body.
-// A pair of one family (bonded in the reference state) is read from its bond once the bond broke:
-// the bonds list every such pair already. Only the other pairs (separate bodies, the faces of a
-// pre-crack or a borehole, fragments carried out of their families' reach) come from a Verlet list
-// rebuilt when a particle has moved half the skin: on a lattice that list holds the pairs across
-// the cuts alone, not the 18 nearest neighbours of every particle (at the thesis-size example it
-// was 80 million pairs and its rebuild a serial sort of 4 million particles).
-// The broken bonds are read only where they may touch: the bonds of any state shorter than d + s_f
-// when last looked at (up to seven a row, by their places; a row with more is read whole), s_f a
-// skin under the gap between d and the shortest bond, looked at again once a particle has moved
-// s_f / 2 (the same Verlet argument; Allen and Tildesley, Computer Simulation of Liquids, section
-// 5.3). A broken bond is stretched, so around a crack hardly a row is read: reading every broken
-// bond was a tenth of a step at a third broken, and reading every broken bond of a row with one
-// near was a tenth of a step once the thesis example's block had shattered. On one rank the look
-// goes by the bodies' runs of forward bonds (bond_runs.hpp), each noting a near bond in both rows.
-// A distributed run's list reaches the particles of other ranks beyond the window (another body's,
-// or fragments'): contact_beyond_window.hpp.
+// Short-range repulsive contact between particles that are not bonded (broken bonds, fragments, separate
+// bodies), as LAMMPS PERI / EMU (Silling 2005, EMU theory manual p. 18): closer than d = distance *
+// spacing, each feels f = k V_j (d - r) / delta, k = stiffness * c, c the body's PMB micromodulus.
+// A pair of one family is read from its bond once the bond broke; only the other pairs (separate bodies,
+// the faces of a pre-crack or a borehole, fragments out of their families' reach) come from a Verlet
+// list rebuilt when a particle has moved half the skin. Broken bonds are read only where they may touch:
+// the bonds of any state shorter than d + s_f when last looked at (up to seven a row, by their places; a
+// row with more is read whole), s_f a skin under the gap between d and the shortest bond, looked at again
+// once a particle has moved s_f / 2 (Allen and Tildesley, Computer Simulation of Liquids, section 5.3).
+// One rank looks by the bodies' runs of forward bonds (bond_runs.hpp), each noting a near bond in both
+// rows; other ranks' particles beyond the window: contact_beyond_window.hpp.
+// Why, and what was measured: docs/decisions/method-notes.md.
 #pragma once
 #include <array>
 #include <cstdint>

@@ -1,31 +1,15 @@
-// The bonds that cross a fluid-filled crack or its extension past the tip: those whose effective
-// stretch the pore pressure shifts (effective_stretch.hpp). The crack's surface is made of patches,
-// one at the midpoint of each short broken bond of a network (nearest and diagonal lattice
-// neighbours, and the short bonds a pressurized pre-crack cut), each a plane whose normal is the
-// principal direction of the short broken bonds around it (the largest eigenvector of the sum of
-// n n^T over those within 1.5 spacings: sign-free, so a crack's zigzag of straight and diagonal
-// bonds reads as its mean plane). A bond crosses the crack when its ends lie on opposite sides of a
-// patch's plane and it pierces the plane within one spacing of the patch's point: across the faces
-// (the points of a straight crack lie half a spacing apart), or across the crack's extension just
-// past its last broken bond, where the bonds that break next sit. Bonds within a face (parallel to
-// it) and beside the crack do not cross it: they carry the total stress.
-// The crack grows by the bonds that break across it or its extension, and from a borehole's
-// wall; a bond that breaks beside the crack (the rock of a face splitting on the total stress) lets
-// the fluid in, but adds no patch. Otherwise the crack's
-// surface would run along the faces: in hf_kgd_viscosity (3 mm, confined by 15 MPa) a bond that
-// broke just above a tip made a patch a row above the faces, the bonds across it read the
-// effective stress of the net pressure beside a short crack as a tension, broke, and made patches
-// a row higher: a band of damage nine rows thick in one load step, where the rule alone (no patch
-// from such bonds) grows a sharp crack of the right length.
-// Whether a bond crosses is pure geometry in the reference configuration. It is asked only of the
-// bonds the pore shift would break, and of the bonds that break (to know whether they extend the
-// crack): a mark per bond, remade around each new patch, made hf_injection_rate's cube (diffuse
-// damage, a network change every time step) several times slower. While the networks only grow,
-// the patches of the bonds that joined them are added (extend_crack_surface), otherwise the set is
-// made again and compared (remake_crack_surface). Each patch keeps its sum of n n^T in whole
-// numbers (a lattice bond's n n^T is in halves): a patch that comes or goes adds or takes its own
-// from those within 1.5 spacings, whose normals alone are made again, and the sums, so the
-// surface, do not depend on the order the patches came in.
+// The bonds that cross a fluid-filled crack or its extension past the tip: those whose effective stretch
+// the pore pressure shifts (effective_stretch.hpp). The crack's surface is made of patches, one at the
+// midpoint of each short broken bond of a network (nearest and diagonal neighbours, and the short bonds a
+// pressurized pre-crack cut), each a plane whose normal is the largest eigenvector of the sum of n n^T over
+// the short broken bonds within 1.5 spacings (sign-free: a zigzag crack reads as its mean plane). A bond
+// crosses when its ends lie on opposite sides of a patch's plane and it pierces the plane within one spacing
+// of the patch's point; bonds within a face or beside the crack carry the total stress. Only bonds broken
+// across the crack or its extension, or from a borehole's wall, add patches; one beside it lets fluid in.
+// Pure geometry in the reference configuration, asked only of the bonds the pore shift would break and of
+// those that break. Growing networks add their new patches (extend_crack_surface), else the set is made
+// again (remake_crack_surface); each patch keeps its sum of n n^T in whole numbers, so the surface does not
+// depend on the order the patches came in. Why: docs/decisions/hydraulic-fracture-notes.md.
 #pragma once
 #include <Eigen/Dense>
 #include <algorithm>

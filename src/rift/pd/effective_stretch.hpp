@@ -1,31 +1,15 @@
-// Effective stress in a crack's wet rock (Terzaghi; Biot coefficient 1). In the toughness-dominated
-// limit of hydraulic fracture the fluid has no lag behind the tip (Detournay 2004): it fills the
-// cracked rock there, and that rock's bonds fail under the effective stress sigma + p I, not under
-// the total stress sigma. The isotropic part -p I of the total stress gives every bond the stretch
-// -p / (d kappa) (kappa: the bulk modulus of the dimension, d = 2 or 3), so a bond whose two ends the
-// fluid reaches across a crack breaks when its effective stretch s + p / (d kappa) passes its limit:
+// Effective stress in a crack's wet rock (Terzaghi; Biot coefficient 1). In the toughness-dominated limit
+// the fluid has no lag behind the tip (Detournay 2004): the cracked rock's bonds fail under sigma + p I.
+// -p I gives every bond the stretch -p / (d kappa) (kappa the bulk modulus of the dimension, d = 2 or 3),
+// so a bond whose two ends the fluid reaches across a crack breaks when
 //   s > min(s0_i, s0_j) - (1 + alpha) min(s_p,i, s_p,j),   s_p = p / (d kappa)  (the pore stretch),
-// the factor 1 + alpha because s0 = s00 - alpha s_min follows the same shift of the smallest stretch
-// (Silling and Askari 2005, eq. 23). Without it the face pressure, which near a tip is a uniform
-// compression p on top of the singular field (Sneddon's crack is remote tension less p everywhere),
-// shortens the tip bonds, which span a horizon: a sharp crack then needs about 1.3 K_Ic to grow at
-// the pressure of the KGD validation case (tests/test_crack_tip_initiation.cpp), a toughness that
-// falls only as sqrt(horizon / crack length). Both ends must be wet: rock with one end on a crack face
-// and the other in the dry rock around it is not filled. A borehole's intact wall is not cracked
-// rock either: its fluid stays out of the rock (Hubbert and Willis 1957), and breakdown keeps the
-// total stress. And the bond must cross the crack or its extension at the tip (crack_crossing.hpp):
-// the -p I the shift takes off is the face pressure's, which the bonds across the faces carry. A
-// bond beside the faces carries the total stress of the rock there, which under confinement is no
-// -p I: a horizon from the faces of a crack a few horizons long, the crack's net-pressure field has
-// taken back part of p - sigma0, and every particle the fluid reached (first rule, without the
-// crossing) read it as a tension and broke the faces' rock parallel to the crack, a band of damage
-// five rows thick (hf_kgd_viscosity, 3 mm, sigma0 = 15 MPa).
-// The pore stretch follows the fluid where it is, at once: as the crack grows, the rock the fluid
-// reaches across it is wet. Its pressure is the fluid's pressure where the fluid is in equilibrium
-// with the rock (the pore pressure): after each explicit time step, and at the end of each
-// dynamic-relaxation load step. The relaxation's iterations are not a physical path: the lumped
-// fluid's pressure spikes in them while the stiff fluid fills a cavity that has not opened yet, and a
-// criterion that followed those spikes would break rock the fluid has not loaded.
+// 1 + alpha because s0 = s00 - alpha s_min follows the same shift (Silling and Askari 2005, eq. 23).
+// Both ends must be wet, and the bond must cross the crack or its extension at the tip (crack_crossing.hpp):
+// a bond beside the faces carries the total stress. A borehole's intact wall is not cracked rock (Hubbert
+// and Willis 1957): breakdown keeps the total stress. The pore stretch follows the fluid at once; its
+// pressure is the fluid's where fluid and rock are in equilibrium: after each explicit time step and at the
+// end of each dynamic-relaxation load step, not in the relaxation's iterations.
+// Why, and what was measured: docs/decisions/hydraulic-fracture-notes.md.
 #pragma once
 #include <cstddef>
 #include <cstdint>

@@ -1,20 +1,15 @@
-// Pre-existing fractures (scene::Interface: a joint, a bedding plane, the paper sheet cast into the
-// blocks of Zhou et al. 2008). The bonds that cross one keep the rock's stiffness until the
-// interface law fails; then each is a frictional contact (interface_contact.hpp, bonds.hpp
-// bond_interface_failed): the faces press on each other and slide with Coulomb friction, or open,
-// and the fluid that reaches them enters where they are apart (hf/fluid_network.hpp).
-// The law of bond i-j, evaluated before each force evaluation with the positions of the last one, on
-// the traction t = sigma n of the mean stress of i and j, the stress of the rock around each from
-// the strain of its intact bonds (bulk_strain.hpp, rock_stress below; the strain is kept as the
-// reference the opening of failed bonds is measured against), its normal
-// compression sigma_n = -n . t, its shear tau = t - (n . t) n, and p the pressure of the fluid in
-// the interface at either end (pressure_in_interface; zero where none is in it):
-//   tension: the effective normal stress is a tension above the interface's strength,
-//     p - sigma_n > T (a stress, not a bond stretch: in plane strain a bond can stretch under a
-//     compressive stress, by the Poisson effect of the other in-situ stresses);
+// Pre-existing fractures (scene::Interface: a joint, a bedding plane, the paper sheet cast into the blocks
+// of Zhou et al. 2008). The bonds that cross one keep the rock's stiffness until the interface law fails;
+// then each is a frictional contact (interface_contact.hpp, bonds.hpp bond_interface_failed): the faces
+// press and slide with Coulomb friction, or open, and the fluid that reaches them enters where they are
+// apart (hf/fluid_network.hpp). The law of bond i-j, evaluated before each force evaluation with the last
+// one's positions, takes t = sigma n, sigma the mean of i's and j's rock stress from the strain of their
+// intact bonds (bulk_strain.hpp, rock_stress; that strain is also the reference of failed bonds' opening),
+// sigma_n = -n . t, tau = t - (n . t) n, p the interface's fluid pressure at either end (pressure_in_interface):
+//   tension: p - sigma_n > T (a stress: in plane strain a bond stretches under compression, by Poisson);
 //   shear, Mohr-Coulomb (the thesis' EQ 4.1-4.2): |tau| > tau_0 + mu max(sigma_n - p, 0).
-// The rock's own critical stretch still applies to these bonds. Both ends evaluate the same
-// symmetric test, so each row breaks its own copy of the bond.
+// The rock's own critical stretch still applies to these bonds. Both ends evaluate the same symmetric
+// test, so each row breaks its own copy of the bond.
 #pragma once
 #include <algorithm>
 #include <array>

@@ -1,25 +1,15 @@
-// What a hydraulic fracture did at a pre-existing fracture, read off the bonds as Zhou et al. (2008)
-// read their cut blocks (crossed, dilated, arrested):
-//   crossed: a rock bond (not one across the interface) that the fluid reaches is broken on the far
-//     side of the interface from the fluid sources, at least `crossing_depth` horizons from its plane
-//     and within its extent: the fracture goes on beyond it (damage no fluid reaches, such as the
-//     corners of a block under in-situ stress, does not count);
-//   dilated: failed interface bonds that the fluid reaches and that are open, their normal opening
-//     above the rock's critical stretch times the bond length (as open as a rock bond that breaks),
-//     with the fluid's pressure above the compression the in-situ stresses put across the interface,
-//     span at least `dilation_span` horizons along the interface: the fluid has entered and opened it.
-//     The pressure condition is Warpinski and Teufel's (1987) for dilation, p > sigma_n (the thesis'
-//     EQ 4.7, sigma_n from EQ 4.4): below it the compression holds the faces shut but where the
-//     fracture's own opening runs into the interface at the junction or slip parts them (Zhou's test
-//     2-7 at 3 mm: the fluid at 3.4-4.0 MPa, sigma_n = 5.5 MPa, the interface open along 28 mm, by
-//     up to 15 um beside the junction as the fracture itself, where the experiment saw arrest);
+// What a hydraulic fracture did at a pre-existing fracture, read off the bonds as Zhou et al. (2008) read
+// their cut blocks (crossed, dilated, arrested):
+//   crossed: a rock bond the fluid reaches is broken on the far side of the interface from the fluid
+//     sources, at least `crossing_depth` horizons from its plane and within its extent;
+//   dilated: open failed interface bonds the fluid reaches (normal opening above the rock's critical stretch
+//     times the bond length), with p above the in-situ compression sigma_n across the interface (Warpinski
+//     and Teufel 1987; the thesis' EQ 4.7, sigma_n from EQ 4.4), span at least `dilation_span` horizons;
 //   arrested: the interface failed (or rock broke within crossing_depth of it) but neither holds;
 //   not reached: nothing broke at the interface.
-// An interface with no fluid source in the scene has no far side: only "dilated" can be read.
-// Zhou et al. cut their blocks after each test and read the fluid's path from the faces it had
-// wetted (the thesis, section 4.3.2: dilation "induced by fluid flow along the fracture surface"):
-// an interface the fluid once opened and flowed along reads dilated though it shut again as the
-// pressure fell. A run keeps that record, load step by load step (record_outcomes).
+// An interface with no fluid source in the scene has no far side: only "dilated" can be read. As a cut
+// block shows it, a run keeps what it has seen, load step by load step (record_outcomes): an interface
+// once dilated reads dilated though it shut again. Why: docs/decisions/hydraulic-fracture-notes.md.
 #pragma once
 #include <algorithm>
 #include <cmath>

@@ -1,32 +1,15 @@
-// Bond failure on the normal stress along the bond (material key bond_failure = "normal_stress"): a
-// Rankine criterion. The strain of particle i is the small strain of the intact rock around it, the
-// correspondence deformation gradient of its intact bonds (bulk_strain.hpp; Silling et al. 2007,
-// sec. 18), exact for every homogeneous deformation, beside free surfaces and cracks too. The bond
-// i-j of stretch s along n = y_ij / |y_ij| breaks when
+// Bond failure on the normal stress along the bond (material key bond_failure = "normal_stress"): a Rankine
+// criterion. The strain of particle i is the small strain of the intact rock around it, the correspondence
+// deformation gradient of its intact bonds (bulk_strain.hpp; Silling et al. 2007, sec. 18), exact for every
+// homogeneous deformation, beside free surfaces and cracks too. Bond i-j of stretch s along n = y_ij / |y_ij|
+// breaks when
 //   sigma_n = lambda (tr eps - n . eps . n) + (lambda + 2 G) s > T,
 // eps the mean of its ends' strains, lambda Lame's first parameter, T the tensile strength: Hooke's
-// normal stress along n, n . sigma . n = lambda tr eps + 2 G n . eps . n, with the bond's own
-// stretch for the strain along it. For a homogeneous deformation s = n . eps . n and the two agree.
-// Beside a crack they do not: the bonds still bridging an open crack's faces stretch by its
-// opening, and the particle strain takes that in. On Hooke's stress of the particle strain alone,
-// the bonds of each face along n (across the crack, not crossing it) then read the opening as
-// tension and break, a row at a time: a band about a horizon wide each side (measured: the
-// crack-growth probe broke 46 bonds off the crack's line per column, and Zhou's S-1 block, its band
-// squeezed by sigma_H, collapsed). With the bond's own stretch a face's bond reads its own strain,
-// and a bridging bond its opening: 3 bonds off the line per column, as with the stretch criterion.
-// A strength criterion: the crack grows at K = 0.87 T sqrt(delta) (0.846-0.893, 2D plane strain LPS,
-// horizon 3.015 spacings; tests/test_crack_growth.cpp), so its toughness goes with sqrt(delta).
-// In the stretch units of the other criterion, sigma_n / (d kappa) > s0 with s0 = T / (d kappa),
-// the stretch of a uniform expansion under the stress T: the effective stretch's pore shift
-// p / (d kappa) (effective_stretch.hpp) is then the pore pressure added to sigma_n (Terzaghi), and
-// the stretch limits are shared. The strain is that of the current positions, over the bonds intact
-// before the pass.
-// Why: a bond's stretch is not its tension. Under a uniaxial compression a bond across it is
-// stretched by the Poisson effect (plane strain: nu (1 + nu) sigma / E), and a stretch criterion
-// breaks it where no stress is tensile (Zhou et al. 2008's test S-1, 15 / 0 MPa: 5.0e-4, above the
-// s00 of hf_zhou_crossing); here lambda (tr eps - n . eps . n), negative, offsets it. The LPS force
-// state is no measure of tension either: it weighs the deviatoric extension d + 2 times more than
-// the stress does.
+// n . sigma . n with the bond's own stretch for the strain along n (the same for a homogeneous deformation).
+// A strength criterion: the toughness goes with sqrt(delta). In stretch units, sigma_n / (d kappa) > s0 with
+// s0 = T / (d kappa): the pore shift p / (d kappa) (effective_stretch.hpp) adds the pore pressure (Terzaghi),
+// and the stretch limits are shared. The strain is that of the current positions, over the bonds intact
+// before the pass. Why, and what was measured: docs/decisions/hydraulic-fracture-notes.md.
 #pragma once
 #include "rift/core/vec.hpp"
 #include "rift/pd/bulk_strain.hpp"

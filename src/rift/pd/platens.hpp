@@ -1,18 +1,13 @@
-// Rigid loading platens of a true tri-axial frame ([in_situ_stress] faces = "platens"). Zhou et al.
-// (2008) loaded their 300 mm blocks through steel plates, the faces covered with Teflon sheets and
-// Vaseline "to prevent building shear stress along the plates" (003_a918a6800360952d.txt, section
-// 4.3.2). A plate keeps its face flat: the face's particles move together along its normal and
-// freely along it (no shear). On each axis the plate at the low end is the frame's reaction (held,
-// no normal displacement) and the plate at the high end is the servo-controlled ram, pushed with
-// the in-situ stress times the face's area whatever the face does under it. A block between such
-// plates cannot turn, and a face cannot bulge where a fracture opens beneath it, as a face under a
-// uniform traction can.
-//
-// A plate is one degree of freedom: its acceleration is the net force on its particles over their
-// mass, sum_i F_i V_i / sum_i rho_i V_i (for dynamic relaxation, rho the fictitious density). Each
-// integrator updates the particles as free ones and then moves them with the plate
-// (move_with_platens): the mass-weighted mean of their normal velocity and displacement, which is
-// the plate's update when they moved together before (the update is linear in the force).
+// Rigid loading platens of a true tri-axial frame ([in_situ_stress] faces = "platens"), as Zhou et al.
+// (2008) loaded their blocks through lubricated steel plates. A plate keeps its face flat: the face's
+// particles move together along its normal and freely in its plane (no shear). On each axis the plate
+// at the low end is the frame's reaction (no normal displacement), the plate at the high end the
+// servo-controlled ram, pushed with the in-situ stress times the face's area whatever the face does.
+// A plate is one degree of freedom: its acceleration is sum_i F_i V_i / sum_i rho_i V_i (for dynamic
+// relaxation, rho the fictitious density). Each integrator updates the particles as free ones and then
+// moves them with the plate (move_with_platens): the mass-weighted mean of their normal velocity and
+// displacement, which is the plate's update when they moved together before (it is linear in the force).
+// Why: docs/decisions/method-notes.md.
 #pragma once
 #include <array>
 #include <cstdint>

@@ -1,19 +1,15 @@
 // Static equilibrium of a body whose bonds are held (the in-situ stage), by preconditioned conjugate
-// gradients (Hestenes and Stiefel 1952; Saad 2003, algorithm 9.1), matrix free: the stiffness K
-// times a direction p is the change of the forces over a probe along p, K p = -(F(x + e p) -
-// F(x)) / e, at a fixed base point x. The forces of a held body are linear in the displacements up
-// to the geometric terms (of the order of the strain, 1e-4 here), so the iterations are Newton's:
-// once the linear residual is under a hundredth of the base's, the forces are evaluated at the
-// iterate, which becomes the next base. The preconditioner is the dynamic relaxation's diagonal
-// (Kilic and Madenci 2010, eq. 10, the row sum of the stiffness), a platen (platens.hpp) one unknown
-// with its particles' summed diagonal, plus a coarse space of aggregates (coarse_space.hpp) where
-// the body has no platen and is three aggregates across; a free body's rigid motions are projected
-// out of the preconditioned residual (rigid_motion.hpp; a deflated conjugate gradient). With the
-// diagonal alone the iterations go as the lattice's sites along the body (the square root of K's
-// condition number), as dynamic relaxation's at its best damping; the coarse space makes them go as
-// an aggregate's sites across. The thesis example at 1 mm: 227 force evaluations (81 of them the
-// coarse operator's probes), 510 with the diagonal alone, dynamic relaxation 978 and its 50 power
-// iterations.
+// gradients (Hestenes and Stiefel 1952; Saad 2003, algorithm 9.1), matrix free at a fixed base point x:
+// K p = -(F(x + e p) - F(x)) / e. The forces are linear in the displacements up to geometric terms of the
+// order of the strain, so the iterations are Newton's: once the linear residual is under a hundredth of
+// the base's, the forces are evaluated at the iterate, which becomes the next base. Preconditioner: the
+// dynamic relaxation's diagonal (Kilic and Madenci 2010, eq. 10, the row sum of the stiffness), a platen
+// (platens.hpp) one unknown with its particles' summed diagonal, plus a coarse space of aggregates
+// (coarse_space.hpp) where the body has no platen and is three aggregates across. A free body's rigid
+// motions are projected out of the preconditioned residual (rigid_motion.hpp; a deflated conjugate
+// gradient). The iterations go as the lattice's sites along the body with the diagonal alone, as an
+// aggregate's sites across with the coarse space.
+// Why, and what was measured: docs/decisions/method-notes.md.
 #pragma once
 #include <vector>
 

@@ -1,19 +1,15 @@
-// Viscoelastic ordinary state-based peridynamics (Mitchell 2011, SAND2011-8064; LAMMPS peri/ves):
-// the linear peridynamic solid of lps.hpp whose deviatoric response has an elastic share 1 - lambda
-// and a viscous share lambda acting on e_d - e_b, where the back extension e_b of every bond relaxes
-// toward the deviatoric extension e_d = e - theta |xi| / d with the relaxation time tau:
-//   d e_b / dt = (e_d - e_b) / tau.
-// Over a step dt with e_d linear in time this integrates exactly (viscous_step.hpp).
-// With e_b held fixed over the step, the free energy and its derivative, the force state, are
+// Viscoelastic ordinary state-based peridynamics (Mitchell 2011, SAND2011-8064; LAMMPS peri/ves): the LPS
+// of lps.hpp whose deviatoric response has an elastic share 1 - lambda and a viscous share lambda acting
+// on e_d - e_b; the back extension e_b relaxes toward e_d = e - theta |xi| / d with relaxation time tau,
+//   d e_b / dt = (e_d - e_b) / tau,   exact over a step with e_d linear in time (viscous_step.hpp).
+// With e_b held fixed over the step, the free energy and the force state are
 //   W_i = kappa/2 theta_i^2 + a_i/2 sum_j sigma_ij [(1 - lambda) e_d^2 + lambda (e_d - e_b)^2] V_j,
 //   t_i<j> = b_ij (kappa theta_i - a_i P_i / d) + a_i sigma_ij (e_d - lambda e_b),
 //   P_i = sum_j sigma_ij (e_d - lambda e_b) |xi| V_j,
-// with a_i, sigma_ij, b_ij as in lps.hpp (lambda = 0 gives the LPS exactly). So a sudden deviatoric
-// strain held fixed relaxes its stress as G [(1 - lambda) + lambda exp(-t / tau)], the standard linear
-// solid. Two differences from LAMMPS peri/ves: t_j<i> uses j's own dilatation and back extension (LAMMPS
-// uses theta_i in both halves of the deviatoric term, which breaks Newton's third law where the
-// dilatation varies), and the P term of the surface correction (zero without it, as in LAMMPS, up to
-// the history of broken bonds).
+// a_i, sigma_ij, b_ij as in lps.hpp (lambda = 0: the LPS exactly). A held deviatoric strain relaxes as
+// G [(1 - lambda) + lambda exp(-t / tau)] (standard linear solid). Unlike LAMMPS peri/ves, t_j<i> uses j's
+// own dilatation and back extension (Newton's third law holds), and the surface correction's P term is kept.
+// Why: docs/decisions/method-notes.md.
 #pragma once
 #include <algorithm>
 #include <cmath>
