@@ -22,7 +22,9 @@
 #include "rift/mpm/j_integral.hpp"
 #include "rift/mpm/solver.hpp"
 #include "rift/parallel/communicator.hpp"
+#include "rift/run/cadence.hpp"
 #include "rift/run/checkpointing.hpp"
+#include "rift/run/history_columns.hpp"
 #include "rift/run/time_step.hpp"
 
 namespace rift::run {
@@ -240,12 +242,13 @@ Result run_dim(const scene::Scene& s, const Options& o) {
     if (cracked && s.crack_growth.enabled) propagation.emplace(s, m, r.solver);
 
   // The loop's own state, which a checkpoint holds with the model's (mpm/checkpoint_state.hpp).
-  long next_snapshot = 1, next_history = 0;
+  // history rows at the starts of steps 1 + k steps / rows (energy at t = 0 first): due at step - 1
+  Cadence snapshots{s.output.count, r.steps}, history_rows{s.output.history_count, r.steps, 0};
   std::int64_t history_bytes = 0, tip_bytes = 0;
   std::vector<mpm::CrackTip> tip_list;
   // (a distributed run's checkpoint holds the whole run's points, gathered on rank 0 into `whole`)
   auto visit_run = [&](auto& a, mpm::Model<D>& model) {
-    a("run.next_snapshot", next_snapshot), a("run.next_history", next_history), a("run.history_bytes", history_bytes);
+    a("run.next_snapshot", snapshots.next), a("run.next_history", history_rows.next), a("run.history_bytes", history_bytes);
     a("run.crack_growth_events", res.crack_growth_events);
     fields.visit_state(a);
     mpm::visit(a, model);
@@ -306,18 +309,22 @@ Result run_dim(const scene::Scene& s, const Options& o) {
   }
   if (comm.root()) make_output_folders(s, res.output_dir);
   comm.barrier();  // before the ranks open the snapshot files together
-  std::vector<std::string> columns{"time", "step"};
-  columns.insert(columns.end(), s.output.history.begin(), s.output.history.end());
+  // rows hold the time-centred energy at the start of the sampled step (see Solver::measure_energy)
+  double row_kinetic = 0.0, row_strain = 0.0;
+  HistoryColumns columns;
+  columns.add(s.output.history, [&](std::vector<double>& row) {
+    for (const auto& q : s.output.history)
+      row.push_back(q == "kinetic_energy" ? row_kinetic : q == "strain_energy" ? row_strain : row_kinetic + row_strain);
+  });
   std::optional<io::History> history;  // rank 0 writes the history
   if (comm.root() && restarted) history.emplace(res.output_dir + "/history.csv", history_bytes);
-  if (comm.root() && !restarted) history.emplace(res.output_dir + "/history.csv", columns);
+  if (comm.root() && !restarted) history.emplace(res.output_dir + "/history.csv", columns.names());
   res.history_csv = res.output_dir + "/history.csv";
-  // rows hold the time-centred energy at the start of the sampled step (see Solver::measure_energy)
   auto history_row = [&](long step, double time, double kinetic, double strain) {
     if (!std::isfinite(kinetic) || !std::isfinite(strain))
       throw PhysicsError("step " + std::to_string(step) + ": energy is not finite; the time step may be above the stable limit");
-    std::vector<double> row{time, double(step)};
-    for (const auto& q : s.output.history) row.push_back(q == "kinetic_energy" ? kinetic : q == "strain_energy" ? strain : kinetic + strain);
+    row_kinetic = kinetic, row_strain = strain;
+    const std::vector<double> row = columns.row(time, step);
     if (history) history->row(row);
   };
   std::optional<CrackTipHistory> tips;  // rank 0 writes them
@@ -335,8 +342,7 @@ Result run_dim(const scene::Scene& s, const Options& o) {
   Progress progress(r.steps, s.solver.end_time, o.quiet || !comm.root());
   if (!restarted) write_snapshot<D>(fields, m, s, in);
   for (long step = res.first_step; step <= r.steps; ++step) {
-    // history rows at the starts of steps 1 + k steps / rows: energy at t = 0 first
-    const bool sample = (step - 1) * s.output.history_count >= next_history * r.steps;
+    const bool sample = history_rows.due(step - 1);
     if (sample) r.solver.measure_energy();
     on_this_rank([&] { r.solver.step(m, r.dt); });
     res.particle_steps += double(points);
@@ -356,11 +362,11 @@ Result run_dim(const scene::Scene& s, const Options& o) {
         if (tips) on_this_rank([&] { tips->row(tip_model, tip_solver, step); });
       }
       progress.update(step, m.time, 0.0);
-      while (next_history * r.steps <= (step - 1) * s.output.history_count) ++next_history;
+      history_rows.passed(step - 1);
     }
-    if (step * s.output.count >= next_snapshot * r.steps) {
+    if (snapshots.due(step)) {
       write_snapshot<D>(fields, m, s, in);
-      while (next_snapshot * r.steps <= step * s.output.count) ++next_snapshot;
+      snapshots.passed(step);
     }
     auto gather = [&] { mirror(step); };
     const bool stop = checkpoints.after_step(step, m.time, res, gather, [&](io::CheckpointWriter& w) {

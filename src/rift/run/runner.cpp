@@ -24,8 +24,10 @@
 #include "rift/pd/interface_outcome.hpp"
 #include "rift/pd/laws/registry.hpp"
 #include "rift/pd/stress.hpp"
+#include "rift/run/cadence.hpp"
 #include "rift/run/checkpointing.hpp"
 #include "rift/run/distributed.hpp"
+#include "rift/run/history_columns.hpp"
 #include "rift/run/mpm_runner.hpp"
 #include "rift/run/simulation.hpp"
 
@@ -265,11 +267,11 @@ Result run_dim(const scene::Scene& s, const Options& o) {
   // bonds stop breaking then, pd/dynamic_relaxation.hpp), and when it broke through.
   std::vector<pd::InterfaceOutcome> outcomes, outcomes_at_breakthrough;
   double vent_time = -1.0;
-  long next_snapshot = 1, next_history = 1;
+  Cadence snapshots{s.output.count, p.steps}, history_rows{s.output.history_count, p.steps};
   std::int64_t history_bytes = 0;
   // a distributed run's checkpoint holds the whole run's model, gathered on rank 0 (`whole`)
   auto visit_run = [&](auto& a, Simulation<D>& state) {
-    a("run.next_snapshot", next_snapshot), a("run.next_history", next_history), a("run.outcomes", outcomes);
+    a("run.next_snapshot", snapshots.next), a("run.next_history", history_rows.next), a("run.outcomes", outcomes);
     a("run.outcomes_at_breakthrough", outcomes_at_breakthrough), a("run.vent_time", vent_time), a("run.notes", res.notes);
     a("run.history_bytes", history_bytes);
     fields.visit_state(a);
@@ -315,60 +317,86 @@ Result run_dim(const scene::Scene& s, const Options& o) {
   }
   if (comm.root()) make_output_folders(s, res.output_dir);
   comm.barrier();  // before the ranks open the snapshot files together
-  std::vector<std::string> columns{"time", "step"};
-  columns.insert(columns.end(), s.output.history.begin(), s.output.history.end());
-  for (std::size_t k = 0; k < probes.size(); ++k) columns.push_back("damage_probe_" + std::to_string(k));
-  std::vector<std::size_t> injected;  // pressure sources fed by an injection rate: their pressure and cavity volume
-  for (std::size_t k = 0; k < s.boreholes.size(); ++k)
-    if (s.boreholes[k].injection_rate) {
-      injected.push_back(s.cracks.size() + k);
-      columns.push_back("pressure_borehole_" + std::to_string(k));
-      columns.push_back("cavity_volume_borehole_" + std::to_string(k));
-      columns.push_back("vented_borehole_" + std::to_string(k));
-    }
-  for (std::size_t k = 0; k < s.interfaces.size(); ++k)
-    for (const char* q : {"crossed", "dilated", "crossing_distance", "opened_length"})
-      columns.push_back(std::string(q) + "_interface_" + std::to_string(k));
-  const char* comp[3] = {"x", "y", "z"};
-  for (const auto& r : p.loads.boundaries.reaction_names())
-    for (int k = 0; k < D; ++k) columns.push_back("reaction_" + r + "_" + comp[k]);
+  // the history's columns, each group from its provider; a row's energies and the solver's own
+  // columns are the row's (history_row)
   const bool at_equilibrium = s.solver.breaking == scene::Solver::Breaking::at_equilibrium;
-  if (s.solver.kind == scene::SolverKind::dynamic_relaxation) columns.insert(columns.end(), {"iterations", "residual"});
-  if (s.solver.kind == scene::SolverKind::dynamic_relaxation && at_equilibrium) columns.push_back("breaking_passes");
+  pd::EnergySummary row_energy;
+  double row_max_damage = 0.0;
+  std::vector<double> row_solver;
+  HistoryColumns columns;
+  columns.add(s.output.history, [&](std::vector<double>& row) {
+    for (const auto& q : s.output.history) {
+      if (q == "kinetic_energy") row.push_back(row_energy.kinetic);
+      else if (q == "strain_energy") row.push_back(row_energy.strain);
+      else if (q == "total_energy") row.push_back(row_energy.kinetic + row_energy.strain);
+      else if (q == "broken_bonds") row.push_back(double(row_energy.broken_bonds));
+      else if (q == "max_damage") row.push_back(row_max_damage);
+    }
+  });
+  {
+    std::vector<std::string> names;
+    for (std::size_t k = 0; k < probes.size(); ++k) names.push_back("damage_probe_" + std::to_string(k));
+    columns.add(names, [&](std::vector<double>& row) {
+      for (auto g : probes) row.push_back(probe_damage(g));
+    });
+  }
+  std::vector<std::size_t> injected;  // pressure sources fed by an injection rate: their pressure and cavity volume
+  bool row_vented = false;
+  {
+    std::vector<std::string> names;
+    for (std::size_t k = 0; k < s.boreholes.size(); ++k)
+      if (s.boreholes[k].injection_rate) {
+        injected.push_back(s.cracks.size() + k);
+        for (const char* q : {"pressure_borehole_", "cavity_volume_borehole_", "vented_borehole_"}) names.push_back(q + std::to_string(k));
+      }
+    columns.add(names, [&](std::vector<double>& row) {
+      row_vented = false;
+      for (auto c : injected) {
+        const bool v = c < m.fluid_network.broke_through.size() && m.fluid_network.broke_through[c] != 0;
+        row.insert(row.end(), {m.fluid_network.pressure[c], m.fluid_network.cavity_volume[c], double(v)});
+        row_vented = row_vented || v;
+      }
+    });
+  }
+  {
+    std::vector<std::string> names;
+    for (std::size_t k = 0; k < s.interfaces.size(); ++k)
+      for (const char* q : {"crossed", "dilated", "crossing_distance", "opened_length"}) names.push_back(std::string(q) + "_interface_" + std::to_string(k));
+    columns.add(names, [&](std::vector<double>& row) {
+      pd::record_outcomes(outcomes, pd::classify_interfaces<D>(m));
+      for (const auto& o : outcomes) row.insert(row.end(), {double(o.crossed), double(o.dilated), o.crossing_distance, o.opened_length});
+      if (vent_time < 0.0) outcomes_at_breakthrough = outcomes;
+      if (row_vented && vent_time < 0.0) vent_time = m.time;
+    });
+  }
+  {
+    std::vector<std::string> names;
+    for (const auto& r : p.loads.boundaries.reaction_names())
+      for (int k = 0; k < D; ++k) names.push_back("reaction_" + r + "_" + "xyz"[k]);
+    columns.add(names, [&](std::vector<double>& row) {
+      for (const auto& r : p.loads.boundaries.reactions(m, comm)) row.insert(row.end(), r.begin(), r.end());
+    });
+  }
+  if (relaxation) {
+    std::vector<std::string> names{"iterations", "residual"};
+    if (at_equilibrium) names.push_back("breaking_passes");
+    columns.add(names, [&](std::vector<double>& row) { row.insert(row.end(), row_solver.begin(), row_solver.end()); });
+  }
   std::optional<io::History> history;  // rank 0's
   if (comm.root() && restarted) history.emplace(res.output_dir + "/history.csv", history_bytes);
-  if (comm.root() && !restarted) history.emplace(res.output_dir + "/history.csv", columns);
+  if (comm.root() && !restarted) history.emplace(res.output_dir + "/history.csv", columns.names());
   res.history_csv = res.output_dir + "/history.csv";
   // the strain energy only where the history has a column for it (a pass over every bond)
   const bool strain_column = std::any_of(s.output.history.begin(), s.output.history.end(),
                                          [](const std::string& q) { return q == "strain_energy" || q == "total_energy"; });
-  auto history_row = [&](long step, std::vector<double> extra) {
-    auto e = pd::summarize_and_update_damage<D>(m, strain_column);
-    check_finite<D>(m, step, e);
-    const double dmax = max_damage<D>(comm, m);
-    std::vector<double> row{m.time, double(step)};
-    for (const auto& q : s.output.history) {
-      if (q == "kinetic_energy") row.push_back(e.kinetic);
-      else if (q == "strain_energy") row.push_back(e.strain);
-      else if (q == "total_energy") row.push_back(e.kinetic + e.strain);
-      else if (q == "broken_bonds") row.push_back(double(e.broken_bonds));
-      else if (q == "max_damage") row.push_back(dmax);
-    }
-    for (auto g : probes) row.push_back(probe_damage(g));
-    bool vented = false;
-    for (auto c : injected) {
-      const bool v = c < m.fluid_network.broke_through.size() && m.fluid_network.broke_through[c] != 0;
-      row.insert(row.end(), {m.fluid_network.pressure[c], m.fluid_network.cavity_volume[c], double(v)});
-      vented = vented || v;
-    }
-    pd::record_outcomes(outcomes, pd::classify_interfaces<D>(m));
-    for (const auto& o : outcomes) row.insert(row.end(), {double(o.crossed), double(o.dilated), o.crossing_distance, o.opened_length});
-    if (vent_time < 0.0) outcomes_at_breakthrough = outcomes;
-    if (vented && vent_time < 0.0) vent_time = m.time;
-    for (const auto& r : p.loads.boundaries.reactions(m, comm)) row.insert(row.end(), r.begin(), r.end());
-    row.insert(row.end(), extra.begin(), extra.end());
+  auto history_row = [&](long step, std::vector<double> solver) {
+    row_energy = pd::summarize_and_update_damage<D>(m, strain_column);
+    check_finite<D>(m, step, row_energy);
+    row_max_damage = max_damage<D>(comm, m);
+    row_solver = std::move(solver);
+    const std::vector<double> row = columns.row(m.time, step);
     if (history) history->row(row);
-    return e;
+    return row_energy;
   };
 
   if (s.in_situ.enabled && !restarted) {
@@ -460,18 +488,17 @@ Result run_dim(const scene::Scene& s, const Options& o) {
     for (long step = res.first_step; step <= p.steps; ++step) {
       p.step();
       res.bond_updates += bonds;
-      const bool snap = step * s.output.count >= next_snapshot * p.steps;
-      const bool hist = step * s.output.history_count >= next_history * p.steps;
+      const bool snap = snapshots.due(step), hist = history_rows.due(step);
       {
         PhaseClock output_clock(Phase::output);
         if (hist) {
           auto e = history_row(step, {});
           progress.update(step, m.time, e.broken_fraction);
-          while (next_history * p.steps <= step * s.output.history_count) ++next_history;
+          history_rows.passed(step);
         }
         if (snap) {
           write_snapshot<D>(fields, m, s, comm);
-          while (next_snapshot * p.steps <= step * s.output.count) ++next_snapshot;
+          snapshots.passed(step);
         }
       }
       if (checkpoint_and_stop(step)) break;
