@@ -58,22 +58,13 @@ PatchErrors patch_errors(const Strain& eps) {
                                      "conformance.toml");
   auto m = rift::pd::discretize<D>(s);
   const auto& c = m.bodies[0].constants;
-  for (std::size_t i = 0; i < m.size(); ++i)
-    for (int a = 0; a < D; ++a) {
-      double u = 0.0;
-      for (int b = 0; b < D; ++b) u += eps[a][b] * m.reference_position[i][b];
-      m.position[i][a] = m.reference_position[i][a] + u;
-    }
+  rift::validation::deform<D>(m, eps);
   rift::pd::compute_forces<D>(m, nullptr);
   double tr = 0.0, norm = 0.0;
   for (int a = 0; a < D; ++a) tr += eps[a][a];
-  double dev2 = 0.0;
   for (int a = 0; a < D; ++a)
-    for (int b = 0; b < D; ++b) {
-      const double d = eps[a][b] - (a == b ? tr / D : 0.0);
-      dev2 += d * d, norm += eps[a][b] * eps[a][b];
-    }
-  const double classical = 0.5 * c.kappa * tr * tr + c.shear_modulus * dev2;
+    for (int b = 0; b < D; ++b) norm += eps[a][b] * eps[a][b];
+  const double classical = rift::validation::classical_energy_density<D>(c, eps);
   // sigma = kappa tr eps I + 2 G dev eps, in the plane (the dimension's kappa)
   double sigma[3][3] = {}, sigma_norm = 0.0;
   for (int a = 0; a < D; ++a)

@@ -18,20 +18,20 @@ struct EnergyErrors {
   int bulk_count = 0, surface_count = 0;
 };
 
-/// Bulk = farther than one horizon from every face of the body's bounding box.
-/// Classical W = kappa/2 (tr eps)^2 + G |dev eps|^2 with the dimension's bulk modulus kappa.
+/// Moves every particle to x = X + eps X.
 template <int D>
-EnergyErrors energy_errors(const std::string& scene_text, const Strain& eps) {
-  auto s = scene::parse_string(scene_text, "homogeneous.toml");
-  auto m = pd::discretize<D>(s);
-  const auto& c = m.bodies[0].constants;
+void deform(pd::Model<D>& m, const Strain& eps) {
   for (std::size_t i = 0; i < m.size(); ++i)
     for (int a = 0; a < D; ++a) {
       double u = 0;
       for (int b = 0; b < D; ++b) u += eps[a][b] * m.reference_position[i][b];
       m.position[i][a] = m.reference_position[i][a] + u;
     }
-  pd::compute_forces<D>(m, nullptr);
+}
+
+/// Linear elasticity's W = kappa/2 (tr eps)^2 + G |dev eps|^2, kappa the dimension's bulk modulus.
+template <int D>
+double classical_energy_density(const pd::MaterialConstants& c, const Strain& eps) {
   double tr = 0;
   for (int a = 0; a < D; ++a) tr += eps[a][a];
   double dev2 = 0;
@@ -40,7 +40,18 @@ EnergyErrors energy_errors(const std::string& scene_text, const Strain& eps) {
       const double d = eps[a][b] - (a == b ? tr / D : 0.0);
       dev2 += d * d;
     }
-  const double classical = 0.5 * c.kappa * tr * tr + c.shear_modulus * dev2;
+  return 0.5 * c.kappa * tr * tr + c.shear_modulus * dev2;
+}
+
+/// Bulk = farther than one horizon from every face of the body's bounding box.
+template <int D>
+EnergyErrors energy_errors(const std::string& scene_text, const Strain& eps) {
+  auto s = scene::parse_string(scene_text, "homogeneous.toml");
+  auto m = pd::discretize<D>(s);
+  const auto& c = m.bodies[0].constants;
+  deform<D>(m, eps);
+  pd::compute_forces<D>(m, nullptr);
+  const double classical = classical_energy_density<D>(c, eps);
   std::array<double, 3> lo{1e9, 1e9, 1e9}, hi{-1e9, -1e9, -1e9};
   for (const auto& x : m.reference_position)
     for (int a = 0; a < D; ++a) lo[a] = std::min(lo[a], x[a]), hi[a] = std::max(hi[a], x[a]);
