@@ -1,6 +1,6 @@
 // Pre-existing fractures ([[interfaces]], pd/interface_law.hpp): the bonds across one fail in shear
 // by Mohr-Coulomb on the interface traction and in tension past the interface's tensile strength;
-// failed, each is a frictional contact. The outcome reader (pd/interface_outcome.hpp) tells crossed,
+// failed, each is a frictional contact. The outcome reader (geomech/interface_outcome.hpp) tells crossed,
 // dilated and arrested apart.
 #include <gtest/gtest.h>
 
@@ -14,7 +14,7 @@
 #include "rift/pd/discretize.hpp"
 #include "rift/pd/forces.hpp"
 #include "rift/pd/interface_law.hpp"
-#include "rift/pd/interface_outcome.hpp"
+#include "rift/geomech/interface_outcome.hpp"
 #include "rift/scene/parse.hpp"
 #include "rock_scene.hpp"
 
@@ -331,7 +331,7 @@ pressure = 1e6
       for (std::size_t i = 0; i < m.size(); ++i)
         if (std::abs(m.reference_position[i][0] - 0.0065) < 1e-6 && std::abs(m.reference_position[i][1] - 0.0005) < 1e-6)
           *wet = m.fluid_network.source[i] >= 0;
-    return rift::pd::classify_interfaces<2>(m).at(0);
+    return rift::geomech::classify_interfaces<2>(m).at(0);
   };
   EXPECT_EQ(outcome(-0.008, 0.0, 0.0).name(), "not reached");
   EXPECT_EQ(outcome(0.0, 0.002, 0.0).name(), "arrested");
@@ -398,28 +398,28 @@ TEST(InterfaceOutcome, BreakthroughThroughAnInterfaceIsKeptWhenItShuts) {
 
 namespace {
 
-// The record a run keeps (pd/interface_outcome.hpp record_outcomes), as Zhou et al.'s cut blocks
+// The record a run keeps (geomech/interface_outcome.hpp record_outcomes), as Zhou et al.'s cut blocks
 // kept the fluid's path: an interface dilated at one load step and shut at the next reads dilated,
 // crossing stays, and the lengths are the largest seen.
 TEST(InterfaceOutcome, DilationIsKeptWhenTheInterfaceShuts) {
-  rift::pd::InterfaceOutcome open_and_wet, shut;
+  rift::geomech::InterfaceOutcome open_and_wet, shut;
   open_and_wet.reached = open_and_wet.dilated = true;
   open_and_wet.opened_length = 0.025;
   shut.reached = true;
   shut.crossing_distance = 0.004;
-  std::vector<rift::pd::InterfaceOutcome> record;
-  rift::pd::record_outcomes(record, {shut});
+  std::vector<rift::geomech::InterfaceOutcome> record;
+  rift::geomech::record_outcomes(record, {shut});
   EXPECT_EQ(record.at(0).name(), "arrested");
-  rift::pd::record_outcomes(record, {open_and_wet});
-  rift::pd::record_outcomes(record, {shut});
+  rift::geomech::record_outcomes(record, {open_and_wet});
+  rift::geomech::record_outcomes(record, {shut});
   EXPECT_EQ(record.at(0).name(), "dilated");
   EXPECT_DOUBLE_EQ(record.at(0).opened_length, 0.025);
   EXPECT_DOUBLE_EQ(record.at(0).crossing_distance, 0.004);
-  rift::pd::InterfaceOutcome crossed = shut;
+  rift::geomech::InterfaceOutcome crossed = shut;
   crossed.crossed = true;
   crossed.crossing_distance = 0.02;
-  rift::pd::record_outcomes(record, {crossed});
-  rift::pd::record_outcomes(record, {shut});
+  rift::geomech::record_outcomes(record, {crossed});
+  rift::geomech::record_outcomes(record, {shut});
   EXPECT_EQ(record.at(0).name(), "crossed+dilated");
   EXPECT_DOUBLE_EQ(record.at(0).crossing_distance, 0.02);
 }

@@ -24,7 +24,7 @@
 // "at_equilibrium", 40 load steps over 4 s of injection): breaking in the relaxation's iterations
 // let transients run S-1's tips to the block's faces at t = 1.05 s. The interface reads dilated
 // only with the fluid above the compression sigma_n the in-situ stresses put across it
-// (pd/interface_outcome.hpp, the thesis' EQ 4.7).
+// (geomech/interface_outcome.hpp, the thesis' EQ 4.7).
 // The fluid is Zhou's guar (135 mPa s; the thesis, section 4.3.2), flowing along the cracks by the
 // cubic law (hf/viscous_fluid.hpp, validated by hf_kgd_viscosity): for this scene's injection (3e-6
 // m^2/s per unit height) the KGD fracture's dimensionless toughness K' / (E'^3 mu' Q)^(1/4) is 0.6,
@@ -286,7 +286,7 @@
 // Before the guar (the lumped fluid, 2026-11-23 and before): 5 of 9, 2-6 arrested as its free wing
 // vented first, 2-8 and 2-3 crossed and 2-5 arrested with the fluid at 5.6-5.9 MPa, below their
 // sigma_n (with T = 5 MPa also 5 of 9).
-// The outcome is the record of the whole run (pd/interface_outcome.hpp: an interface once open and
+// The outcome is the record of the whole run (geomech/interface_outcome.hpp: an interface once open and
 // wet stays dilated, as the cut block shows the faces the fluid wetted), up to the end or to the load
 // step in which the fluid breaks through to the block's faces: the laboratory test ended there, its
 // pressure lost, and that load step breaks no more bonds after it (pd/dynamic_relaxation.hpp). The case writes zhou_crossing.csv with the columns test,
@@ -308,7 +308,7 @@
 #include "case.hpp"
 #include "rift/pd/dynamic_relaxation.hpp"
 #include "rift/pd/forces.hpp"
-#include "rift/pd/interface_outcome.hpp"
+#include "rift/geomech/interface_outcome.hpp"
 #include "rift/run/simulation.hpp"
 #include "rift/scene/parse.hpp"
 
@@ -407,7 +407,7 @@ max_breaking_passes = 50
 }
 
 struct ZhouRun {
-  pd::InterfaceOutcome outcome;
+  geomech::InterfaceOutcome outcome;
   int unconverged = 0;
 };
 
@@ -429,8 +429,8 @@ ZhouRun run_zhou(const ZhouTest& t, double spacing, const std::string& damage_cs
     const bool broke_through = m.fluid_network.broke_through.at(source) != 0;
     out.unconverged += r.converged || broke_through ? 0 : 1;
     pd::update_damage<2>(m);
-    std::vector<pd::InterfaceOutcome> record{out.outcome};  // what a cut block shows: the fluid's path so far
-    pd::record_outcomes(record, pd::classify_interfaces<2>(m));
+    std::vector<geomech::InterfaceOutcome> record{out.outcome};  // what a cut block shows: the fluid's path so far
+    geomech::record_outcomes(record, geomech::classify_interfaces<2>(m));
     out.outcome = record.at(0);
     damage = m.damage;
     if (broke_through) break;

@@ -9,7 +9,6 @@
 #pragma once
 #include "rift/pd/contact.hpp"
 #include "rift/pd/dynamic_relaxation.hpp"
-#include "rift/pd/interface_outcome.hpp"
 #include "rift/pd/model.hpp"
 
 namespace rift::pd {
@@ -18,7 +17,6 @@ namespace rift::pd {
 // 24 bytes per std::vector, 32 per std::string (libstdc++, x86_64); a bool or int member padded to 8
 static_assert(sizeof(FamilyOffset) == 7 * 8, "a member was added to FamilyOffset: list it in pd/checkpoint_state.hpp");
 static_assert(sizeof(MaterialConstants) == 3 * 4 + 4 + 13 * 8 + 2 * 8, "a member was added to MaterialConstants: list it in pd/checkpoint_state.hpp");
-static_assert(sizeof(InterfaceOutcome) == 8 + 2 * 8, "a member was added to InterfaceOutcome: list it in pd/checkpoint_state.hpp");
 // (the states carry a count of their changes, and the kept rows and whether the back extensions are
 // at rest are caches: none is saved)
 static_assert(sizeof(Bonds) == 14 * 24 + 8 + 8 + sizeof(Bonds::KeptRows), "a member was added to Bonds: list it in pd/checkpoint_state.hpp");
@@ -59,12 +57,6 @@ void visit(A& a, MaterialConstants& c) {
   a("constants.normal_stress_failure", c.normal_stress_failure), a("constants.viscous_fraction", c.viscous_fraction);
   a("constants.relaxation_time", c.relaxation_time), a("constants.yield_stress", c.yield_stress);
   a("constants.surface_correction", c.surface_correction);
-}
-
-template <class A>
-void visit(A& a, InterfaceOutcome& o) {
-  a("outcome.reached", o.reached), a("outcome.crossed", o.crossed), a("outcome.dilated", o.dilated);
-  a("outcome.crossing_distance", o.crossing_distance), a("outcome.opened_length", o.opened_length);
 }
 
 template <class A>

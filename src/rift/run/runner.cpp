@@ -21,7 +21,7 @@
 #include "rift/io/history.hpp"
 #include "rift/pd/dynamic_relaxation.hpp"
 #include "rift/pd/checkpoint_state.hpp"
-#include "rift/pd/interface_outcome.hpp"
+#include "rift/geomech/interface_outcome.hpp"
 #include "rift/pd/laws/registry.hpp"
 #include "rift/pd/stress.hpp"
 #include "rift/run/cadence.hpp"
@@ -265,7 +265,7 @@ Result run_dim(const scene::Scene& s, const Options& o) {
   // The outcome at the interfaces, as recorded up to the history row where the fluid first broke
   // through to the outer surface (a laboratory test ends there, its pressure lost; the load step's
   // bonds stop breaking then, pd/dynamic_relaxation.hpp), and when it broke through.
-  std::vector<pd::InterfaceOutcome> outcomes, outcomes_at_breakthrough;
+  std::vector<geomech::InterfaceOutcome> outcomes, outcomes_at_breakthrough;
   double vent_time = -1.0;
   Cadence snapshots{s.output.count, p.steps}, history_rows{s.output.history_count, p.steps};
   std::int64_t history_bytes = 0;
@@ -363,7 +363,7 @@ Result run_dim(const scene::Scene& s, const Options& o) {
     for (std::size_t k = 0; k < s.interfaces.size(); ++k)
       for (const char* q : {"crossed", "dilated", "crossing_distance", "opened_length"}) names.push_back(std::string(q) + "_interface_" + std::to_string(k));
     columns.add(names, [&](std::vector<double>& row) {
-      pd::record_outcomes(outcomes, pd::classify_interfaces<D>(m));
+      geomech::record_outcomes(outcomes, geomech::classify_interfaces<D>(m));
       for (const auto& o : outcomes) row.insert(row.end(), {double(o.crossed), double(o.dilated), o.crossing_distance, o.opened_length});
       if (vent_time < 0.0) outcomes_at_breakthrough = outcomes;
       if (row_vented && vent_time < 0.0) vent_time = m.time;
@@ -423,7 +423,7 @@ Result run_dim(const scene::Scene& s, const Options& o) {
                    r.residual, s.in_situ.tolerance);
   }
   if (!restarted) {
-    pd::record_outcomes(outcomes, pd::classify_interfaces<D>(m));
+    geomech::record_outcomes(outcomes, geomech::classify_interfaces<D>(m));
     outcomes_at_breakthrough = outcomes;
   }
   // the whole run's directed bonds (a distributed run's ranks each count their owned rows): the
@@ -552,7 +552,7 @@ Result run_dim(const scene::Scene& s, const Options& o) {
   res.time = m.time;
   if (res.stopped) return res;  // the final state's reports belong to the run that ends
   res.steps = p.steps;
-  if (vent_time < 0.0) pd::record_outcomes(outcomes, pd::classify_interfaces<D>(m));
+  if (vent_time < 0.0) geomech::record_outcomes(outcomes, geomech::classify_interfaces<D>(m));
   const auto& read_outcomes = vent_time < 0.0 ? outcomes : outcomes_at_breakthrough;
   for (std::size_t k = 0; k < read_outcomes.size(); ++k) {
     const auto& o = read_outcomes[k];

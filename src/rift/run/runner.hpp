@@ -41,7 +41,7 @@ struct Result {
   std::string output_dir, fields_h5, fields_xdmf, history_csv;
   std::vector<std::pair<std::string, std::string>> files;  // further outputs: (what, path)
   std::vector<std::string> notes;                          // outputs not written and why, stage and interface reports
-  std::vector<std::string> interface_outcomes;             // per pre-existing fracture (pd/interface_outcome.hpp)
+  std::vector<std::string> interface_outcomes;             // per pre-existing fracture (geomech/interface_outcome.hpp)
   long steps = 0;
   double time = 0.0;
   double loop_seconds = 0.0;  // wall time of the step loop (with outputs)

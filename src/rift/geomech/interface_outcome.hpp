@@ -22,7 +22,10 @@
 #include "rift/pd/interface_law.hpp"
 #include "rift/pd/model.hpp"
 
-namespace rift::pd {
+namespace rift::geomech {
+
+using pd::Bonds, pd::FluidNetwork, pd::InterfaceBonds, pd::Model;
+using pd::bond_broken, pd::bond_intact, pd::bond_interface_failed, pd::interface_faces_apart, pd::ranks_of;
 
 struct InterfaceOutcome {
   bool reached = false, crossed = false, dilated = false;
@@ -131,6 +134,16 @@ std::vector<InterfaceOutcome> classify_interfaces(const Model<D>& m) {
   return out;
 }
 
+/// The outcome's records in a run's checkpoint (io/checkpoint.hpp).
+template <class A>
+void visit(A& a, InterfaceOutcome& o) {
+  a("outcome.reached", o.reached), a("outcome.crossed", o.crossed), a("outcome.dilated", o.dilated);
+  a("outcome.crossing_distance", o.crossing_distance), a("outcome.opened_length", o.opened_length);
+}
+#if defined(__x86_64__) && defined(__GLIBCXX__)
+static_assert(sizeof(InterfaceOutcome) == 8 + 2 * 8, "a member was added to InterfaceOutcome: list it in visit above");
+#endif
+
 // What the run has seen so far at each interface, as a cut block shows it: the fluid's path once
 // made stays (dilated), broken rock stays broken (crossed, reached); lengths are the largest seen.
 inline void record_outcomes(std::vector<InterfaceOutcome>& record, const std::vector<InterfaceOutcome>& now) {
@@ -145,4 +158,4 @@ inline void record_outcomes(std::vector<InterfaceOutcome>& record, const std::ve
   }
 }
 
-}  // namespace rift::pd
+}  // namespace rift::geomech
