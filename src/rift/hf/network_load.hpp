@@ -136,7 +136,7 @@ NetworkEnd uncorrected_network_end(const Model<D>& m, std::size_t i, int s, cons
 inline double end_force_state(const NetworkEnd& z, bool intact, const MaterialConstants& c, const BondFactors& g, double omega, double xi,
                               double xi_over_d) {
   const double weight = c.surface_correction ? double(g.dilatation_weight) : omega * xi;
-  if (!intact) return weight * z.held + z.a * g.correction * omega * (xi - z.theta * xi_over_d);
+  if (!intact) return force_state(weight, z.held, z.a, g.correction, omega, xi - z.theta * xi_over_d);
   return weight * z.change - z.a * g.correction * omega * z.d_theta * xi_over_d;
 }
 
@@ -153,7 +153,7 @@ inline bool same_end(const NetworkEnd& a, const NetworkEnd& z) {
 ///   is the difference under any expansion eps divided by eps, and needs no positions. The formulas
 ///   of pmb.hpp and lps.hpp, summed as the difference itself: a network bond adds -f^s (its pair
 ///   force in F^s); an intact bond adds the change of its pair force, which is linear in the
-///   changes of its ends' dilatation and P (lps.hpp force_state, pressure_factor), nonzero only
+///   changes of its ends' dilatation and P (pd/laws/ordinary_state.hpp force_state, pressure_factor), nonzero only
 ///   where an end has network bonds (an end: is_end[i], its NetworkEnd ends[i], zero for the others); every other
 ///   bond adds nothing and is skipped. So a particle's sum reads its network bonds and its bonds to
 ///   ends alone, and F and F^s never cancel each other's rounding.
@@ -230,7 +230,7 @@ void changed_rows_pass(const Model<D>& m, const std::vector<std::size_t>& change
           const double xi = family.length, omega = terms.omega[a];
           double pair;  // F less F^s of this bond
           if (pmb) {
-            pair = -pmb_bond_force(c.micromodulus, omega, 1.0, b.correction(x, k), b.mirror_correction(j, k));
+            pair = -pmb_bond_force(c.micromodulus * omega, 1.0, pmb_factor(b.correction(x, k), b.mirror_correction(j, k)));
           } else {
             auto t = [&](std::size_t e, const BondFactors& f) {
               if (!is_end[e]) return 0.0;

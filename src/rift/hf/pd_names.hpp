@@ -21,7 +21,7 @@ using pd::LawTraits, pd::MaterialConstants;
 using pd::family_moment, pd::influence;
 using pd::Numbering, pd::set_on_any_rank;
 using pd::PassBuffer, pd::component, pd::pass_buffer, pd::short_run;
-using pd::law_traits, pd::pmb_bond_force, pd::dilatation_scale, pd::pressure_factor;
+using pd::law_traits, pd::pmb_bond_force, pd::pmb_factor, pd::dilatation_scale, pd::pressure_factor, pd::force_state;
 using pd::PairForcesToEnds, pd::add_pair_forces_to_run_ends;
 
 }  // namespace rift::hf

@@ -22,6 +22,7 @@
 #include "rift/pd/bond_slabs.hpp"
 #include "rift/pd/effective_stretch.hpp"
 #include "rift/pd/influence.hpp"
+#include "rift/pd/laws/ordinary_state.hpp"
 #include "rift/pd/lps_runs.hpp"
 #include "rift/pd/model.hpp"
 #include "rift/pd/normal_stress_failure.hpp"
@@ -29,27 +30,6 @@
 #include "rift/parallel/team.hpp"
 
 namespace rift::pd {
-
-/// The force state t_i<j> = b_ij p_i + a_i sigma_ij e_dev of one end of a bond, p_i = kappa theta_i -
-/// a_i P_i / d its pressure-like factor, e_dev its deviatoric extension (VES: less lambda e_b).
-inline double force_state(double dilatation_weight, double pressure, double a, float correction, double omega, double deviatoric) {
-  return dilatation_weight * pressure + a * correction * omega * deviatoric;
-}
-
-/// b_ij of end i: with the surface correction the weight of its row of factors
-/// (surface_correction.hpp); without it LAMMPS's d omega |xi| / m_i, which every particle's bonds
-/// share up to the scale d / m_i, so the passes take omega |xi| per bond and the scale per particle
-/// (no rows of factors of their own for the particles a surface cuts: their loads missed the cache).
-template <int D>
-double dilatation_scale(double weighted_volume) {
-  return weighted_volume > 0.0 ? D / weighted_volume : 0.0;
-}
-
-/// p_i = kappa theta_i - a_i P_i / d.
-template <int D>
-double pressure_factor(double kappa, double theta, double a, double coupling) {
-  return kappa * theta - a * coupling / D;
-}
 
 /// The first pass of the LPS and VES, each bond once (bond_slabs.hpp): breaks the bonds stretched
 /// past min(s0_i, s0_j) (both directions; in a crack's wet rock the effective stretch,
@@ -361,8 +341,8 @@ void state_based_forces(Model<D>& m, const BodyInfo& body, double history_dt, co
       t_i = force_state(g_i.dilatation_weight, pressure[i], coefficient[i], g_i.correction, omega, dev_i);
       t_j = force_state(g_j.dilatation_weight, pressure[j], coefficient[j], g_j.correction, omega, dev_j);
     } else {
-      t_i = force_state(omega * xi, pressure[i], coefficient[i], 1.0f, omega, dev_i);
-      t_j = force_state(omega * xi, pressure[j], coefficient[j], 1.0f, omega, dev_j);
+      t_i = force_state(omega * xi, pressure[i], coefficient[i], 1.0, omega, dev_i);
+      t_j = force_state(omega * xi, pressure[j], coefficient[j], 1.0, omega, dev_j);
     }
     const double scalar = (t_i + t_j) * family.volume / r;
     for (int q = 0; q < D; ++q) {

@@ -13,6 +13,7 @@
 
 #include "rift/core/vector_isa.hpp"
 #include "rift/pd/bond_runs.hpp"
+#include "rift/pd/laws/ordinary_state.hpp"
 #include "rift/pd/viscous_step.hpp"
 
 namespace rift::pd {
@@ -200,13 +201,13 @@ template <int D, bool Corrected, bool Viscous, bool Advance, bool Masked, class 
       dev_a -= lambda * eb_a;
       dev_b -= lambda * eb_b;
     }
-    double t_a, t_b;  // force_state (lps.hpp)
+    double t_a, t_b;
     if constexpr (Corrected) {
-      t_a = weight_a[t] * pressure_a[t] + coefficient_a[t] * correction_a[t] * omega * dev_a;
-      t_b = weight_b[t] * pressure_b[t] + coefficient_b[t] * correction_b[t] * omega * dev_b;
-    } else {
-      t_a = omega_length * pressure_a[t] + coefficient_a[t] * omega * dev_a;
-      t_b = omega_length * pressure_b[t] + coefficient_b[t] * omega * dev_b;
+      t_a = force_state(weight_a[t], pressure_a[t], coefficient_a[t], correction_a[t], omega, dev_a);
+      t_b = force_state(weight_b[t], pressure_b[t], coefficient_b[t], correction_b[t], omega, dev_b);
+    } else {  // g = 1
+      t_a = force_state(omega_length, pressure_a[t], coefficient_a[t], 1.0, omega, dev_a);
+      t_b = force_state(omega_length, pressure_b[t], coefficient_b[t], 1.0, omega, dev_b);
     }
     double scalar = (t_a + t_b) * volume / r;
     if constexpr (Masked) scalar = alive[t] != 0.0 ? scalar : 0.0;

@@ -22,10 +22,13 @@
 
 namespace rift::pd {
 
-/// Bond force density per unit V_j along the deformed bond, c omega s (g_i + g_j) / 2.
-inline double pmb_bond_force(double micromodulus, double omega, double s, float correction, float mirror_correction) {
-  return micromodulus * omega * s * (0.5f * (correction + mirror_correction));
-}
+/// The bond force density per unit V_j along the deformed bond, c omega s (g_i + g_j) / 2: `coefficient`
+/// c omega, `factor` (g_i + g_j) / 2 (pmb_factor; 1 without the surface correction). The law's one
+/// statement: the vector runs, the bonds they settle one by one, the bond-pair stress and the network load call it.
+[[gnu::always_inline]] inline double pmb_bond_force(double coefficient, double s, double factor) { return coefficient * s * factor; }
+
+/// (g_i + g_j) / 2 of a bond, in single precision as the factors are kept (bonds.hpp BondFactors).
+inline float pmb_factor(float correction, float mirror_correction) { return 0.5f * (correction + mirror_correction); }
 
 /// The pair forces of a run of PMB bonds (bond_runs.hpp), bond t's to out(t, g, s) (bond_runs.hpp
 /// PairForcesToBuffers or PairForcesToEnds): g, the force density on the lower end per unit V_j,
@@ -58,8 +61,7 @@ template <int D, bool Corrected, bool Shifted, bool Masked, class Out>
     const bool breaks = breakable && on && s > limit;
     past[t] = breaks ? 1.0 : 0.0;
     const bool adds = on && !breaks;
-    double scalar = coefficient * s;
-    if constexpr (Corrected) scalar *= factor[t];
+    double scalar = pmb_bond_force(coefficient, s, Corrected ? factor[t] : 1.0);
     scalar = scalar * volume / r;
     scalar = adds ? scalar : 0.0;
     out(t, scalar * ex, scalar * ey, scalar * ez, adds ? s : none);
@@ -160,7 +162,7 @@ void pmb_forces(Model<D>& m, const BodyInfo& body) {
       g_i = v.factors[v.factor_row[i] + run.family].correction;
       g_j = v.factors[v.factor_row[j] + family.mirror].correction;
     }
-    const double scalar = pmb_bond_force(micromodulus, influence(Omega, family.length, horizon), s, g_i, g_j) * family.volume / r;
+    const double scalar = pmb_bond_force(micromodulus * influence(Omega, family.length, horizon), s, pmb_factor(g_i, g_j)) * family.volume / r;
     for (int q = 0; q < D; ++q) {
       f[q][i] += scalar * eta[q];
       f[q][j] -= scalar * eta[q];
@@ -183,8 +185,7 @@ void pmb_forces(Model<D>& m, const BodyInfo& body) {
     if (masked && !any_set(alive, length)) return;  // every bond of the run broken: nothing to add
     if constexpr (Corrected)
       for (std::size_t t = 0; t < length; ++t)
-        factor[t] = 0.5f * (v.factors[v.factor_row[i + t] + run.family].correction +
-                            v.factors[v.factor_row[j + t] + family.mirror].correction);
+        factor[t] = pmb_factor(v.factors[v.factor_row[i + t] + run.family].correction, v.factors[v.factor_row[j + t] + family.mirror].correction);
     const double* const pore = Wet ? wet.pore_stretch : nullptr;
     static thread_local PmbRun a;  // the thread's: every run sets what its form reads (not zeroed each run)
     a.length = length;

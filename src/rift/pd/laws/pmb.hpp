@@ -54,7 +54,7 @@ struct Pmb {
   static double pair_force_density(const Model<D>& m, const BodyInfo& body, std::size_t i, std::size_t j, std::int64_t k,
                                    double e, double xi, double omega) {
     const Bonds& b = m.bonds;
-    return pmb_bond_force(body.constants.micromodulus, omega, e / xi, b.correction(i, k), b.mirror_correction(j, k));
+    return pmb_bond_force(body.constants.micromodulus * omega, e / xi, pmb_factor(b.correction(i, k), b.mirror_correction(j, k)));
   }
 };
 
