@@ -939,7 +939,7 @@ TEST(BondRuns, OneLoopFormAddsToOverlappingEndsInTheBondsOrder) {
       a.breakable = true;
       a.ends_apart = rift::pd::ends_apart_in_vectors({0, static_cast<std::int32_t>(distance), 0, 0, static_cast<std::uint16_t>(length)});
       ASSERT_TRUE(a.ends_apart) << "distance " << distance;
-      EXPECT_TRUE((rift::pd::pmb_run_kernel<3, false, false, false>(isa)(a))) << "distance " << distance;
+      EXPECT_TRUE((rift::pd::pmb_run_kernel<3, false, rift::pd::StretchLimit, false>(isa)(a))) << "distance " << distance;
       for (std::size_t t = 0; t < length; ++t) ASSERT_EQ(flagged[t] != 0.0, past_one[t] == 1) << "distance " << distance << " bond " << t;
       for (int q = 0; q < 3; ++q) EXPECT_TRUE(same_bits(f[q], f_one[q])) << "distance " << distance << " component " << q << " isa " << static_cast<int>(isa);
       EXPECT_TRUE(same_bits(smallest, smallest_one)) << "distance " << distance << " isa " << static_cast<int>(isa);
@@ -992,7 +992,7 @@ TEST(BondRuns, RowsWithoutBitsGiveTheBitsOfRowsWithThem) {
     ASSERT_EQ(body.constants.surface_correction, corrected);
     struct Pass {
       std::vector<double> coupling, smallest;
-      std::vector<std::pair<std::size_t, std::int64_t>> broken, crossing;
+      rift::pd::BreakLog log;
     };
     auto dilatation = [&](rift::pd::Model<3>& m, bool bits, Pass& p) {
       rift::pd::RowStates rows = rift::pd::whole_rows(m.bonds, body);
@@ -1001,17 +1001,17 @@ TEST(BondRuns, RowsWithoutBitsGiveTheBitsOfRowsWithThem) {
       p.coupling.assign(m.size(), 0.0), p.smallest.assign(m.size(), 1e300);
       std::fill(m.dilatation.begin(), m.dilatation.end(), 0.0);
       if (corrected)
-        rift::pd::dilatation_runs<3, Influence::constant, true, true>(m, body, rows, p.coupling.data(), p.smallest.data(), p.broken, p.crossing);
+        rift::pd::dilatation_runs<3, Influence::constant, true, true>(m, body, rows, p.coupling.data(), p.smallest.data(), p.log);
       else
-        rift::pd::dilatation_runs<3, Influence::constant, true, false>(m, body, rows, p.coupling.data(), p.smallest.data(), p.broken, p.crossing);
+        rift::pd::dilatation_runs<3, Influence::constant, true, false>(m, body, rows, p.coupling.data(), p.smallest.data(), p.log);
       m.bonds.intact.changed();
-      std::sort(p.broken.begin(), p.broken.end());
+      std::sort(p.log.broken.begin(), p.log.broken.end());
     };
     Pass a, z;
     dilatation(with, true, a);
     dilatation(without, false, z);
-    EXPECT_GT(a.broken.size(), 0u);
-    EXPECT_EQ(a.broken, z.broken);
+    EXPECT_GT(a.log.broken.size(), 0u);
+    EXPECT_EQ(a.log.broken, z.log.broken);
     EXPECT_TRUE(same_bits(with.dilatation, without.dilatation));
     EXPECT_TRUE(same_bits(a.coupling, z.coupling));
     EXPECT_TRUE(same_bits(a.smallest, z.smallest));

@@ -413,17 +413,6 @@ template <int D>
   return r2;
 }
 
-/// Notes bond k of row i broken by a pass: the bonds a pass breaks (i, k), and those across a crack
-/// (`crossed`), for what the pass does after its loop.
-inline void note_broken_bond(std::vector<std::pair<std::size_t, std::int64_t>>& broken,
-                             std::vector<std::pair<std::size_t, std::int64_t>>& crossing, std::size_t i, std::int64_t k, bool crossed) {
-#pragma omp critical(rift_broken_bonds)
-  {
-    broken.emplace_back(i, k);
-    if (crossed) crossing.emplace_back(i, k);
-  }
-}
-
 /// The particles' positions one array per component (the runs read them contiguously): the calling
 /// thread's buffers (pass_buffer position_x to position_z), which the team reads through the pointers.
 template <int D>

@@ -20,7 +20,7 @@
 #include "rift/core/vector_isa.hpp"
 #include "rift/pd/bond_runs.hpp"
 #include "rift/pd/bond_slabs.hpp"
-#include "rift/pd/effective_stretch.hpp"
+#include "rift/pd/breaking_policy.hpp"
 #include "rift/pd/influence.hpp"
 #include "rift/pd/laws/ordinary_state.hpp"
 #include "rift/pd/lps_runs.hpp"
@@ -55,17 +55,16 @@ void dilatation_pass(Model<D>& m, const BodyInfo& body, double* coupling, double
 /// same terms as the rows of dilatation_pass. The bonds of a run that may break are taken one by one.
 template <int D, scene::Influence Omega, bool Coupling, bool Corrected>
 void dilatation_runs(Model<D>& m, const BodyInfo& body, const RowStates& rows, double* coupling, double* smallest,
-                     std::vector<std::pair<std::size_t, std::int64_t>>& broken, std::vector<std::pair<std::size_t, std::int64_t>>& crossing) {
+                     BreakLog& log) {
   const auto& c = body.constants;
   Bonds& b = m.bonds;
   const BondView v = b.view();
-  const WetRock<D> wet = wet_rock(m);
   const auto x = positions_by_component<D>(m.position, body);
   const double* const limits = m.stretch_limit.data();
   double* const theta = m.dilatation.data();
   const VectorIsa isa = vector_isa();
   // bond t of a run, as a row takes it
-  auto settle = [&]<bool Wet>(const BondRun& run, std::size_t t) {
+  auto settle = [&](const auto& breaking, const BondRun& run, std::size_t t) {
     // the rows' states as the pass found them: a run holds each pair once, and the pass breaks the
     // lower end's bond (the mirrors after it), so they are the bond's own state here
     if (!run_bond_intact(b, run, rows, t)) return;
@@ -75,12 +74,12 @@ void dilatation_runs(Model<D>& m, const BodyInfo& body, const RowStates& rows, d
     const double e = norm<D>(eta) - xi;
     const double limit = std::min(limits[i], limits[j]);
     const double value = e * family.inverse_length;
-    bool past = e > xi * limit, crossed = false;
-    if constexpr (Wet) past = c.breakable && breaks_in_wet_rock<D>(wet, c.alpha, i, j, xi, value, limit, crossed);
+    bool crossed = false;
+    const bool past = breaking.breaks(c.breakable, i, j, xi, value, limit, e > xi * limit, crossed);
     if (c.breakable && past) {
       const std::int64_t k = run_bond(b, run, t);
       v.intact[k] = bond_broken;
-      note_broken_bond(broken, crossing, i, k, crossed);
+      log.note(i, k, crossed);
       return;
     }
     smallest[i] = std::min(smallest[i], value);
@@ -105,10 +104,10 @@ void dilatation_runs(Model<D>& m, const BodyInfo& body, const RowStates& rows, d
       }
     }
   };
-  auto run_terms = [&]<bool Wet>(const BondRun& run) {
+  auto run_terms = [&](const auto& breaking, const BondRun& run) {
     const std::size_t length = run.length, i = static_cast<std::size_t>(run.i), j = static_cast<std::size_t>(run.j);
     if (length < short_run) {
-      for (std::size_t t = 0; t < length; ++t) settle.template operator()<Wet>(run, t);
+      for (std::size_t t = 0; t < length; ++t) settle(breaking, run, t);
       return;
     }
     const FamilyOffset& family = v.families[run.family];
@@ -123,7 +122,7 @@ void dilatation_runs(Model<D>& m, const BodyInfo& body, const RowStates& rows, d
         weight_a[t] = own.dilatation_weight, weight_b[t] = other.dilatation_weight;
         correction_a[t] = own.correction, correction_b[t] = other.correction;
       }
-    const double* const pore = Wet ? wet.pore_stretch : nullptr;
+    const double* const pore = breaking.pore_stretch();
     a.length = length;
     a.xa = x[0] + i, a.ya = x[1] + i, a.xb = x[0] + j, a.yb = x[1] + j;
     if constexpr (D == 3) a.za = x[2] + i, a.zb = x[2] + j;
@@ -141,21 +140,18 @@ void dilatation_runs(Model<D>& m, const BodyInfo& body, const RowStates& rows, d
     a.ends_apart = ends_apart_in_vectors(run);
     bool may_break;
     if (pore)
-      may_break = masked ? vector_clone<DilatationRunKernel<D, Corrected, Coupling, true, true>, DilatationRun>(isa)(a)
-                         : vector_clone<DilatationRunKernel<D, Corrected, Coupling, true, false>, DilatationRun>(isa)(a);
+      may_break = masked ? vector_clone<DilatationRunKernel<D, Corrected, Coupling, PoreShiftedLimit, true>, DilatationRun>(isa)(a)
+                         : vector_clone<DilatationRunKernel<D, Corrected, Coupling, PoreShiftedLimit, false>, DilatationRun>(isa)(a);
     else
-      may_break = masked ? vector_clone<DilatationRunKernel<D, Corrected, Coupling, false, true>, DilatationRun>(isa)(a)
-                         : vector_clone<DilatationRunKernel<D, Corrected, Coupling, false, false>, DilatationRun>(isa)(a);
+      may_break = masked ? vector_clone<DilatationRunKernel<D, Corrected, Coupling, StretchLimit, true>, DilatationRun>(isa)(a)
+                         : vector_clone<DilatationRunKernel<D, Corrected, Coupling, StretchLimit, false>, DilatationRun>(isa)(a);
     if (!may_break) return;
     // the rest of the run is added: the bonds that may break one by one (each bond of a run has its
     // own two ends, so the order of their terms does not matter)
     for (std::size_t t = 0; t < length; ++t)
-      if (flagged[t] != 0.0) settle.template operator()<Wet>(run, t);
+      if (flagged[t] != 0.0) settle(breaking, run, t);
   };
-  if (wet)
-    for_each_run_by_slabs(body, [&](const BondRun& r) { run_terms.template operator()<true>(r); });
-  else
-    for_each_run_by_slabs(body, [&](const BondRun& r) { run_terms.template operator()<false>(r); });
+  with_breaking(m, c.alpha, [&](const auto& breaking) { for_each_run_by_slabs(body, [&](const BondRun& r) { run_terms(breaking, r); }); });
 }
 
 template <int D, scene::Influence Omega, bool Coupling, bool Corrected>
@@ -170,14 +166,13 @@ void dilatation_pass(Model<D>& m, const BodyInfo& body, double* coupling, double
     if constexpr (Coupling) coupling[i] = 0.0;
     smallest[i] = none;
   }
-  std::vector<std::pair<std::size_t, std::int64_t>> broken, crossing;  // (i, k) of the bonds broken here, and of those across the crack
-  const WetRock<D> wet = wet_rock(m);
+  BreakLog log;
   const double* const strain = m.failure_strain.data();
   const double stress_to_stretch = 1.0 / (D * c.kappa), lambda = c.lame_lambda(), p_wave = c.p_wave_modulus();
   constexpr int C = stress_components<D>;
   std::uint8_t* const state = b.intact.writable();  // counted as changed with the mirrors (break_mirror_bonds)
-  // the wet rock's shift is compiled in only where there is wet rock (effective_stretch.hpp)
-  auto row = [&]<bool Wet, bool Normal>(std::size_t i) {
+  // the wet rock's shift is compiled in only where there is wet rock (breaking_policy.hpp)
+  auto row = [&]<bool Normal>(const auto& breaking, std::size_t i) {
     const Vec<D> xi_pos = m.position[i];
     const double s0_i = m.stretch_limit[i];
     const std::int64_t row_i = b.factor_row[i];
@@ -198,11 +193,11 @@ void dilatation_pass(Model<D>& m, const BodyInfo& body, double* coupling, double
       } else {
         value = e * family.inverse_length;
       }
-      bool past = Normal ? value > limit : e > xi * limit, crossed = false;
-      if constexpr (Wet) past = c.breakable && breaks_in_wet_rock<D>(wet, c.alpha, i, j, xi, value, limit, crossed);
+      bool crossed = false;
+      const bool past = breaking.breaks(c.breakable, i, j, xi, value, limit, Normal ? value > limit : e > xi * limit, crossed);
       if (c.breakable && past) {
         state[k] = bond_broken;
-        note_broken_bond(broken, crossing, i, k, crossed);
+        log.note(i, k, crossed);
         continue;
       }
       const double s = e * family.inverse_length;
@@ -238,22 +233,21 @@ void dilatation_pass(Model<D>& m, const BodyInfo& body, double* coupling, double
   // row by row; the stretch in runs of bonds (bond_runs.hpp, lps_runs.hpp)
   RowStates rows;
   if (c.normal_stress_failure && c.breakable) {
-    if (wet)
-      for_each_row_by_slabs(body, m.numbering, [&](std::size_t i) { row.template operator()<true, true>(i); });
-    else
-      for_each_row_by_slabs(body, m.numbering, [&](std::size_t i) { row.template operator()<false, true>(i); });
+    with_breaking(m, c.alpha, [&](const auto& breaking) {
+      for_each_row_by_slabs(body, m.numbering, [&](std::size_t i) { row.template operator()<true>(breaking, i); });
+    });
   } else {
     rows = whole_rows(b, body);
-    dilatation_runs<D, Omega, Coupling, Corrected>(m, body, rows, coupling, smallest, broken, crossing);
+    dilatation_runs<D, Omega, Coupling, Corrected>(m, body, rows, coupling, smallest, log);
   }
-  break_mirror_bonds(b, body, broken);
+  break_mirror_bonds(b, body, log.broken);
   // the rows as the pass leaves the states: those of the bonds it broke made again (or all, where it
   // went row by row)
-  if (rows) refresh_rows(b, body, rows, broken);
+  if (rows) refresh_rows(b, body, rows, log.broken);
   else if (rows_out) rows = whole_rows(b, body);
   if (rows_out) *rows_out = rows;
-  record_crossing_breaks<D>(m, crossing);
-  if (broken_out) *broken_out = std::move(broken);
+  record_crossing_breaks<D>(m, log.crossing);
+  if (broken_out) *broken_out = std::move(log.broken);
   if constexpr (!Corrected) {
 #pragma omp parallel for if(rift::parallel::worth_a_team(body.last - body.first)) schedule(static)
     for (std::size_t i = body.first; i < body.last; ++i) m.dilatation[i] *= dilatation_scale<D>(m.weighted_volume[i]);

@@ -13,6 +13,7 @@
 
 #include "rift/core/vector_isa.hpp"
 #include "rift/pd/bond_runs.hpp"
+#include "rift/pd/breaking_policy.hpp"
 #include "rift/pd/laws/ordinary_state.hpp"
 #include "rift/pd/viscous_step.hpp"
 
@@ -65,10 +66,10 @@ struct DilatationToEnds {
 /// ...) (DilatationToBuffers, DilatationToEnds): theta of each end (b e V, or omega |xi| e V without
 /// the correction, scaled after the pass), q of each end (g omega |xi| e V, or omega |xi| e V;
 /// Coupling), the stretch (`none` where not intact). Where `breakable`, an intact bond whose
-/// extension passes |xi| min(s0_i, s0_j), or whose stretch passes that limit less the wet rock's
-/// shift (Shifted), may break: it adds nothing (as a bond that is not intact) and is marked in
+/// extension passes |xi| min(s0_i, s0_j), or whose stretch passes that limit as `Limit` lowers it
+/// (breaking_policy.hpp), may break: it adds nothing (as a bond that is not intact) and is marked in
 /// `past` for the caller to take bond by bond; returns whether any is.
-template <int D, bool Corrected, bool Coupling, bool Shifted, bool Masked, class Out>
+template <int D, bool Corrected, bool Coupling, class Limit, bool Masked, class Out>
 [[gnu::always_inline]] inline bool dilatation_run_terms(
     std::size_t length, const double* __restrict xa, const double* __restrict ya, const double* __restrict za,
     const double* __restrict xb, const double* __restrict yb, const double* __restrict zb, const double* __restrict limit_a,
@@ -84,8 +85,7 @@ template <int D, bool Corrected, bool Coupling, bool Shifted, bool Masked, class
     const double e = std::sqrt(r2) - bond_length;
     const double s = e * inverse_length;
     const double limit = limit_b[t] < limit_a[t] ? limit_b[t] : limit_a[t];
-    double lowered = limit;
-    if constexpr (Shifted) lowered -= shift_scale * (pore_a[t] < pore_b[t] ? pore_a[t] : pore_b[t]);
+    const double lowered = Limit::lowered(limit, pore_a, pore_b, t, shift_scale);
     const bool on = Masked ? alive[t] != 0.0 : true;
     const bool breaks = breakable & on & ((e > bond_length * limit) | (s > lowered));  // no branch: vector code
     past[t] = breaks ? 1.0 : 0.0;
@@ -103,7 +103,7 @@ template <int D, bool Corrected, bool Coupling, bool Shifted, bool Masked, class
   return any_set(past, length);
 }
 
-template <int D, bool Corrected, bool Coupling, bool Shifted, bool Masked>
+template <int D, bool Corrected, bool Coupling, class Limit, bool Masked>
 struct DilatationRunKernel {
   [[gnu::always_inline]] static bool run(const DilatationRun& a) {
     alignas(64) double own_alive[max_run_length];
@@ -111,12 +111,12 @@ struct DilatationRunKernel {
     if constexpr (Masked)
       if (!alive_from_mask(a.mask, a.length, own_alive, alive)) return false;  // every bond of the run broken: nothing to add
     if (a.ends_apart)  // in one loop (bond_runs.hpp ends_apart_in_vectors)
-      return dilatation_run_terms<D, Corrected, Coupling, Shifted, Masked>(
+      return dilatation_run_terms<D, Corrected, Coupling, Limit, Masked>(
           a.length, a.xa, a.ya, a.za, a.xb, a.yb, a.zb, a.limit_a, a.limit_b, a.pore_a, a.pore_b, a.shift_scale, alive, a.weight_a,
           a.weight_b, a.correction_a, a.correction_b, a.bond_length, a.inverse_length, a.volume, a.omega_length, a.breakable,
           DilatationToEnds<Coupling>(a), a.may_break);
     alignas(64) double wa[max_run_length], wb[max_run_length], qa[max_run_length], qb[max_run_length], stretch[max_run_length];
-    const bool may_break = dilatation_run_terms<D, Corrected, Coupling, Shifted, Masked>(
+    const bool may_break = dilatation_run_terms<D, Corrected, Coupling, Limit, Masked>(
         a.length, a.xa, a.ya, a.za, a.xb, a.yb, a.zb, a.limit_a, a.limit_b, a.pore_a, a.pore_b, a.shift_scale, alive, a.weight_a,
         a.weight_b, a.correction_a, a.correction_b, a.bond_length, a.inverse_length, a.volume, a.omega_length, a.breakable,
         DilatationToBuffers<Coupling>{wa, wb, qa, qb, stretch}, a.may_break);

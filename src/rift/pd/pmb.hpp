@@ -15,7 +15,7 @@
 #include "rift/core/vector_isa.hpp"
 #include "rift/pd/bond_runs.hpp"
 #include "rift/pd/bond_slabs.hpp"
-#include "rift/pd/effective_stretch.hpp"
+#include "rift/pd/breaking_policy.hpp"
 #include "rift/pd/influence.hpp"
 #include "rift/pd/model.hpp"
 #include "rift/parallel/team.hpp"
@@ -35,12 +35,11 @@ inline float pmb_factor(float correction, float mirror_correction) { return 0.5f
 /// component by component (the upper end takes -g), and s its stretch. The lower ends' positions and
 /// stretch limits start at a, the upper ends' at b. `alive` (Masked; else every bond is intact): 1
 /// for an intact bond, 0 for another; `factor` (Corrected): (g_i + g_j) / 2. Where `breakable`, an
-/// intact bond whose stretch passes its limit, lowered by the wet rock's shift where `Shifted`
-/// (effective_stretch.hpp), may break: it adds nothing (g = 0, s = `none`, as a bond that is not
+/// intact bond whose stretch passes its limit, as `Limit` lowers it (breaking_policy.hpp), may break: it adds nothing (g = 0, s = `none`, as a bond that is not
 /// intact) and is marked in `past` for the caller to settle bond by bond; returns whether any is.
 /// One loop without branches over contiguous arrays, vector code; every bond's force is the row's to
 /// the last bit.
-template <int D, bool Corrected, bool Shifted, bool Masked, class Out>
+template <int D, bool Corrected, class Limit, bool Masked, class Out>
 [[gnu::always_inline]] inline bool pmb_run_pair_forces(std::size_t length, const double* __restrict xa, const double* __restrict ya,
                                 const double* __restrict za, const double* __restrict xb, const double* __restrict yb,
                                 const double* __restrict zb, const double* __restrict limit_a, const double* __restrict limit_b,
@@ -55,8 +54,7 @@ template <int D, bool Corrected, bool Shifted, bool Masked, class Out>
     const double r2 = run_bond_vector<D>(xa, ya, za, xb, yb, zb, t, ex, ey, ez);
     const double r = std::sqrt(r2);
     const double s = (r - bond_length) * inverse_length;
-    double limit = limit_b[t] < limit_a[t] ? limit_b[t] : limit_a[t];
-    if constexpr (Shifted) limit -= shift_scale * (pore_a[t] < pore_b[t] ? pore_a[t] : pore_b[t]);
+    const double limit = Limit::lowered(limit_b[t] < limit_a[t] ? limit_b[t] : limit_a[t], pore_a, pore_b, t, shift_scale);
     const bool on = Masked ? alive[t] != 0.0 : true;
     const bool breaks = breakable && on && s > limit;
     past[t] = breaks ? 1.0 : 0.0;
@@ -86,16 +84,16 @@ struct PmbRun {
 /// A run's pair forces added to its ends, but for the bonds that may break: those add nothing and are
 /// marked in may_break for the caller to settle one by one (returns whether any is). Where the run's
 /// ends lie apart in vectors (PmbRun::ends_apart) in one loop, else through buffers.
-template <int D, bool Corrected, bool Shifted, bool Masked>
+template <int D, bool Corrected, class Limit, bool Masked>
 struct PmbRunKernel {
   [[gnu::always_inline]] static bool run(const PmbRun& a) {
     // (no lambda here: its body would not take the clone's target)
     if (a.ends_apart)
-      return pmb_run_pair_forces<D, Corrected, Shifted, Masked>(
+      return pmb_run_pair_forces<D, Corrected, Limit, Masked>(
           a.length, a.xa, a.ya, a.za, a.xb, a.yb, a.zb, a.limit_a, a.limit_b, a.pore_a, a.pore_b, a.shift_scale, a.alive, a.factor,
           a.bond_length, a.inverse_length, a.coefficient, a.volume, a.breakable, PairForcesToEnds<D, true>(a), a.may_break);
     alignas(64) double g[3][max_run_length], stretch[max_run_length];
-    const bool may_break = pmb_run_pair_forces<D, Corrected, Shifted, Masked>(
+    const bool may_break = pmb_run_pair_forces<D, Corrected, Limit, Masked>(
         a.length, a.xa, a.ya, a.za, a.xb, a.yb, a.zb, a.limit_a, a.limit_b, a.pore_a, a.pore_b, a.shift_scale, a.alive, a.factor,
         a.bond_length, a.inverse_length, a.coefficient, a.volume, a.breakable, PairForcesToBuffers<D, true>{g[0], g[1], g[2], stretch},
         a.may_break);
@@ -106,9 +104,9 @@ struct PmbRunKernel {
   }
 };
 
-template <int D, bool Corrected, bool Shifted, bool Masked>
+template <int D, bool Corrected, class Limit, bool Masked>
 auto pmb_run_kernel(VectorIsa isa) {
-  return vector_clone<PmbRunKernel<D, Corrected, Shifted, Masked>, PmbRun>(isa);
+  return vector_clone<PmbRunKernel<D, Corrected, Limit, Masked>, PmbRun>(isa);
 }
 
 template <int D, scene::Influence Omega>
@@ -117,7 +115,6 @@ void pmb_forces(Model<D>& m, const BodyInfo& body) {
   Bonds& b = m.bonds;
   const double micromodulus = c.micromodulus, horizon = c.horizon;
   const bool breakable = c.breakable;
-  const WetRock<D> wet = wet_rock(m);
   // bonds join particles of one body. The positions and forces one array per component (the runs
   // read and write them contiguously), and the smallest stretch of each particle's intact bonds: the
   // calling thread's buffers, which the team reads and writes through these pointers
@@ -132,13 +129,13 @@ void pmb_forces(Model<D>& m, const BodyInfo& body) {
     for (int q = 0; q < D; ++q) x[q][j] = m.position[j][q], f[q][j] = 0.0;
     smallest[j] = none;
   }
-  std::vector<std::pair<std::size_t, std::int64_t>> broken, crossing;  // (i, k) of the bonds broken here, and of those across the crack
+  BreakLog log;
   const BondView v = b.view();
   const double* const limits = m.stretch_limit.data();
   const RowStates rows = whole_rows(b, body);
   const VectorIsa isa = vector_isa();
   // bond t of a run, one at a time, as a row would take it: for a run that may break a bond
-  auto settle = [&]<bool Wet, bool Corrected>(const BondRun& run, std::size_t t) {
+  auto settle = [&]<bool Corrected>(const auto& breaking, const BondRun& run, std::size_t t) {
     // the rows' states as the pass found them: a run holds each pair once, and the pass breaks the
     // lower end's bond (the mirrors after it), so they are the bond's own state here
     if (!run_bond_intact(b, run, rows, t)) return;
@@ -147,12 +144,12 @@ void pmb_forces(Model<D>& m, const BodyInfo& body) {
     const FamilyOffset& family = v.families[run.family];
     const double s = (r - family.length) * family.inverse_length;
     const double limit = std::min(limits[i], limits[j]);
-    bool past = s > limit, crossed = false;
-    if constexpr (Wet) past = breakable && breaks_in_wet_rock<D>(wet, c.alpha, i, j, family.length, s, limit, crossed);
+    bool crossed = false;
+    const bool past = breaking.breaks(breakable, i, j, family.length, s, limit, s > limit, crossed);
     if (breakable && past) {
       const std::int64_t k = run_bond(b, run, t);
       v.intact[k] = bond_broken;
-      note_broken_bond(broken, crossing, i, k, crossed);
+      log.note(i, k, crossed);
       return;
     }
     smallest[i] = std::min(smallest[i], s);
@@ -170,12 +167,12 @@ void pmb_forces(Model<D>& m, const BodyInfo& body) {
   };
   // a run of bonds (bond_runs.hpp): s is the same seen from either end, and so is the pair force
   // c omega s (g_i + g_j)/2 V along the bond. The wet rock's shift is compiled in only where there is
-  // wet rock (effective_stretch.hpp), the influence-function factors only with the surface
+  // wet rock (breaking_policy.hpp), the influence-function factors only with the surface
   // correction (without it they are all 1)
-  auto run_forces = [&]<bool Wet, bool Corrected>(const BondRun& run) {
+  auto run_forces = [&]<bool Corrected>(const auto& breaking, const BondRun& run) {
     const std::size_t length = run.length, i = static_cast<std::size_t>(run.i), j = static_cast<std::size_t>(run.j);
     if (length < short_run) {  // a vector's set-up would cost more than the bonds
-      for (std::size_t t = 0; t < length; ++t) settle.template operator()<Wet, Corrected>(run, t);
+      for (std::size_t t = 0; t < length; ++t) settle.template operator()<Corrected>(breaking, run, t);
       return;
     }
     const FamilyOffset& family = v.families[run.family];
@@ -186,7 +183,7 @@ void pmb_forces(Model<D>& m, const BodyInfo& body) {
     if constexpr (Corrected)
       for (std::size_t t = 0; t < length; ++t)
         factor[t] = pmb_factor(v.factors[v.factor_row[i + t] + run.family].correction, v.factors[v.factor_row[j + t] + family.mirror].correction);
-    const double* const pore = Wet ? wet.pore_stretch : nullptr;
+    const double* const pore = breaking.pore_stretch();
     static thread_local PmbRun a;  // the thread's: every run sets what its form reads (not zeroed each run)
     a.length = length;
     a.xa = x[0] + i, a.ya = x[1] + i, a.xb = x[0] + j, a.yb = x[1] + j;
@@ -204,31 +201,28 @@ void pmb_forces(Model<D>& m, const BodyInfo& body) {
     a.ends_apart = ends_apart_in_vectors(run);
     bool may_break;
     if (pore)
-      may_break = masked ? pmb_run_kernel<D, Corrected, true, true>(isa)(a) : pmb_run_kernel<D, Corrected, true, false>(isa)(a);
+      may_break = masked ? pmb_run_kernel<D, Corrected, PoreShiftedLimit, true>(isa)(a)
+                         : pmb_run_kernel<D, Corrected, PoreShiftedLimit, false>(isa)(a);
     else
-      may_break = masked ? pmb_run_kernel<D, Corrected, false, true>(isa)(a) : pmb_run_kernel<D, Corrected, false, false>(isa)(a);
+      may_break = masked ? pmb_run_kernel<D, Corrected, StretchLimit, true>(isa)(a) : pmb_run_kernel<D, Corrected, StretchLimit, false>(isa)(a);
     if (!may_break) return;
     // the rest of the run is added: the bonds that may break one by one (each bond of a run has its
     // own two ends, so the order of their forces does not matter)
     for (std::size_t t = 0; t < length; ++t)
-      if (flagged[t] != 0.0) settle.template operator()<Wet, Corrected>(run, t);
+      if (flagged[t] != 0.0) settle.template operator()<Corrected>(breaking, run, t);
   };
-  auto runs = [&]<bool Wet>() {
+  with_breaking(m, c.alpha, [&](const auto& breaking) {
     if (c.surface_correction)
-      for_each_run_by_slabs(body, [&](const BondRun& r) { run_forces.template operator()<Wet, true>(r); });
+      for_each_run_by_slabs(body, [&](const BondRun& r) { run_forces.template operator()<true>(breaking, r); });
     else
-      for_each_run_by_slabs(body, [&](const BondRun& r) { run_forces.template operator()<Wet, false>(r); });
-  };
-  if (wet)
-    runs.template operator()<true>();
-  else
-    runs.template operator()<false>();
+      for_each_run_by_slabs(body, [&](const BondRun& r) { run_forces.template operator()<false>(breaking, r); });
+  });
 #pragma omp parallel for if(rift::parallel::worth_a_team(body.last - body.first)) schedule(static)
   for (std::size_t j = body.first; j < body.last; ++j)
     for (int q = 0; q < D; ++q) m.force[j][q] = f[q][j];
-  break_mirror_bonds(b, body, broken);
-  refresh_rows(b, body, rows, broken);  // the kept rows as the pass leaves the states
-  record_crossing_breaks<D>(m, crossing);
+  break_mirror_bonds(b, body, log.broken);
+  refresh_rows(b, body, rows, log.broken);  // the kept rows as the pass leaves the states
+  record_crossing_breaks<D>(m, log.crossing);
   next_stretch_limits<D>(m, body, smallest);
 }
 
