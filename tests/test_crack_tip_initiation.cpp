@@ -28,6 +28,7 @@
 #include <cstdio>
 #include <string>
 
+#include "rift/hf/pore_stretch.hpp"
 #include "rift/run/scene_loads.hpp"
 #include "rift/pd/discretize.hpp"
 #include "rift/pd/dynamic_relaxation.hpp"
@@ -97,10 +98,10 @@ Initiation initiation(const std::string& material_keys, double pressure_per_K = 
   {
     rift::pd::DynamicRelaxation<2> dr(m);
     rift::pd::HeldBreaking<2> held(m);
-    const auto r = dr.relax(m, face_pressure, nullptr, 0.0, 50000, 1e-9);  // sets the pore pressure (effective_stretch.hpp)
+    const auto r = dr.relax(m, face_pressure, nullptr, 0.0, 50000, 1e-9);  // sets the pore pressure (hf/pore_stretch.hpp)
     EXPECT_TRUE(r.converged) << "residual " << r.residual << " after " << r.iterations << " iterations";
   }
-  if (!effective) m.fluid_network.pore_pressure.clear(), rift::pd::update_pore_stretch<2>(m);
+  if (!effective) m.fluid_network.pore_pressure.clear(), rift::hf::update_pore_stretch<2>(m);
   const auto& pore = m.fluid_network.pore_stretch;
   EXPECT_EQ(pore.empty(), !(effective && pressure > 0.0));
   double s_max = 0.0;
@@ -127,7 +128,7 @@ Initiation initiation(const std::string& material_keys, double pressure_per_K = 
       for (int q = 0; q < 2; ++q)
         scaled.position[i][q] = m.reference_position[i][q] + factor * result.toughness * (m.position[i][q] - m.reference_position[i][q]);
     for (auto& p : scaled.fluid_network.pore_pressure) p *= factor * result.toughness;
-    rift::pd::update_pore_stretch<2>(scaled);
+    rift::hf::update_pore_stretch<2>(scaled);
     rift::pd::compute_forces<2>(scaled, nullptr);
     long broken = -broken_before;
     for (const auto state : scaled.bonds.intact) broken += state != rift::pd::bond_intact;

@@ -24,6 +24,7 @@
 #include "rift/core/phase_times.hpp"
 #include "rift/hf/crack_junction.hpp"
 #include "rift/hf/pd_names.hpp"
+#include "rift/hf/pore_stretch.hpp"
 #include "rift/parallel/indices_where.hpp"
 #include "rift/parallel/ordered_sum.hpp"
 #include "rift/parallel/sort.hpp"

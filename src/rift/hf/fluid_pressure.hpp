@@ -8,6 +8,7 @@
 #include <optional>
 #include <vector>
 
+#include "rift/hf/pore_stretch.hpp"
 #include "rift/pd/model.hpp"
 #include "rift/scene/scene.hpp"
 
@@ -21,6 +22,8 @@ class FluidPressure {
   /// Adds the fluids' load at time t to m.body_force (nothing without pressure bonds; on every rank
   /// of a distributed run alike, the fluid's sums being over every rank).
   void add_pressure_forces(pd::Model<D>& m, double t) const;
+  /// The fluid is in equilibrium with the rock: the wet rock takes its pressures (pore_stretch.hpp).
+  void at_equilibrium(pd::Model<D>& m) const { equilibrate_pore_pressure<D>(m); }
   /// Whether a fluid's pressure follows the deformation (an injected fluid's, its cavity's volume).
   bool state_dependent() const {
     for (const auto& p : sources_)

@@ -9,7 +9,6 @@
 #include "rift/core/stop_signal.hpp"
 #include "rift/parallel/communicator.hpp"
 #include "rift/parallel/ordered_sum.hpp"
-#include "rift/pd/effective_stretch.hpp"
 #include "rift/pd/forces.hpp"
 #include "rift/pd/ghost_fields.hpp"
 #include "rift/pd/influence.hpp"
@@ -230,7 +229,7 @@ RelaxationResult DynamicRelaxation<D>::relax(Model<D>& m, const Loads<D>& loads,
   m.refresh_ghosts(m.position);  // the last iteration's moves
   compute_forces<D>(m, contact);
   for (auto& v : m.velocity) v = Vec<D>{};
-  equilibrate_pore_pressure<D>(m);  // the wet rock feels the fluid of this equilibrium (effective_stretch.hpp)
+  loads.at_equilibrium(m);  // the wet rock feels the fluid of this equilibrium
   return result;
 }
 

@@ -1,5 +1,5 @@
 // What the steppers (velocity_verlet.hpp, dynamic_relaxation.hpp, static_equilibrium.hpp) ask of the
-// loads on a model, at the named points of their step. The boundary conditions (load/boundary.hpp)
+// loads on a model, at the named stages of their step. The boundary conditions (load/boundary.hpp)
 // answer it alone; a scene's loads (run/scene_loads.hpp) add the fluid's pressure (hf/).
 #pragma once
 #include "rift/pd/model.hpp"
@@ -20,6 +20,9 @@ class Loads {
   /// Whether the external force follows the deformation (an injected fluid's pressure its cavity's
   /// volume): a relaxation applies it again at each iteration.
   virtual bool state_dependent() const = 0;
+  /// The fluid and the rock have come to equilibrium: the end of a time step, of a relaxation, or of
+  /// a converged static solve (hf/pore_stretch.hpp: the wet rock takes the fluid's pressure).
+  virtual void at_equilibrium(Model<D>& m) const = 0;
 
  protected:
   Loads() = default;

@@ -10,7 +10,6 @@
 #include "rift/parallel/ordered_sum.hpp"
 #include "rift/parallel/team.hpp"
 #include "rift/pd/coarse_space.hpp"
-#include "rift/pd/effective_stretch.hpp"
 #include "rift/pd/forces.hpp"
 #include "rift/pd/ghost_fields.hpp"
 #include "rift/pd/platens.hpp"
@@ -227,7 +226,7 @@ RelaxationResult solve_static_equilibrium(Model<D>& m, const Loads<D>& loads, Co
   compute_forces<D>(m, contact);
   loads.apply_body_forces(m, t);
   for (auto& v : m.velocity) v = Vec<D>{};
-  if (result.converged) equilibrate_pore_pressure<D>(m);  // the wet rock feels the fluid of this equilibrium
+  if (result.converged) loads.at_equilibrium(m);  // the wet rock feels the fluid of this equilibrium
   return result;
 }
 

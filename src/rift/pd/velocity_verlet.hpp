@@ -2,7 +2,6 @@
 //   v(t+dt/2) = v(t) + dt/2 a(t);  x(t+dt) = x(t) + dt v(t+dt/2);  forces;  v(t+dt) = v(t+dt/2) + dt/2 a(t+dt)
 #pragma once
 #include "rift/pd/contact.hpp"
-#include "rift/pd/effective_stretch.hpp"
 #include "rift/pd/forces.hpp"
 #include "rift/pd/loads.hpp"
 #include "rift/pd/model.hpp"
@@ -47,7 +46,7 @@ void velocity_verlet_step(Model<D>& m, const Loads<D>& loads, Contact<D>* contac
   kick<D>(m, 0.5 * dt);
   move_with_platens(m, mass);
   loads.prescribe_velocity(m, m.time, 0.0);
-  equilibrate_pore_pressure<D>(m);  // the wet rock of the next step feels this pressure (effective_stretch.hpp)
+  loads.at_equilibrium(m);  // the wet rock of the next step feels this pressure
 }
 
 }  // namespace rift::pd

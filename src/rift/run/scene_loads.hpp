@@ -22,6 +22,7 @@ class SceneLoads final : public pd::Loads<D> {
   void prescribe_velocity(pd::Model<D>& m, double t, double dt) const override { boundaries.prescribe_velocity(m, t, dt); }
   void prescribe_position(pd::Model<D>& m, double t) const override { boundaries.prescribe_position(m, t); }
   bool state_dependent() const override { return fluid.state_dependent(); }
+  void at_equilibrium(pd::Model<D>& m) const override { fluid.at_equilibrium(m); }
 
   load::Boundaries<D> boundaries;
   hf::FluidPressure<D> fluid;
