@@ -25,6 +25,7 @@
 #include "rift/run/cadence.hpp"
 #include "rift/run/checkpointing.hpp"
 #include "rift/run/history_columns.hpp"
+#include "rift/run/run_loop.hpp"
 #include "rift/run/time_step.hpp"
 
 namespace rift::run {
@@ -341,41 +342,47 @@ Result run_dim(const scene::Scene& s, const Options& o) {
   const double mpi_at_start = parallel::seconds_in_mpi();
   Progress progress(r.steps, s.solver.end_time, o.quiet || !comm.root());
   if (!restarted) write_snapshot<D>(fields, m, s, in);
-  for (long step = res.first_step; step <= r.steps; ++step) {
-    const bool sample = history_rows.due(step - 1);
-    if (sample) r.solver.measure_energy();
-    on_this_rank([&] { r.solver.step(m, r.dt); });
-    res.particle_steps += double(points);
-    if constexpr (D == 2) {
-      if (propagation && step % s.crack_growth.check_every == 0) {
-        // rank 0 grows the cracks of its whole model, and every rank takes them
-        mirror(step);
-        if (comm.root()) on_this_rank([&] { res.crack_growth_events += propagation->check(tip_model, tip_solver, step); });
-        if (domain) r.solver.set_cracks(broadcast_cracks(comm, tip_solver.cracks()));
-      }
-    }
-    if (sample) {
-      const auto& e = r.solver.measured_energy();
-      history_row(step - 1, e.time, e.kinetic, e.strain);
-      if constexpr (D == 2) {
-        if (cracked) mirror(step);
-        if (tips) on_this_rank([&] { tips->row(tip_model, tip_solver, step); });
-      }
-      progress.update(step, m.time, 0.0);
-      history_rows.passed(step - 1);
-    }
-    if (snapshots.due(step)) {
-      write_snapshot<D>(fields, m, s, in);
-      snapshots.passed(step);
-    }
-    auto gather = [&] { mirror(step); };
-    const bool stop = checkpoints.after_step(step, m.time, res, gather, [&](io::CheckpointWriter& w) {
-      history_bytes = history->bytes();
-      if (tips) tip_list = tips->tips(), tip_bytes = tips->bytes();
-      visit_run(w, whole ? *whole : m);
-    });
-    if (stop) break;
-  }
+  // MPM steps (mpm/solver.hpp), with crack growth, the history rows (each step's time-centred energy,
+  // sampled before it) and the crack tips' rows, and the snapshots due
+  bool sample = false;
+  Stepper steps{[&](long step) {
+                  sample = history_rows.due(step - 1);
+                  if (sample) r.solver.measure_energy();
+                  on_this_rank([&] { r.solver.step(m, r.dt); });
+                  res.particle_steps += double(points);
+                  if constexpr (D == 2) {
+                    if (propagation && step % s.crack_growth.check_every == 0) {
+                      // rank 0 grows the cracks of its whole model, and every rank takes them
+                      mirror(step);
+                      if (comm.root()) on_this_rank([&] { res.crack_growth_events += propagation->check(tip_model, tip_solver, step); });
+                      if (domain) r.solver.set_cracks(broadcast_cracks(comm, tip_solver.cracks()));
+                    }
+                  }
+                  return true;
+                },
+                [&](long step) {
+                  if (sample) {
+                    const auto& e = r.solver.measured_energy();
+                    history_row(step - 1, e.time, e.kinetic, e.strain);
+                    if constexpr (D == 2) {
+                      if (cracked) mirror(step);
+                      if (tips) on_this_rank([&] { tips->row(tip_model, tip_solver, step); });
+                    }
+                    progress.update(step, m.time, 0.0);
+                    history_rows.passed(step - 1);
+                  }
+                  if (snapshots.due(step)) {
+                    write_snapshot<D>(fields, m, s, in);
+                    snapshots.passed(step);
+                  }
+                },
+                mirror,
+                [&](io::CheckpointWriter& w) {
+                  history_bytes = history->bytes();
+                  if (tips) tip_list = tips->tips(), tip_bytes = tips->bytes();
+                  visit_run(w, whole ? *whole : m);
+                }};
+  run_steps(steps, res.first_step, r.steps, m.time, checkpoints, res);
   res.loop_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   const double in_mpi = parallel::seconds_in_mpi() - mpi_at_start;
   if (res.stopped) {

@@ -29,6 +29,7 @@
 #include "rift/run/distributed.hpp"
 #include "rift/run/history_columns.hpp"
 #include "rift/run/mpm_runner.hpp"
+#include "rift/run/run_loop.hpp"
 #include "rift/run/simulation.hpp"
 
 namespace rift::run {
@@ -475,34 +476,30 @@ Result run_dim(const scene::Scene& s, const Options& o) {
     visit_run(w, whole ? *whole : p);
     if (dr) pd::visit(w, whole_dr ? *whole_dr : *dr);
   };
-  // after step `step`: writes a checkpoint where one is due, and says whether the run stops here
-  auto checkpoint_and_stop = [&](long step) {
-    PhaseClock output_clock(Phase::output);
-    return checkpoints.after_step(step, m.time, res, gather, write_state);
-  };
   if (s.solver.kind == scene::SolverKind::explicit_dynamics) {
     if (!restarted) {
       write_snapshot<D>(fields, m, s, comm);
       history_row(0, {});
     }
-    for (long step = res.first_step; step <= p.steps; ++step) {
-      p.step();
-      res.bond_updates += bonds;
-      const bool snap = snapshots.due(step), hist = history_rows.due(step);
-      {
-        PhaseClock output_clock(Phase::output);
-        if (hist) {
-          auto e = history_row(step, {});
-          progress.update(step, m.time, e.broken_fraction);
-          history_rows.passed(step);
-        }
-        if (snap) {
-          write_snapshot<D>(fields, m, s, comm);
-          snapshots.passed(step);
-        }
-      }
-      if (checkpoint_and_stop(step)) break;
-    }
+    // velocity-Verlet steps (pd/velocity_verlet.hpp), with the history rows and snapshots due
+    Stepper explicit_steps{[&](long) {
+                             p.step();
+                             res.bond_updates += bonds;
+                             return true;
+                           },
+                           [&](long step) {
+                             if (history_rows.due(step)) {
+                               auto e = history_row(step, {});
+                               progress.update(step, m.time, e.broken_fraction);
+                               history_rows.passed(step);
+                             }
+                             if (snapshots.due(step)) {
+                               write_snapshot<D>(fields, m, s, comm);
+                               snapshots.passed(step);
+                             }
+                           },
+                           [&](long) { gather(); }, write_state};
+    run_steps(explicit_steps, res.first_step, p.steps, m.time, checkpoints, res);
   } else {
     if (!dr) dr.emplace(m);
     if (!restarted) write_snapshot<D>(fields, m, s, comm);
@@ -511,35 +508,38 @@ Result run_dim(const scene::Scene& s, const Options& o) {
       if (comm.root()) progress.iteration(relaxing, iteration, s.solver.max_iterations, residual, s.solver.tolerance);
       if (o.stop_after_iterations > 0 && ++iterations == o.stop_after_iterations) set_stop_signal(SIGTERM);
     });
-    for (long step = res.first_step; step <= p.steps; ++step) {
-      const double t = s.solver.end_time * double(step) / double(p.steps);
-      relaxing = step;
-      auto r = p.relax(*dr, s.solver, t);
-      if (r.stopped) {  // the checkpoint holds the load steps done and this one's iterations so far
-        res.stopped_in = fmt::format("in load step {} at iteration {} (its checkpoint goes on from there)", step, dr->unfinished().iteration);
-        PhaseClock output_clock(Phase::output);
-        checkpoints.stop_within(step, m.time, res, gather, write_state);
-        break;
-      }
-      res.bond_updates += double(r.iterations) * bonds;
-      std::vector<double> extra{double(r.iterations), r.residual};
-      if (at_equilibrium) extra.push_back(double(r.breaking_passes));
-      {
-        PhaseClock output_clock(Phase::output);
-        auto e = history_row(step, extra);
-        write_snapshot<D>(fields, m, s, comm);
-        progress.update(step, m.time, e.broken_fraction, true);
-      }
-      if (!r.converged && !o.quiet && comm.root()) {  // rank 0 speaks for a distributed run
-        if (at_equilibrium && r.residual <= s.solver.tolerance)  // the last equilibrium was reached but broke bonds
-          std::fprintf(stderr, "rift: warning: load step %ld: bonds still breaking after %d equilibria (solver max_breaking_passes)\n",
-                       step, r.breaking_passes);
-        else
-          std::fprintf(stderr, "rift: warning: load step %ld did not converge in %d iterations (residual %.3g > %.3g)\n", step,
-                       r.iterations, r.residual, s.solver.tolerance);
-      }
-      if (checkpoint_and_stop(step)) break;
-    }
+    // load steps of dynamic relaxation (run::Simulation::relax), each with its history row and snapshot
+    pd::RelaxationResult r;
+    Stepper load_steps{
+        [&](long step) {
+          relaxing = step;
+          r = p.relax(*dr, s.solver, s.solver.end_time * double(step) / double(p.steps));
+          if (r.stopped) {  // the checkpoint holds the load steps done and this one's iterations so far
+            res.stopped_in = fmt::format("in load step {} at iteration {} (its checkpoint goes on from there)", step, dr->unfinished().iteration);
+            PhaseClock output_clock(Phase::output);
+            checkpoints.stop_within(step, m.time, res, gather, write_state);
+            return false;
+          }
+          res.bond_updates += double(r.iterations) * bonds;
+          return true;
+        },
+        [&](long step) {
+          std::vector<double> extra{double(r.iterations), r.residual};
+          if (at_equilibrium) extra.push_back(double(r.breaking_passes));
+          auto e = history_row(step, extra);
+          write_snapshot<D>(fields, m, s, comm);
+          progress.update(step, m.time, e.broken_fraction, true);
+          if (!r.converged && !o.quiet && comm.root()) {  // rank 0 speaks for a distributed run
+            if (at_equilibrium && r.residual <= s.solver.tolerance)  // the last equilibrium was reached but broke bonds
+              std::fprintf(stderr, "rift: warning: load step %ld: bonds still breaking after %d equilibria (solver max_breaking_passes)\n",
+                           step, r.breaking_passes);
+            else
+              std::fprintf(stderr, "rift: warning: load step %ld did not converge in %d iterations (residual %.3g > %.3g)\n", step,
+                           r.iterations, r.residual, s.solver.tolerance);
+          }
+        },
+        [&](long) { gather(); }, write_state};
+    run_steps(load_steps, res.first_step, p.steps, m.time, checkpoints, res);
   }
   if (o.stop_after_iterations > 0) set_stop_signal(0);  // the tests' stop, not a signal to the process
   res.loop_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - loop_start).count();
