@@ -297,7 +297,7 @@ pressure = 3e6
 type = "dynamic_relaxation"
 )";
 
-// The rock the fluid wets (pd/effective_stretch.hpp): the same borehole and dry pre-crack, which
+// The rock the fluid wets (hf/wet_rock.hpp): the same borehole and dry pre-crack, which
 // stops at 12 mm, the rock unbreakable. At the end of a relaxation the faces of the crack the fluid
 // fills have the pore stretch p / (2 kappa) of their fluid (plane strain), to round-off; the
 // borehole's wall away from the crack (Hubbert and Willis: the fluid stays out of intact rock) and
@@ -333,7 +333,7 @@ TEST(EffectiveStretch, TheFluidWetsTheCrackFacesNotTheBoreholeWall) {
   EXPECT_GT(wall, 5);
 }
 
-// The bonds whose effective stretch the pore pressure shifts (pd/crack_crossing.hpp), in the same
+// The bonds whose effective stretch the pore pressure shifts (hf/crack_surface.hpp), in the same
 // block: the pre-crack along y = 8 mm from the borehole to x = 12 mm, its faces wet. Geometry alone
 // decides, so the answer is exact: every bond that crosses the line y = 8 mm short of the
 // pre-crack's last cut + one spacing (the faces, and the crack's extension at its tip) crosses the
@@ -346,7 +346,7 @@ TEST(EffectiveStretch, OnlyBondsAcrossTheCrackOrItsExtensionAreShifted) {
   rift::hf::update_fluid_network<2>(m);
   const auto& f = m.fluid_network;
   auto marked_bond = [&](std::size_t i, std::size_t j) {
-    return rift::pd::pierces_crack<2>(f.crack_surface, m.reference_position[i], m.reference_position[j]);
+    return rift::hf::pierces_crack<2>(f.crack_surface, m.reference_position[i], m.reference_position[j]);
   };
   const double line = 0.008, spacing = 0.001;
   // the crack's last patch: the farthest crossing of a short bond the pre-crack cut
@@ -398,7 +398,7 @@ TEST(EffectiveStretch, OnlyBondsAcrossTheCrackOrItsExtensionAreShifted) {
   };
   EXPECT_TRUE(marked_bond(particle_at(0.0125, 0.0075), particle_at(0.0125, 0.0085)));
   const auto across_k = break_bond(0.0125, 0.0075, 0.0125, 0.0085);
-  rift::pd::record_crossing_breaks<2>(m, {{particle_at(0.0125, 0.0075), static_cast<std::int64_t>(across_k)}});  // as the bond pass would
+  rift::hf::record_crossing_breaks<2>(m, {{particle_at(0.0125, 0.0075), static_cast<std::int64_t>(across_k)}});  // as the bond pass would
   break_bond(0.0085, 0.0095, 0.0085, 0.0105);
   rift::hf::update_fluid_network<2>(m);
   const double above = 0.010;

@@ -18,7 +18,7 @@
 // compression, the crack starts at 1.312 K_Ic (LPS) under the bonds' total stretch: a term that
 // scales as p sqrt(horizon) / K = sqrt(horizon / (pi a)). The fluid fills the cracked rock at the
 // tip, whose bonds break on the effective stretch s + p / (d kappa) (Terzaghi;
-// pd/effective_stretch.hpp): 1.023 K_Ic (LPS), LEFM's K_Ic again, since a uniform stress leaves K
+// hf/wet_rock.hpp): 1.023 K_Ic (LPS), LEFM's K_Ic again, since a uniform stress leaves K
 // alone.
 #include <gtest/gtest.h>
 
@@ -32,7 +32,7 @@
 #include "rift/run/scene_loads.hpp"
 #include "rift/pd/discretize.hpp"
 #include "rift/pd/dynamic_relaxation.hpp"
-#include "rift/pd/effective_stretch.hpp"
+#include "rift/hf/wet_rock.hpp"
 #include "rift/pd/forces.hpp"
 #include "rift/scene/parse.hpp"
 
@@ -111,8 +111,8 @@ Initiation initiation(const std::string& material_keys, double pressure_per_K = 
       if (m.bonds.intact[k] != rift::pd::bond_intact) continue;
       const auto j = static_cast<std::size_t>(m.bonds.neighbor[k]);
       const double dx = m.position[j][0] - m.position[i][0], dy = m.position[j][1] - m.position[i][1];
-      // a bond across the wet crack breaks at s0 - min(s_p,i, s_p,j) (pd/effective_stretch.hpp, alpha = 0)
-      const bool crosses = rift::pd::pierces_crack<2>(m.fluid_network.crack_surface, m.reference_position[i], m.reference_position[j]);
+      // a bond across the wet crack breaks at s0 - min(s_p,i, s_p,j) (hf/wet_rock.hpp, alpha = 0)
+      const bool crosses = rift::hf::pierces_crack<2>(m.fluid_network.crack_surface, m.reference_position[i], m.reference_position[j]);
       const double shift = pore.empty() || !crosses ? 0.0 : std::min(pore[i], pore[j]);
       s_max = std::max(s_max, std::hypot(dx, dy) / m.bonds.length(k) - 1.0 + shift);
     }

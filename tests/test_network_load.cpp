@@ -22,7 +22,7 @@
 
 #include "rift/hf/fluid_network.hpp"
 #include "rift/hf/network_load.hpp"
-#include "rift/pd/crack_crossing.hpp"
+#include "rift/hf/crack_surface.hpp"
 #include "rift/pd/discretize.hpp"
 #include "rift/pd/held_breaking.hpp"
 #include "rift/scene/parse.hpp"
@@ -170,7 +170,7 @@ void check_incremental(const std::string& material) {
 
 // While a network only grows (bonds break, no failed interface, one fluid), update_fluid_network
 // goes on from the particles whose bonds broke (hf/fluid_network.hpp): the labels, the immersed
-// fragments, the crack surface (crack_crossing.hpp) and the network load follow from what changed.
+// fragments, the crack surface (hf/crack_surface.hpp) and the network load follow from what changed.
 // After the crack grew further, with a flake cut loose at its face and bonds broken beside it, they
 // equal those made from scratch, bit for bit (the network load within 1e-13 of its largest entry,
 // check_incremental).
@@ -186,7 +186,7 @@ void check_growth(const std::string& material) {
       for (auto k = b.offset[i]; k < b.offset[i + 1]; ++k)
         if (before[static_cast<std::size_t>(k)] != b.intact[static_cast<std::size_t>(k)] && static_cast<std::size_t>(b.neighbor[k]) > i)
           crossed.emplace_back(i, k);
-    rift::pd::record_crossing_breaks<D>(m, crossed);
+    rift::hf::record_crossing_breaks<D>(m, crossed);
   };
   grow_across(0.012, 0.016);
   rift::hf::update_fluid_network<D>(m);
@@ -352,7 +352,7 @@ void check_uncorrected_ends(const std::string& material) {
   for (std::size_t i = 0; i < m.size(); ++i) {
     bool row_end = false, end = false;
     auto z = rift::hf::detail::network_end<D>(
-        m, i, true, [&](std::size_t p, std::int64_t k) { return rift::pd::network_of_bond(f, b, p, k) == 0; }, row_end);
+        m, i, true, [&](std::size_t p, std::int64_t k) { return rift::hf::network_of_bond(f, b, p, k) == 0; }, row_end);
     if (!row_end) z = {};
     const auto u = rift::hf::detail::uncorrected_network_end<D>(m, i, 0, terms, end);
     ASSERT_EQ(end, row_end) << "particle " << i;
@@ -368,7 +368,7 @@ void check_uncorrected_ends(const std::string& material) {
   EXPECT_GT(ends, 20);
 }
 
-// The bonds that broke across the crack are recorded step by step (crack_crossing.hpp
+// The bonds that broke across the crack are recorded step by step (hf/crack_surface.hpp
 // record_crossing_breaks): the latest kept apart, in a short list merged into the whole one once it
 // is a 32nd of its length. Over 60 steps of a crack grown across y = 8 mm a sixtieth of its length
 // at a time, every recorded bond's both entries (the reverse found by bond_slabs.hpp reverse_bond)
@@ -391,7 +391,7 @@ TEST(FluidNetwork, CrossingBreaksRecordedStepByStepAreTheWholeSortedList) {
           crossed.emplace_back(i, k);
           expected.push_back(k), expected.push_back(rift::pd::reverse_bond(b, m.bodies[0], i, k));
         }
-    rift::pd::record_crossing_breaks<D>(m, crossed);
+    rift::hf::record_crossing_breaks<D>(m, crossed);
     merged += !crossed.empty() && f.crossing_recent.empty();
     kept_apart += !f.crossing_recent.empty();
   }

@@ -11,7 +11,7 @@
 // was modelled). Cracks that reach the cube's faces vent the fluid (breakthrough). The histograms
 // are written as hf_injection_rate_histograms.csv. Measured (26 488 particles): fully damaged 0.94%,
 // 3.62%, 6.16%, undamaged 77.0%, 76.4%, 69.0%; coarse (4064, CI): 3.79%, 5.17%, 7.26% and 63.9%,
-// 62.5%, 58.6% (with the wet rock's shift on the bonds across the crack only, pd/crack_crossing.hpp;
+// 62.5%, 58.6% (with the wet rock's shift on the bonds across the crack only, hf/crack_surface.hpp;
 // the full-size numbers predate it).
 #include <array>
 #include <cstdio>

@@ -40,7 +40,7 @@
 // p on top of the singular field (Sneddon's crack = remote tension less p everywhere). The tip bonds
 // span a horizon, so it shortens them: at p = 4.8 K_Ic m^-1/2 (2 mm, t = 0.5 s) the cut needs
 // 1.31 K_Ic on the bonds' total stretch. The fluid fills the cracked rock at the tip, which fails on
-// the effective stretch (pd/effective_stretch.hpp): 1.02 K_Ic.
+// the effective stretch (hf/wet_rock.hpp): 1.02 K_Ic.
 #include <algorithm>
 #include <array>
 #include <cmath>

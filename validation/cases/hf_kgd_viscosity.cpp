@@ -25,7 +25,7 @@
 // 2 mm (the example, 6 min): l 0.944 / 0.948, just outside its 5% at both readings (mean over the
 // second half 0.965), w0 1.047 / 1.083, p0 - sigma0 1.016 / 0.972, every load step at equilibrium.
 // What it took (2026-11-24): the wet rock's pore shift only on the bonds that cross the crack or
-// its extension at the tip (pd/crack_crossing.hpp). With every particle the fluid reached wet
+// its extension at the tip (hf/crack_surface.hpp). With every particle the fluid reached wet
 // (the rule before), the rock beside the faces read the net-pressure field of a crack only a few
 // horizons long (tension p - sigma0 at infinity on a traction-free crack, 8 MPa here, against a
 // strength of a few MPa) as a tension and split parallel to the crack: a band of damage five rows

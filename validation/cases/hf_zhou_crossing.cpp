@@ -173,7 +173,7 @@
 // next trace: the forces on the far side's rock 1.5 mm past the plane (76.5, 1.5) mm, split into the
 // intact bonds across the plane, the failed bonds' contact and the fluid on the faces.
 // Tried on 2026-11-30 (fourteenth session; 3 mm, platens, one thread; not kept): the pore pressure's
-// shift (pd/effective_stretch.hpp) kept to the near side, a bond on the far side of the interface
+// shift (hf/wet_rock.hpp) kept to the near side, a bond on the far side of the interface
 // not counted as crossing the near side's crack patches (the wet tip's process zone stopping at the
 // plane; the far side's own patches, once it breaks on the total stress, count as before): 2-8
 // crossed still (0.2 mm past at t = 2.1 s, 24.9 mm at t = 3.9 s) and 2-4 fell under its threshold

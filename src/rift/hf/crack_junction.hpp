@@ -3,7 +3,7 @@
 // and sliding on each other. But a failed bond whose ends lie on the two faces of a crack the fluid fills,
 // one that runs into the interface or through it, joins rock the fluid holds apart: its ends do not touch,
 // and it carries no contact force, as a broken bond carries none. Such a bond crosses the crack's surface
-// (pd/crack_crossing.hpp: within half a spacing of a patch of broken rock or of a pre-crack, the crack
+// (hf/crack_surface.hpp: within half a spacing of a patch of broken rock or of a pre-crack, the crack
 // itself and not its extension past the tip). The fluid's way is not changed: it enters a failed interface
 // bond only where the interface's faces are apart (fluid_network.hpp carries_fluid); a bond across the
 // near side's open crack that ends beyond a shut interface carries no contact force, but the fluid reaches
@@ -13,13 +13,13 @@
 
 #include "rift/hf/pd_names.hpp"
 #include "rift/parallel/team.hpp"
-#include "rift/pd/crack_crossing.hpp"
+#include "rift/hf/crack_surface.hpp"
 #include "rift/pd/model.hpp"
 
 namespace rift::hf {
 
 /// Marks the failed interface bonds that cross the surface of a crack the fluid fills
-/// (InterfaceBonds::across_crack). Call after the crack surface is made (pd/crack_crossing.hpp).
+/// (InterfaceBonds::across_crack). Call after the crack surface is made (hf/crack_surface.hpp).
 template <int D>
 void mark_bonds_across_crack(Model<D>& m) {
   InterfaceBonds& ib = m.interface_bonds;

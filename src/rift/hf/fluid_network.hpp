@@ -25,12 +25,12 @@
 #include "rift/hf/crack_junction.hpp"
 #include "rift/hf/pd_names.hpp"
 #include "rift/hf/pore_stretch.hpp"
+#include "rift/hf/wet_rock.hpp"
 #include "rift/parallel/indices_where.hpp"
 #include "rift/parallel/ordered_sum.hpp"
 #include "rift/parallel/sort.hpp"
 #include "rift/parallel/team.hpp"
 #include "rift/pd/bond_runs.hpp"
-#include "rift/pd/effective_stretch.hpp"
 #include "rift/pd/ghost_fields.hpp"
 #include "rift/pd/influence.hpp"
 #include "rift/pd/interface_law.hpp"
@@ -472,6 +472,7 @@ inline bool fluid_network_grows(const FluidNetwork& f, std::int64_t interface_fa
 /// size: a step's cost follows the bonds that broke in it (the thesis-size example breaks millions).
 template <int D>
 void update_fluid_network(Model<D>& m) {
+  m.coupling = wet_rock_coupling<D>();  // the crack surface made here wets the rock the bond passes break
   FluidNetwork& f = m.fluid_network;
   const Bonds& b = m.bonds;
   const CrackBonds& w = m.crack_bonds;

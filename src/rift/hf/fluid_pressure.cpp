@@ -5,6 +5,7 @@
 #include "rift/hf/lumped_fluid.hpp"
 #include "rift/hf/network_load.hpp"
 #include "rift/hf/viscous_fluid.hpp"
+#include "rift/hf/wet_rock.hpp"
 #include "rift/scene/time_function.hpp"
 
 namespace rift::hf {
@@ -16,6 +17,7 @@ FluidPressure<D>::FluidPressure(const scene::Scene& s, pd::Model<D>& m) {
     sources_.push_back({b.pressure, b.pressure_time, b.injection_rate.has_value(), b.injection_rate.value_or(0.0), b.fluid_bulk_modulus,
                         b.injection_system_volume, b.breakdown_pressure});
   m.fluid_network.viscous.assign(sources_.size(), {});
+  m.coupling = wet_rock_coupling<D>();  // a crack that holds fluid wets the rock the bond passes break
   for (std::size_t h = 0; h < s.boreholes.size(); ++h)
     if (s.boreholes[h].injection_rate) m.fluid_network.viscous[s.cracks.size() + h].viscosity = s.boreholes[h].fluid_viscosity;
 }

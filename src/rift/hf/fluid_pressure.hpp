@@ -17,7 +17,8 @@ namespace rift::hf {
 template <int D>
 class FluidPressure {
  public:
-  /// The scene's pressure sources; a viscous injected fluid's nodes on the model (viscous_fluid.hpp).
+  /// The scene's pressure sources; a viscous injected fluid's nodes on the model (viscous_fluid.hpp);
+  /// the wet rock as the model's bond coupling (wet_rock.hpp).
   FluidPressure(const scene::Scene& s, pd::Model<D>& m);
   /// Adds the fluids' load at time t to m.body_force (nothing without pressure bonds; on every rank
   /// of a distributed run alike, the fluid's sums being over every rank).

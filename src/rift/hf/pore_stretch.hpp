@@ -1,4 +1,4 @@
-// The pore stretch s_p = p / (d kappa) of the wet rock (pd/effective_stretch.hpp: a bond across a crack
+// The pore stretch s_p = p / (d kappa) of the wet rock (hf/wet_rock.hpp: a bond across a crack
 // that holds fluid breaks at s0 - (1 + alpha) min(s_p,i, s_p,j)). It follows the fluid network at once;
 // its pressure is the fluid's where fluid and rock are in equilibrium: after each explicit time step,
 // at the end of each dynamic-relaxation load step and of a converged static solve (the steppers'

@@ -206,19 +206,19 @@ struct ViscousFluid {
   std::vector<double> stored, trial;  // per particle: the fluid in its node (0 on the borehole's wall), m^3
 };
 
-/// The surface of the cracks a fluid fills, as patches (crack_crossing.hpp): each a point and a
+/// The surface of the cracks a fluid fills, as patches (hf/crack_surface.hpp): each a point and a
 /// normal, found through a grid of their points.
 struct CrackSurface {
   bool made = false;                          // made once at least (before: a scene's initial state)
   std::vector<std::int64_t> patches;          // per patch, in the order they came: a broken bond's entry in its lower end's row, or -1 - a cut bond's
   std::vector<std::array<double, 6>> planes;  // per patch: its point and unit normal (z = 0 in 2D)
-  std::vector<std::array<std::int32_t, 6>> moments;  // per patch: the sum of n n^T (xx yy zz xy yz xz) around it, in 2^-20 (crack_crossing.hpp)
+  std::vector<std::array<std::int32_t, 6>> moments;  // per patch: the sum of n n^T (xx yy zz xy yz xz) around it, in 2^-20 (hf/crack_surface.hpp)
   std::vector<std::int64_t> sorted_patches;   // the patches' bonds, ascending (which bonds have one)
   std::vector<std::uint64_t> decided;         // a bit per bond entry: a short network bond's entry (each end its own) whose patch, or none, is decided
   double cell = 0.0, reach = 0.0;             // the grid's cell size; how far a patch reaches along its plane, m
   std::vector<std::int64_t> cell_keys;        // the grid: cell keys, ascending
   std::vector<std::uint32_t> in_cell;         // the patch of each entry of cell_keys
-  std::vector<std::int64_t> row_keys;         // the grid's rows along x that hold patches, ascending (crack_crossing.hpp)
+  std::vector<std::int64_t> row_keys;         // the grid's rows along x that hold patches, ascending (hf/crack_surface.hpp)
   std::vector<std::size_t> row_first;         // per row, its first entry of cell_keys; then their count
   bool empty() const { return planes.empty(); }
 };
@@ -255,12 +255,12 @@ struct FluidNetwork {
   std::vector<std::uint8_t> outer_surface;    // per particle: on the body's outer free surface (pressure_bonds.hpp)
   std::vector<std::uint8_t> in_crack;         // per particle: the fluid reaches it across a crack (a broken or cut bond), not only at a borehole's wall
   std::vector<std::uint8_t> immersed;         // per particle: wet, in a fragment its intact bonds no longer join to the body (hf/fluid_network.hpp): no fluid load
-  std::vector<double> pore_stretch;           // per particle: p / (d kappa) where the fluid is in the cracked rock, 0 elsewhere; empty: nowhere (effective_stretch.hpp)
+  std::vector<double> pore_stretch;           // per particle: p / (d kappa) where the fluid is in the cracked rock, 0 elsewhere; empty: nowhere (hf/wet_rock.hpp)
   std::vector<std::vector<std::int64_t>> open_interface_bonds;  // per source: the failed interface bonds its fluid fills (both entries), ascending
-  CrackSurface crack_surface;                 // the cracks' surface the fluid fills (crack_crossing.hpp)
+  CrackSurface crack_surface;                 // the cracks' surface the fluid fills (hf/crack_surface.hpp)
   std::vector<std::int64_t> crossing_broken;  // broken bonds (both entries) that crossed the crack or its extension when they broke, ascending
   // the latest of those, ascending, kept apart until they are a 32nd of crossing_broken's length
-  // (crack_crossing.hpp record_crossing_breaks): merged into it each step, they moved the whole list
+  // (hf/crack_surface.hpp record_crossing_breaks): merged into it each step, they moved the whole list
   // each step (20 million entries in the thesis-size example's breaking regime, on one thread)
   std::vector<std::int64_t> crossing_recent;
   /// Whether broken bond entry k crossed the crack or its extension when it broke.
@@ -305,7 +305,7 @@ struct FluidNetwork {
   std::vector<std::uint8_t> has_network; // its fluid fills broken bonds (its network load is made)
   std::vector<double> reference_volume;  // the cavity's volume in the reference state (a borehole's lattice sites)
   std::vector<double> pressure;          // the last pressure applied, Pa
-  std::vector<double> pore_pressure;     // the pressure of the last equilibrium (or time step), which the wet rock feels, Pa (effective_stretch.hpp)
+  std::vector<double> pore_pressure;     // the pressure of the last equilibrium (or time step), which the wet rock feels, Pa (hf/wet_rock.hpp)
   std::vector<double> cavity_volume;     // the last cavity volume (injected sources), m^3
   std::vector<std::uint8_t> vented;      // the fluid reaches the outer surface: it escapes (breakthrough)
   std::vector<std::uint8_t> broke_through;  // vented at any time so far (a laboratory test ends there)
@@ -313,7 +313,7 @@ struct FluidNetwork {
   std::vector<ViscousFluid> viscous;     // per source (empty: every fluid lumped)
   // per particle, where a viscous fluid reaches or its network loads the rock (empty: no viscous fluid)
   std::vector<double> local_pressure;       // that fluid's pressure there, Pa
-  std::vector<double> local_pore_pressure;  // local_pressure of the last equilibrium (effective_stretch.hpp), Pa
+  std::vector<double> local_pore_pressure;  // local_pressure of the last equilibrium (hf/wet_rock.hpp), Pa
 
   /// Takes the sources' state that changes during a run from `g` (a distributed run's window and the
   /// whole model its checkpoint gathers: the same on every rank).

@@ -1,16 +1,18 @@
 // How a bond pass decides that a bond breaks, compiled into the pass (the law's kernels take these as
 // template parameters, so a pass without wet rock is the dry code): the vector runs' limit,
 // min(s0_i, s0_j) (StretchLimit) or less the wet rock's shift (1 + alpha) min(s_p,i, s_p,j)
-// (PoreShiftedLimit); the bonds taken one by one, on the pass's own criterion (DryBreaking) or on the
-// effective stretch where the bond crosses a crack that holds fluid (WetBreaking,
-// effective_stretch.hpp); and the BreakLog of the bonds a pass broke, for what it does after its loop.
+// (PoreShiftedLimit); the bonds taken one by one, on the pass's own criterion (DryBreaking) or as the
+// model's coupling decides (WetBreaking; bond_coupling.hpp, hydraulic fracture's wet rock: the effective
+// stretch where the bond crosses a crack that holds fluid); and the BreakLog of the bonds a pass broke.
 #pragma once
 #include <cstddef>
 #include <cstdint>
+#include <stdexcept>
 #include <utility>
 #include <vector>
 
-#include "rift/pd/effective_stretch.hpp"
+#include "rift/pd/bond_coupling.hpp"
+#include "rift/pd/model.hpp"
 
 namespace rift::pd {
 
@@ -40,21 +42,23 @@ struct DryBreaking {
   }
 };
 
-/// A bond taken one by one in a crack's wet rock breaks on its effective stretch where it crosses the
-/// crack (breaks_in_wet_rock; `value`: its stretch, or its normal stress in stretch units); `crossed`
-/// says whether it crosses, where that matters.
+/// A bond taken one by one where the model's coupling acts (bond_coupling.hpp; hydraulic fracture's
+/// wet rock: on its effective stretch where it crosses a crack that holds fluid); `crossed` says
+/// whether it crosses, where that matters.
 template <int D>
 struct WetBreaking {
-  WetRock<D> wet;
-  double alpha = 0.0;  // the body's: s0 = s00 - alpha s_min
-  const double* pore_stretch() const { return wet.pore_stretch; }  // nullptr: no pressure yet, the runs' limits not shifted
+  const BondCoupling<D>* coupling = nullptr;
+  const Model<D>* model = nullptr;
+  const double* pore = nullptr;  // the coupling's pore stretch (nullptr: none yet, the runs' limits not shifted)
+  double alpha = 0.0;            // the body's: s0 = s00 - alpha s_min
+  const double* pore_stretch() const { return pore; }
   bool breaks(bool breakable, std::size_t i, std::size_t j, double xi, double value, double limit, bool /*past*/, bool& crossed) const {
-    return breakable && breaks_in_wet_rock<D>(wet, alpha, i, j, xi, value, limit, crossed);
+    return breakable && coupling->breaks(*model, alpha, i, j, xi, value, limit, crossed);
   }
 };
 
 /// The bonds a pass broke, (i, k) of the lower end's row in no fixed order, and those of them that
-/// cross a crack holding fluid (crack_crossing.hpp record_crossing_breaks); the team notes into one log.
+/// cross a crack holding fluid (hf/crack_surface.hpp record_crossing_breaks); the team notes into one log.
 struct BreakLog {
   std::vector<std::pair<std::size_t, std::int64_t>> broken, crossing;
   void note(std::size_t i, std::int64_t k, bool crossed) {
@@ -66,12 +70,20 @@ struct BreakLog {
   }
 };
 
-/// Calls pass(breaking) with the model's breaking policy: WetBreaking where a crack holds fluid, else
+/// Calls pass(breaking) with the model's breaking policy: WetBreaking where its coupling acts, else
 /// DryBreaking.
 template <int D, class Pass>
 void with_breaking(const Model<D>& m, double alpha, Pass&& pass) {
-  if (const WetRock<D> wet = wet_rock(m)) pass(WetBreaking<D>{wet, alpha});
+  if (!m.coupling && !m.fluid_network.crack_surface.empty())
+    throw std::logic_error("a crack holds fluid but the model has no bond coupling (hf::FluidPressure installs the wet rock's)");
+  if (m.coupling && m.coupling->active(m)) pass(WetBreaking<D>{m.coupling, &m, m.coupling->pore_stretch(m), alpha});
   else pass(DryBreaking{});
+}
+
+/// After a pass: the model's coupling takes the bonds it broke across the crack.
+template <int D>
+void after_breaking(Model<D>& m, const BreakLog& log) {
+  if (m.coupling) m.coupling->broke_across(m, log.crossing);
 }
 
 }  // namespace rift::pd

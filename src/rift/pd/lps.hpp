@@ -33,7 +33,7 @@ namespace rift::pd {
 
 /// The first pass of the LPS and VES, each bond once (bond_slabs.hpp): breaks the bonds stretched
 /// past min(s0_i, s0_j) (both directions; in a crack's wet rock the effective stretch,
-/// effective_stretch.hpp; with normal_stress failure the normal stress along the bond over d kappa,
+/// breaking_policy.hpp; with normal_stress failure the normal stress along the bond over d kappa,
 /// normal_stress_failure.hpp) and sums over the rest theta_i = sum b_ij e V (into
 /// m.dilatation), with Coupling also q_i = sum sigma_ij e |xi| V (into `coupling`), and the smallest
 /// stretch of each particle (into `smallest`, none: no intact bond). e = |y| - |xi| is the same seen
@@ -246,7 +246,7 @@ void dilatation_pass(Model<D>& m, const BodyInfo& body, double* coupling, double
   if (rows) refresh_rows(b, body, rows, log.broken);
   else if (rows_out) rows = whole_rows(b, body);
   if (rows_out) *rows_out = rows;
-  record_crossing_breaks<D>(m, log.crossing);
+  after_breaking<D>(m, log);
   if (broken_out) *broken_out = std::move(log.broken);
   if constexpr (!Corrected) {
 #pragma omp parallel for if(rift::parallel::worth_a_team(body.last - body.first)) schedule(static)

@@ -49,6 +49,9 @@ class Ghosts {
 };
 
 template <int D>
+class BondCoupling;  // bond_coupling.hpp
+
+template <int D>
 struct Model {
   // particle fields (SoA)
   std::vector<Vec<D>> reference_position;  // x0
@@ -87,6 +90,8 @@ struct Model {
   // lose their bonds beyond it), ascending; one rank: none
   std::vector<IndexRange> cut_rows;
   const Ghosts* ghosts = nullptr;
+  // what hydraulic fracture couples into the bond passes (bond_coupling.hpp; none: they break dry)
+  const BondCoupling<D>* coupling = nullptr;
 
   std::size_t size() const { return position.size(); }
   /// The owned particles: ranges of the window, ascending (one rank: [0, size())).

@@ -7,7 +7,7 @@
 // eps the mean of its ends' strains, lambda Lame's first parameter, T the tensile strength: Hooke's
 // n . sigma . n with the bond's own stretch for the strain along n (the same for a homogeneous deformation).
 // A strength criterion: the toughness goes with sqrt(delta). In stretch units, sigma_n / (d kappa) > s0 with
-// s0 = T / (d kappa): the pore shift p / (d kappa) (effective_stretch.hpp) adds the pore pressure (Terzaghi),
+// s0 = T / (d kappa): the pore shift p / (d kappa) (hf/wet_rock.hpp) adds the pore pressure (Terzaghi),
 // and the stretch limits are shared. The strain is that of the current positions, over the bonds intact
 // before the pass. Why, and what was measured: docs/decisions/hydraulic-fracture-notes.md.
 #pragma once

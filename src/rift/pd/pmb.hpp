@@ -2,7 +2,7 @@
 // f = c omega(|xi|) s V_j along the deformed bond, s = (|y| - |xi|) / |xi|; with the surface
 // correction each end contributes half with its own influence factor: c (g_i + g_j)/2 omega s V_j. A bond breaks for good
 // when s exceeds min(s0_i, s0_j); s0_i = s00 - alpha s_min,i (eq. 23, as LAMMPS peri/pmb); in a
-// crack's wet rock the limit is on the effective stretch (effective_stretch.hpp).
+// crack's wet rock the limit is on the effective stretch (breaking_policy.hpp).
 #pragma once
 #include <algorithm>
 #include <array>
@@ -222,7 +222,7 @@ void pmb_forces(Model<D>& m, const BodyInfo& body) {
     for (int q = 0; q < D; ++q) m.force[j][q] = f[q][j];
   break_mirror_bonds(b, body, log.broken);
   refresh_rows(b, body, rows, log.broken);  // the kept rows as the pass leaves the states
-  record_crossing_breaks<D>(m, log.crossing);
+  after_breaking<D>(m, log);
   next_stretch_limits<D>(m, body, smallest);
 }
 

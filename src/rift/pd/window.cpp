@@ -9,7 +9,6 @@
 
 #include "rift/pd/bond_runs.hpp"
 #include "rift/pd/bond_slabs.hpp"
-#include "rift/pd/crack_crossing.hpp"
 #include "rift/pd/laws/registry.hpp"
 #include "rift/pd/normal_stress_failure.hpp"
 
@@ -45,16 +44,6 @@ Partition partition_by_bonds(const Model<D>& m, int ranks, std::size_t reaches) 
 }
 
 namespace {
-
-/// The entries (`width` per particle) of the window's particles, range after range.
-template <class T>
-std::vector<T> slice(const std::vector<T>& v, const Numbering& window, std::size_t width = 1) {
-  if (v.empty()) return {};
-  std::vector<T> out;
-  for (const auto& a : window.ranges())
-    out.insert(out.end(), v.begin() + static_cast<std::ptrdiff_t>(a.whole * width), v.begin() + static_cast<std::ptrdiff_t>((a.whole + a.count) * width));
-  return out;
-}
 
 /// Whether [first, last) meets one of the ranges (ascending and apart).
 bool meets_any(const std::vector<IndexRange>& ranges, std::size_t first, std::size_t last) {
@@ -96,13 +85,6 @@ std::vector<double> cuts_by_weight(std::vector<std::pair<double, double>> value_
 /// The part of `cut` (cuts_by_weight) that holds `value`.
 std::size_t part_of(const std::vector<double>& cut, double value) {
   return static_cast<std::size_t>(std::upper_bound(cut.begin() + 1, cut.end() - 1, value) - (cut.begin() + 1));
-}
-
-/// f(a, i) for each particle of the window: a its number here, i the whole run's.
-template <class F>
-void for_each_in(const Numbering& window, F&& f) {
-  for (const auto& r : window.ranges())
-    for (std::size_t a = r.here; a < r.here + r.count; ++a) f(a, r.whole + (a - r.here));
 }
 
 /// The VES history of the window's bodies (bonds.hpp, bond_slabs.hpp history_index): the whole
@@ -164,9 +146,7 @@ void drop_runs_of_ghosts(BodyInfo& part, const std::vector<IndexRange>& owned) {
 }
 
 /// The window's pressure bonds (hf/crack_pressure.hpp), each row cut to the fluid sites and the
-/// neighbours inside the window (only ghosts' rows lose bonds), and its fluid: the sources' state as
-/// it is, the particles' labels left to be made again on this rank's particles (hf/fluid_network.hpp:
-/// they follow from the bonds' states and the sources'), the outer surface cut to the window.
+/// neighbours inside the window (only ghosts' rows lose bonds); its fluid is hf/window_fluid.hpp's.
 template <int D>
 void window_pressure_bonds(const Model<D>& m, const Numbering& window, Model<D>& w) {
   const CrackBonds& from = m.crack_bonds;
@@ -187,45 +167,6 @@ void window_pressure_bonds(const Model<D>& m, const Numbering& window, Model<D>&
     }
     to.offset[a + 1] = static_cast<std::int64_t>(to.neighbor.size());
   });
-  FluidNetwork& f = w.fluid_network;
-  const FluidNetwork& g = m.fluid_network;
-  f.pressure_bonds = g.pressure_bonds, f.dry = g.dry, f.reference_volume = g.reference_volume;
-  f.take_sources_state(g);
-  // a viscous fluid's: the fluid in the window's nodes and the pressure at its particles
-  f.viscous = g.viscous;
-  for (ViscousFluid& v : f.viscous) v.stored = slice(v.stored, window), v.trial = slice(v.trial, window);
-  f.local_pressure = slice(g.local_pressure, window), f.local_pore_pressure = slice(g.local_pore_pressure, window);
-  f.outer_surface = slice(g.outer_surface, window);
-  // a continued run's labels, marks and network load (run/distributed.hpp gather_fluid; a run that
-  // starts has none yet)
-  f.relabel = g.relabel, f.load_from_scratch = g.load_from_scratch;
-  f.source = slice(g.source, window), f.bond_counts = slice(g.bond_counts, window);
-  f.in_crack = slice(g.in_crack, window), f.immersed = slice(g.immersed, window);
-  f.pore_stretch = slice(g.pore_stretch, window), f.load_changed_mark = slice(g.load_changed_mark, window);
-  f.list_load_changed_from_marks();
-  f.network_load.resize(g.network_load.size()), f.is_end.resize(g.is_end.size()), f.network_ends.resize(g.network_ends.size());
-  for (std::size_t s = 0; s < g.network_load.size(); ++s) f.network_load[s] = slice(g.network_load[s], window, D);
-  for (std::size_t s = 0; s < g.is_end.size(); ++s) f.is_end[s] = slice(g.is_end[s], window);
-  for (std::size_t s = 0; s < g.network_ends.size(); ++s) f.network_ends[s] = slice(g.network_ends[s], window);
-  // the crossing marks and the open interface bonds of the window's rows, each bond found by its
-  // neighbour (a ghost's row is cut)
-  const Bonds& b = m.bonds;
-  const Bonds& c = w.bonds;
-  auto window_bonds = [&](const std::vector<std::int64_t>& list) {
-    std::vector<std::int64_t> out;
-    for (const std::int64_t k : list) {
-      const std::size_t i = window.here(b.row_of(k)), j = window.here(static_cast<std::size_t>(b.neighbor[static_cast<std::size_t>(k)]));
-      if (i == Numbering::none || j == Numbering::none) continue;
-      const auto first = c.neighbor.begin() + c.offset[i], last = c.neighbor.begin() + c.offset[i + 1];
-      out.push_back(std::lower_bound(first, last, static_cast<std::int32_t>(j)) - c.neighbor.begin());
-    }
-    return out;  // ascending: rows and their neighbours keep their order in the window
-  };
-  f.crossing_broken = window_bonds(g.crossing_broken_whole()), f.crossing_recent.clear();
-  f.open_interface_bonds.assign(g.dry.size(), {});
-  for (std::size_t s = 0; s < g.open_interface_bonds.size() && s < g.dry.size(); ++s) f.open_interface_bonds[s] = window_bonds(g.open_interface_bonds[s]);
-  f.crack_surface.made = g.crack_surface.made;
-  if (f.crack_surface.made) remake_crack_surface<D>(w);
 }
 
 /// The window's bonds across pre-existing fractures (interface_law.hpp): each row's entries whose
@@ -398,6 +339,7 @@ Model<D> window_of(const Model<D>& m, const Partition& p, int rank) {
   w.failure_strain = slice(m.failure_strain, window, stress_components<D>);
   w.body = slice(m.body, window);
   w.constrained = slice(m.constrained, window);
+  w.coupling = m.coupling;
   w.dimension = m.dimension;
   w.thickness = m.thickness;
   w.time = m.time;

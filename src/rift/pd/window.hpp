@@ -78,8 +78,26 @@ template <int D>
 std::vector<IndexRange> with_whole_runs(const Model<D>& m, const std::vector<IndexRange>& owned, std::vector<IndexRange> window);
 
 /// Rank r's window of the whole model: its fields, the rows of its particles (ghosts' rows cut to
-/// the window), its bodies' runs made again over the window with the whole bodies' slabs.
+/// the window), its bodies' runs made again over the window with the whole bodies' slabs; not its
+/// fluid (hf/window_fluid.hpp).
 template <int D>
 Model<D> window_of(const Model<D>& m, const Partition& p, int rank);
+
+/// The entries (`width` per particle) of the window's particles, range after range.
+template <class T>
+std::vector<T> slice(const std::vector<T>& v, const Numbering& window, std::size_t width = 1) {
+  if (v.empty()) return {};
+  std::vector<T> out;
+  for (const auto& a : window.ranges())
+    out.insert(out.end(), v.begin() + static_cast<std::ptrdiff_t>(a.whole * width), v.begin() + static_cast<std::ptrdiff_t>((a.whole + a.count) * width));
+  return out;
+}
+
+/// f(a, i) for each particle of the window: a its number here, i the whole run's.
+template <class F>
+void for_each_in(const Numbering& window, F&& f) {
+  for (const auto& r : window.ranges())
+    for (std::size_t a = r.here; a < r.here + r.count; ++a) f(a, r.whole + (a - r.here));
+}
 
 }  // namespace rift::pd

@@ -8,9 +8,9 @@
 #include <type_traits>
 #include <vector>
 
+#include "rift/hf/crack_surface.hpp"
 #include "rift/parallel/communicator.hpp"
 #include "rift/pd/bond_slabs.hpp"
-#include "rift/pd/crack_crossing.hpp"
 #include "rift/pd/forces.hpp"
 #include "rift/pd/laws/registry.hpp"
 #include "rift/pd/model.hpp"
@@ -80,7 +80,7 @@ void gather_into(const parallel::Communicator& comm, const pd::Model<D>& m, cons
 /// The fluid's state (pd/fluid_network.hpp) gathered into the whole run's model on rank 0 (`whole`,
 /// null on the other ranks): the sources' state (the same on every rank), the particles' labels,
 /// marks and network load of the owned particles, and the crossing marks of their bonds (each owned
-/// row is whole); the crack surface is made again there from those (crack_crossing.hpp: the same
+/// row is whole); the crack surface is made again there from those (hf/crack_surface.hpp: the same
 /// patches and normals, whatever order they came in).
 template <int D>
 void gather_fluid(const parallel::Communicator& comm, const pd::Model<D>& m, pd::Model<D>* whole) {
@@ -93,7 +93,7 @@ void gather_fluid(const parallel::Communicator& comm, const pd::Model<D>& m, pd:
   gather_into<D>(comm, m, f.immersed, g ? &g->immersed : nullptr);
   gather_into<D>(comm, m, f.load_changed_mark, g ? &g->load_changed_mark : nullptr);
   if (g) g->list_load_changed_from_marks();
-  // a window without pressure in its wet rock keeps none (effective_stretch.hpp): zeros
+  // a window without pressure in its wet rock keeps none (hf/wet_rock.hpp): zeros
   if (comm.any(!f.pore_stretch.empty())) {
     std::vector<double> pore = f.pore_stretch;
     pore.resize(m.size(), 0.0);
@@ -143,10 +143,10 @@ void gather_fluid(const parallel::Communicator& comm, const pd::Model<D>& m, pd:
   if (g) g->open_interface_bonds.assign(f.open_interface_bonds.size(), {});
   for (std::size_t s = 0; s < f.open_interface_bonds.size(); ++s) gather_bonds(f.open_interface_bonds[s], g ? &g->open_interface_bonds[s] : nullptr);
   if (!g) return;
-  // made as the run makes it after its first time (crack_crossing.hpp makes_patch)
+  // made as the run makes it after its first time (hf/crack_surface.hpp makes_patch)
   g->crack_surface = pd::CrackSurface{};
   g->crack_surface.made = f.crack_surface.made;
-  if (g->crack_surface.made) pd::remake_crack_surface<D>(*whole);
+  if (g->crack_surface.made) hf::remake_crack_surface<D>(*whole);
 }
 
 /// The state of the bonds across interfaces (pd/interface_law.hpp) gathered into the whole run's

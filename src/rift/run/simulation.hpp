@@ -11,6 +11,7 @@
 
 #include "rift/core/error.hpp"
 #include "rift/parallel/communicator.hpp"
+#include "rift/hf/window_fluid.hpp"
 #include "rift/pd/halo.hpp"
 #include "rift/parallel/ordered_sum.hpp"
 #include "rift/pd/contact.hpp"
@@ -92,7 +93,9 @@ struct Simulation {
     processor_grid_ = grid;
     const auto r = static_cast<std::size_t>(comm.rank());
     loads.boundaries.restrict_to(pd::Numbering(partition.window[r]), partition.owned[r]);
-    model = pd::window_of<D>(model, partition, comm.rank());
+    auto window = pd::window_of<D>(model, partition, comm.rank());
+    hf::window_fluid<D>(model, pd::Numbering(partition.window[r]), window);
+    model = std::move(window);
     halo = std::make_unique<pd::Halo>(comm.rank(), partition.owned, partition.window, model.numbering);
     model.ghosts = halo.get();
     contact = pd::Contact<D>(s.contact, model);  // its pairs among the window's particles and those beyond it within reach

@@ -1,5 +1,5 @@
 // The bonds that cross a fluid-filled crack or its extension past the tip: those whose effective stretch
-// the pore pressure shifts (effective_stretch.hpp). The crack's surface is made of patches, one at the
+// the pore pressure shifts (wet_rock.hpp). The crack's surface is made of patches, one at the
 // midpoint of each short broken bond of a network (nearest and diagonal neighbours, and the short bonds a
 // pressurized pre-crack cut), each a plane whose normal is the largest eigenvector of the sum of n n^T over
 // the short broken bonds within 1.5 spacings (sign-free: a zigzag crack reads as its mean plane). A bond
@@ -20,11 +20,11 @@
 #include <utility>
 #include <vector>
 
-#include "rift/pd/model.hpp"
+#include "rift/hf/pd_names.hpp"
 #include "rift/parallel/sort.hpp"
 #include "rift/parallel/team.hpp"
 
-namespace rift::pd {
+namespace rift::hf {
 
 namespace detail {
 // x the fastest: the cells of a row along x have consecutive keys
@@ -489,4 +489,4 @@ void record_crossing_breaks(Model<D>& m, const std::vector<std::pair<std::size_t
   if (kept.size() > f.crossing_broken.size() / 32) f.settle_crossing_broken();
 }
 
-}  // namespace rift::pd
+}  // namespace rift::hf

@@ -4,23 +4,25 @@
 // so a bond whose two ends the fluid reaches across a crack breaks when
 //   s > min(s0_i, s0_j) - (1 + alpha) min(s_p,i, s_p,j),   s_p = p / (d kappa)  (the pore stretch),
 // 1 + alpha because s0 = s00 - alpha s_min follows the same shift (Silling and Askari 2005, eq. 23).
-// Both ends must be wet, and the bond must cross the crack or its extension at the tip (crack_crossing.hpp):
+// Both ends must be wet, and the bond must cross the crack or its extension at the tip (crack_surface.hpp):
 // a bond beside the faces carries the total stress. A borehole's intact wall is not cracked rock (Hubbert
-// and Willis 1957): breakdown keeps the total stress. The pore stretch is hydraulic fracture's
-// (hf/pore_stretch.hpp); the bond passes read it through their breaking policy (breaking_policy.hpp).
+// and Willis 1957): breakdown keeps the total stress. The pore stretch is pore_stretch.hpp's. The bond
+// passes reach the wet rock through the model's coupling (pd/bond_coupling.hpp), which this installs.
 // Why, and what was measured: docs/decisions/hydraulic-fracture-notes.md.
 #pragma once
 #include <cstddef>
 #include <cstdint>
+#include <utility>
 #include <vector>
 
-#include "rift/pd/crack_crossing.hpp"
-#include "rift/pd/model.hpp"
+#include "rift/hf/crack_surface.hpp"
+#include "rift/hf/pd_names.hpp"
+#include "rift/pd/bond_coupling.hpp"
 
-namespace rift::pd {
+namespace rift::hf {
 
 /// What the bond passes read of the wet rock: the pore stretch per particle (nullptr: no pressure
-/// yet) and the crack surface whose crossing bonds it shifts (crack_crossing.hpp).
+/// yet) and the crack surface whose crossing bonds it shifts (crack_surface.hpp).
 template <int D>
 struct WetRock {
   const double* pore_stretch = nullptr;
@@ -50,7 +52,7 @@ WetRock<D> wet_rock(const Model<D>& m) {
 /// Whether bond i-j (reference length xi) of value `value` (its stretch, or its normal stress in
 /// stretch units) against `limit` breaks, in wet rock on the effective stretch where it crosses the
 /// crack; `crossed` says whether a bond that breaks crosses the crack, where that matters: a short
-/// bond that crosses extends the crack (crack_crossing.hpp makes_patch asks no longer bond), so a
+/// bond that crosses extends the crack (crack_surface.hpp makes_patch asks no longer bond), so a
 /// longer one that breaks on its stretch alone is not looked at (the search was 6% of a step in the
 /// thesis example's shattered block).
 template <int D>
@@ -65,4 +67,26 @@ bool breaks_in_wet_rock(const WetRock<D>& wet, double alpha, std::size_t i, std:
   return crossed;
 }
 
-}  // namespace rift::pd
+/// The wet rock as the bond passes' coupling (pd/bond_coupling.hpp): active where a crack holds fluid.
+template <int D>
+class WetRockCoupling final : public pd::BondCoupling<D> {
+ public:
+  bool active(const Model<D>& m) const override { return !m.fluid_network.crack_surface.empty(); }
+  const double* pore_stretch(const Model<D>& m) const override { return wet_rock<D>(m).pore_stretch; }
+  bool breaks(const Model<D>& m, double alpha, std::size_t i, std::size_t j, double xi, double value, double limit,
+              bool& crossed) const override {
+    return breaks_in_wet_rock<D>(wet_rock<D>(m), alpha, i, j, xi, value, limit, crossed);
+  }
+  void broke_across(Model<D>& m, const std::vector<std::pair<std::size_t, std::int64_t>>& crossing) const override {
+    record_crossing_breaks<D>(m, crossing);
+  }
+};
+
+/// The one coupling of the wet rock (it holds no state: every model may point to it).
+template <int D>
+const pd::BondCoupling<D>* wet_rock_coupling() {
+  static const WetRockCoupling<D> coupling;
+  return &coupling;
+}
+
+}  // namespace rift::hf
