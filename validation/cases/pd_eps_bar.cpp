@@ -24,6 +24,15 @@
 #include "rift/scene/parse.hpp"
 
 namespace rift::validation {
+namespace {
+
+/// The von Mises equivalent stress of a symmetric stress (xx, yy, zz, xy, yz, xz).
+double von_mises(const double s[6]) {
+  const double a = s[0] - s[1], b = s[1] - s[2], c = s[2] - s[0];
+  return std::sqrt(0.5 * (a * a + b * b + c * c) + 3.0 * (s[3] * s[3] + s[4] * s[4] + s[5] * s[5]));
+}
+
+}  // namespace
 
 Result pd_eps_bar(const Settings& settings) {
   const double E = 70e9, nu = 0.3, sy = 100e6, h = 0.001;
@@ -84,8 +93,8 @@ max_iterations = 100000
     const auto& x = m.reference_position[i];
     if (std::abs(x[0] - xa) < 0.5 * h) slice_a.push_back(i);
     if (std::abs(x[0] - xb) < 0.5 * h) slice_b.push_back(i);
-    const double lateral = std::min({x[1], width - x[1], x[2], width - x[2]});
-    if (x[0] > xa && x[0] < xb && lateral > horizon) interior.push_back(i);
+    const double to_face = std::min({x[1], width - x[1], x[2], width - x[2]});
+    if (x[0] > xa && x[0] < xb && to_face > horizon) interior.push_back(i);
     if (x[0] > length - h) right.push_back(i);
   }
   auto mean_u = [&](const std::vector<std::size_t>& slice) {
@@ -94,7 +103,7 @@ max_iterations = 100000
     return sum / static_cast<double>(slice.size());
   };
   pd::DynamicRelaxation<3> dr(m);
-  std::vector<double> strain, stress, nominal;
+  std::vector<double> strain, stress, nominal, lateral, mises;
   int iterations = 0;
   bool converged = true;
   for (int step = 1; step <= steps; ++step) {
@@ -102,11 +111,14 @@ max_iterations = 100000
     iterations += r.iterations;
     converged = converged && r.converged;
     const auto sigma = pd::particle_stress<3>(m);
-    double sum = 0.0, reaction = 0.0;
-    for (auto i : interior) sum += sigma[6 * i];
+    double mean[6] = {}, reaction = 0.0;
+    for (auto i : interior)
+      for (int c = 0; c < 6; ++c) mean[c] += sigma[6 * i + c] / static_cast<double>(interior.size());
     for (auto i : right) reaction -= m.force[i][0] * m.volume[i];
     strain.push_back((mean_u(slice_b) - mean_u(slice_a)) / (xb - xa));
-    stress.push_back(sum / static_cast<double>(interior.size()));
+    stress.push_back(mean[0]);
+    lateral.push_back(0.5 * (mean[1] + mean[2]));
+    mises.push_back(von_mises(mean));
     nominal.push_back(reaction / (width * width));
   }
   // slope before yield (the first step, a quarter of the yield strain... of the grips' strain), flow
@@ -126,8 +138,9 @@ max_iterations = 100000
   for (double e : errors) worst = !(std::abs(e) <= std::abs(worst)) ? e : worst;  // a NaN is the worst
   if (!settings.output_dir.empty()) {
     std::ofstream f(settings.output_dir + "/pd_eps_bar.csv");
-    f << "strain,stress_gauge,stress_nominal\n";
-    for (std::size_t k = 0; k < strain.size(); ++k) f << strain[k] << "," << stress[k] << "," << nominal[k] << "\n";
+    f << "strain,stress_gauge,stress_nominal,lateral_gauge,von_mises_gauge\n";
+    for (std::size_t k = 0; k < strain.size(); ++k)
+      f << strain[k] << "," << stress[k] << "," << nominal[k] << "," << lateral[k] << "," << mises[k] << "\n";
   }
   Result r;
   r.name = "pd_eps_bar";
