@@ -5,6 +5,9 @@
 // cracks: viscous_fluid.hpp), lets a borehole's wall break down, and adds the pressure bonds' and the
 // network's forces to the body force (crack_pressure.hpp, network_load.hpp).
 #pragma once
+#include <algorithm>
+#include <cstddef>
+#include <cstdint>
 #include <optional>
 #include <vector>
 
@@ -25,6 +28,11 @@ class FluidPressure {
   void add_pressure_forces(pd::Model<D>& m, double t) const;
   /// The fluid is in equilibrium with the rock: the wet rock takes its pressures (pore_stretch.hpp).
   void at_equilibrium(pd::Model<D>& m) const { equilibrate_pore_pressure<D>(m); }
+  /// How many fluid sources have vented at the outer surface so far (FluidNetwork::broke_through).
+  std::size_t broken_through(const pd::Model<D>& m) const {
+    const auto& b = m.fluid_network.broke_through;
+    return static_cast<std::size_t>(std::count(b.begin(), b.end(), std::uint8_t{1}));
+  }
   /// Whether a fluid's pressure follows the deformation (an injected fluid's, its cavity's volume).
   bool state_dependent() const {
     for (const auto& p : sources_)

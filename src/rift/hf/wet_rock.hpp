@@ -12,6 +12,7 @@
 #pragma once
 #include <cstddef>
 #include <cstdint>
+#include <memory>
 #include <utility>
 #include <vector>
 
@@ -67,15 +68,27 @@ bool breaks_in_wet_rock(const WetRock<D>& wet, double alpha, std::size_t i, std:
   return crossed;
 }
 
+/// A pass's view of the wet rock (pd/bond_coupling.hpp BondBreaker), made once per pass.
+template <int D>
+class WetRockBreaker final : public pd::BondBreaker {
+ public:
+  explicit WetRockBreaker(const WetRock<D>& wet) : wet_(wet) {}
+  const double* pore_stretch() const override { return wet_.pore_stretch; }
+  bool breaks(double alpha, std::size_t i, std::size_t j, double xi, double value, double limit, bool& crossed) const override {
+    return breaks_in_wet_rock<D>(wet_, alpha, i, j, xi, value, limit, crossed);
+  }
+
+ private:
+  WetRock<D> wet_;
+};
+
 /// The wet rock as the bond passes' coupling (pd/bond_coupling.hpp): active where a crack holds fluid.
 template <int D>
 class WetRockCoupling final : public pd::BondCoupling<D> {
  public:
   bool active(const Model<D>& m) const override { return !m.fluid_network.crack_surface.empty(); }
-  const double* pore_stretch(const Model<D>& m) const override { return wet_rock<D>(m).pore_stretch; }
-  bool breaks(const Model<D>& m, double alpha, std::size_t i, std::size_t j, double xi, double value, double limit,
-              bool& crossed) const override {
-    return breaks_in_wet_rock<D>(wet_rock<D>(m), alpha, i, j, xi, value, limit, crossed);
+  std::unique_ptr<const pd::BondBreaker> breaker(const Model<D>& m) const override {
+    return std::make_unique<const WetRockBreaker<D>>(wet_rock<D>(m));
   }
   void broke_across(Model<D>& m, const std::vector<std::pair<std::size_t, std::int64_t>>& crossing) const override {
     record_crossing_breaks<D>(m, crossing);

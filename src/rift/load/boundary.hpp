@@ -28,6 +28,7 @@ class Boundaries final : public pd::Loads<D> {
   /// No boundary condition follows the deformation.
   bool state_dependent() const override { return false; }
   void at_equilibrium(pd::Model<D>&) const override {}
+  std::size_t broken_through(const pd::Model<D>&) const override { return 0; }
   /// Reaction force of each tagged region: minus the internal force its particles carry, over the
   /// owned particles of every rank of `comm` (a distributed run's), summed exactly.
   std::vector<Vec<D>> reactions(const pd::Model<D>& m, const parallel::Communicator& comm = parallel::Communicator::one()) const;

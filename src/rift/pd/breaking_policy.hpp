@@ -45,15 +45,13 @@ struct DryBreaking {
 /// A bond taken one by one where the model's coupling acts (bond_coupling.hpp; hydraulic fracture's
 /// wet rock: on its effective stretch where it crosses a crack that holds fluid); `crossed` says
 /// whether it crosses, where that matters.
-template <int D>
 struct WetBreaking {
-  const BondCoupling<D>* coupling = nullptr;
-  const Model<D>* model = nullptr;
-  const double* pore = nullptr;  // the coupling's pore stretch (nullptr: none yet, the runs' limits not shifted)
-  double alpha = 0.0;            // the body's: s0 = s00 - alpha s_min
+  const BondBreaker* breaker = nullptr;  // the coupling's, for this pass
+  const double* pore = nullptr;          // its pore stretch (nullptr: none yet, the runs' limits not shifted)
+  double alpha = 0.0;                    // the body's: s0 = s00 - alpha s_min
   const double* pore_stretch() const { return pore; }
   bool breaks(bool breakable, std::size_t i, std::size_t j, double xi, double value, double limit, bool /*past*/, bool& crossed) const {
-    return breakable && coupling->breaks(*model, alpha, i, j, xi, value, limit, crossed);
+    return breakable && breaker->breaks(alpha, i, j, xi, value, limit, crossed);
   }
 };
 
@@ -76,8 +74,12 @@ template <int D, class Pass>
 void with_breaking(const Model<D>& m, double alpha, Pass&& pass) {
   if (!m.coupling && !m.fluid_network.crack_surface.empty())
     throw std::logic_error("a crack holds fluid but the model has no bond coupling (hf::FluidPressure installs the wet rock's)");
-  if (m.coupling && m.coupling->active(m)) pass(WetBreaking<D>{m.coupling, &m, m.coupling->pore_stretch(m), alpha});
-  else pass(DryBreaking{});
+  if (m.coupling && m.coupling->active(m)) {
+    const auto breaker = m.coupling->breaker(m);
+    pass(WetBreaking{breaker.get(), breaker->pore_stretch(), alpha});
+  } else {
+    pass(DryBreaking{});
+  }
 }
 
 /// After a pass: the model's coupling takes the bonds it broke across the crack.

@@ -233,22 +233,13 @@ RelaxationResult DynamicRelaxation<D>::relax(Model<D>& m, const Loads<D>& loads,
   return result;
 }
 
-namespace {
-// fluid sources that have reached the outer surface so far
-template <int D>
-std::size_t broken_through_sources(const Model<D>& m) {
-  const auto& b = m.fluid_network.broke_through;
-  return static_cast<std::size_t>(std::count(b.begin(), b.end(), std::uint8_t{1}));
-}
-}  // namespace
-
 template <int D>
 RelaxationResult DynamicRelaxation<D>::relax_breaking_at_equilibrium(Model<D>& m, const Loads<D>& loads,
                                                                       Contact<D>* contact, double t, int max_iterations,
                                                                       double tolerance, int max_passes) {
   RelaxationResult total;
   total.breaking_passes = 0;
-  std::size_t broken_through = broken_through_sources<D>(m);
+  std::size_t broken_through = loads.broken_through(m);
   int first_pass = 0;
   if (is_unfinished()) {  // a load step a stop cut short, in its pass `pass`
     first_pass = unfinished_.pass, total.breaking_passes = unfinished_.pass, total.iterations = unfinished_.iterations;
@@ -270,7 +261,7 @@ RelaxationResult DynamicRelaxation<D>::relax_breaking_at_equilibrium(Model<D>& m
     total.residual = r.residual;
     total.converged = r.converged;
     ++total.breaking_passes;
-    if (broken_through_sources<D>(m) > broken_through) break;  // the test is over: no more growth
+    if (loads.broken_through(m) > broken_through) break;  // the test is over: no more growth
     const std::size_t before = failed_bonds<D>(m);
     compute_forces<D>(m, contact);  // breaks what is past its limit at this equilibrium
     // (a bond a rank breaks its owner breaks too: every rank of a distributed run goes on alike)

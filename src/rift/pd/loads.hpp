@@ -2,6 +2,8 @@
 // loads on a model, at the named stages of their step. The boundary conditions (load/boundary.hpp)
 // answer it alone; a scene's loads (run/scene_loads.hpp) add the fluid's pressure (hf/).
 #pragma once
+#include <cstddef>
+
 #include "rift/pd/model.hpp"
 
 namespace rift::pd {
@@ -23,6 +25,9 @@ class Loads {
   /// The fluid and the rock have come to equilibrium: the end of a time step, of a relaxation, or of
   /// a converged static solve (hf/pore_stretch.hpp: the wet rock takes the fluid's pressure).
   virtual void at_equilibrium(Model<D>& m) const = 0;
+  /// How many of the loads' fluid sources have broken through to the outer surface so far: a
+  /// laboratory test ends there, so a load step's breaking passes stop where the count grows.
+  virtual std::size_t broken_through(const Model<D>& m) const = 0;
 
  protected:
   Loads() = default;

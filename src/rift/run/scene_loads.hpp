@@ -23,6 +23,7 @@ class SceneLoads final : public pd::Loads<D> {
   void prescribe_position(pd::Model<D>& m, double t) const override { boundaries.prescribe_position(m, t); }
   bool state_dependent() const override { return fluid.state_dependent(); }
   void at_equilibrium(pd::Model<D>& m) const override { fluid.at_equilibrium(m); }
+  std::size_t broken_through(const pd::Model<D>& m) const override { return fluid.broken_through(m); }
 
   load::Boundaries<D> boundaries;
   hf::FluidPressure<D> fluid;
