@@ -34,6 +34,7 @@ Result pd_momentum(const Settings&);
 Result pd_fracture_energy(const Settings&);
 Result pd_quasistatic_plate(const Settings&);
 Result pd_eps_bar(const Settings&);
+Result pd_eps_bar_plane_stress(const Settings&);
 Result kalthoff_winkler(const Settings&);
 Result glass_branching(const Settings&);
 Result mpm_energy(const Settings&);

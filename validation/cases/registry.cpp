@@ -11,6 +11,7 @@ const std::vector<Entry>& all_cases() {
       {"pd_homogeneous", pd_homogeneous},         {"pd_wave_speed", pd_wave_speed},
       {"pd_momentum", pd_momentum},               {"pd_fracture_energy", pd_fracture_energy},
       {"pd_quasistatic_plate", pd_quasistatic_plate}, {"pd_eps_bar", pd_eps_bar},
+      {"pd_eps_bar_plane_stress", pd_eps_bar_plane_stress},
       {"kalthoff_winkler", kalthoff_winkler},
       {"glass_branching", glass_branching},       {"mpm_energy", mpm_energy},
       {"mpm_cantilever", mpm_cantilever},         {"mpm_disks", mpm_disks},
