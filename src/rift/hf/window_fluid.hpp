@@ -2,9 +2,11 @@
 // sources' state as it is, a viscous fluid's nodes and pressures, the particles' labels, marks and
 // network load of a continued run cut to the window (a run that starts has none yet; they follow from
 // the bonds' states and the sources', fluid_network.hpp), the outer surface cut to the window, the
-// crossing marks and open interface bonds of the window's rows, and the crack surface made again.
+// crossing marks and open interface bonds of the window's rows, and the crack surface made again;
+// and how far past its owned range a window reaches where the fluid reads far.
 #pragma once
 #include <algorithm>
+#include <cstddef>
 #include <cstdint>
 #include <vector>
 
@@ -13,6 +15,29 @@
 #include "rift/pd/window.hpp"
 
 namespace rift::hf {
+
+/// How many bonds' reaches a window holds past its owned range where a fluid fills cracks that grow
+/// (fluid_network.hpp) or flows (fluid_reads_far): the network load of an owned particle reads the
+/// network ends among its neighbours, each end its whole row (two reaches of whole rows); the crack
+/// surface an owned bond may cross has its patches and their normals from the short bonds around the
+/// bond's ends, a spacing or two further.
+inline constexpr std::size_t fluid_ghost_reaches = 3;
+
+/// Whether the scene's fluid fills cracks that can grow (pressure bonds in rock whose bonds break),
+/// or flows along them (viscous_fluid.hpp: a flow bond's conductance reads the bulk strain and the
+/// family moments of its ends, an owned particle's neighbour among them, each over its whole row),
+/// or the scene has interfaces (pd/interface_law.hpp: the law of a bond with an owned end reads the
+/// fluid in the interface at its other end, over that end's whole row).
+template <int D>
+bool fluid_reads_far(const Model<D>& m) {
+  if (!m.interface_bonds.laws.empty()) return true;
+  if (m.crack_bonds.neighbor.empty()) return false;
+  for (std::size_t s = 0; s < m.fluid_network.dry.size(); ++s)
+    if (m.fluid_network.flows(s)) return true;
+  for (const pd::BodyInfo& body : m.bodies)
+    if (body.constants.critical_stretch > 0.0) return true;
+  return false;
+}
 
 /// The fluid of window w (`window`: its particles' numbers in the whole model m), from m's.
 template <int D>

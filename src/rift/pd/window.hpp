@@ -26,7 +26,7 @@ struct Partition {
 /// at a lattice line's start (Model::continues_line; a rank may own none where there are more
 /// ranks than lines). Each window reaches `reaches` times the
 /// bonds' reach past its owned range: one for the bond passes; a fluid whose cracks grow reads
-/// further (fluid_ghost_reaches).
+/// further (hf/window_fluid.hpp fluid_ghost_reaches).
 template <int D>
 Partition partition_by_bonds(const Model<D>& m, int ranks, std::size_t reaches = 1);
 
@@ -45,29 +45,6 @@ Partition partition_into_pencils(const Model<D>& m, int across_y, int across_z, 
 /// cut across y holds fewer (a flat plate, many ranks on a cube). A 2D model's is {1, ranks}.
 template <int D>
 std::array<int, 2> choose_pencils(const Model<D>& m, int ranks);
-
-/// How many bonds' reaches a window holds past its owned range where a fluid fills cracks that
-/// grow (hf/fluid_network.hpp) or flows (fluid_reads_far): the network load of an owned particle reads the network ends among its
-/// neighbours, each end its whole row (two reaches of whole rows); the crack surface an owned bond
-/// may cross has its patches and their normals from the short bonds around the bond's ends, a
-/// spacing or two further.
-inline constexpr std::size_t fluid_ghost_reaches = 3;
-
-/// Whether the scene's fluid fills cracks that can grow (pressure bonds in rock whose bonds break),
-/// or flows along them (hf/viscous_fluid.hpp: a flow bond's conductance reads the bulk strain and the
-/// family moments of its ends, an owned particle's neighbour among them, each over its whole row),
-/// or the scene has interfaces (interface_law.hpp: the law of a bond with an owned end reads the
-/// fluid in the interface at its other end, over that end's whole row).
-template <int D>
-bool fluid_reads_far(const Model<D>& m) {
-  if (!m.interface_bonds.laws.empty()) return true;
-  if (m.crack_bonds.neighbor.empty()) return false;
-  for (std::size_t s = 0; s < m.fluid_network.dry.size(); ++s)
-    if (m.fluid_network.flows(s)) return true;
-  for (const BodyInfo& body : m.bodies)
-    if (body.constants.critical_stretch > 0.0) return true;
-  return false;
-}
 
 /// `window` (ranges of the whole numbering, holding every neighbour of the `owned` particles) grown
 /// to hold both ends of every pair of each of the whole model's bond runs (bond_runs.hpp) with an

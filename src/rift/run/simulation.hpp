@@ -77,7 +77,7 @@ struct Simulation {
       throw SceneError({s.file, 0, 0}, "--processor-grid",
                        "a peridynamic run on " + n + " ranks takes " + (D == 3 ? "a grid " : "") + as +
                            " (slabs or pencils: each lattice line along x stays whole, a range of the particles' numbering)");
-    const std::size_t reaches = pd::fluid_reads_far<D>(model) ? pd::fluid_ghost_reaches : 1;
+    const std::size_t reaches = hf::fluid_reads_far<D>(model) ? hf::fluid_ghost_reaches : 1;
     if (D == 3 && grid[1] > 1) {
       partition = pd::partition_into_pencils<D>(model, grid[1], grid[D - 1], reaches);
       for (std::size_t r = 0; r < partition.owned.size() && grid[1] > 1; ++r) {
