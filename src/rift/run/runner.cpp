@@ -21,7 +21,7 @@
 #include "rift/io/history.hpp"
 #include "rift/pd/dynamic_relaxation.hpp"
 #include "rift/pd/checkpoint_state.hpp"
-#include "rift/geomech/interface_outcome.hpp"
+#include "rift/geomech/interface_record.hpp"
 #include "rift/pd/laws/registry.hpp"
 #include "rift/pd/stress.hpp"
 #include "rift/run/cadence.hpp"
@@ -239,6 +239,149 @@ std::string load_balance(const parallel::Communicator& comm, const pd::Model<D>&
   return out;
 }
 
+/// What a history row's providers read besides the model: the row's energies, largest damage and
+/// solver columns, and whether a fluid has broken through by now.
+struct RowState {
+  pd::EnergySummary energy;
+  double max_damage = 0.0;
+  std::vector<double> solver;
+  bool vented = false;
+};
+
+/// The history's columns of a PD run, each group from its provider: the energies, the probes'
+/// damage, the injected boreholes' pressure, cavity volume and venting, the interfaces' outcomes,
+/// the reactions, and the relaxation's own.
+template <int D>
+HistoryColumns pd_history_columns(const scene::Scene& s, Simulation<D>& p, std::vector<std::size_t> probes, RowState& row,
+                                  geomech::InterfaceRecord& interfaces) {
+  const auto& comm = parallel::Communicator::world();
+  auto& m = p.model;
+  HistoryColumns columns;
+  columns.add(s.output.history, [&s, &row](std::vector<double>& r) {
+    for (const auto& q : s.output.history) {
+      if (q == "kinetic_energy") r.push_back(row.energy.kinetic);
+      else if (q == "strain_energy") r.push_back(row.energy.strain);
+      else if (q == "total_energy") r.push_back(row.energy.kinetic + row.energy.strain);
+      else if (q == "broken_bonds") r.push_back(double(row.energy.broken_bonds));
+      else if (q == "max_damage") r.push_back(row.max_damage);
+    }
+  });
+  {
+    // the damage of probe k: its owner's (the others add nothing)
+    std::vector<std::string> names;
+    for (std::size_t k = 0; k < probes.size(); ++k) names.push_back("damage_probe_" + std::to_string(k));
+    columns.add(names, [&comm, &m, probes](std::vector<double>& r) {
+      for (auto g : probes) {
+        const std::size_t i = m.numbering.here(g);
+        r.push_back(comm.sum(i != pd::Numbering::none && m.owns(i) ? m.damage[i] : 0.0));
+      }
+    });
+  }
+  {
+    std::vector<std::size_t> injected;  // pressure sources fed by an injection rate: their pressure and cavity volume
+    std::vector<std::string> names;
+    for (std::size_t k = 0; k < s.boreholes.size(); ++k)
+      if (s.boreholes[k].injection_rate) {
+        injected.push_back(s.cracks.size() + k);
+        for (const char* q : {"pressure_borehole_", "cavity_volume_borehole_", "vented_borehole_"}) names.push_back(q + std::to_string(k));
+      }
+    columns.add(names, [&m, &row, injected](std::vector<double>& r) {
+      bool& vented = row.vented;
+      vented = false;
+      for (auto c : injected) {
+        const bool v = c < m.fluid_network.broke_through.size() && m.fluid_network.broke_through[c] != 0;
+        r.insert(r.end(), {m.fluid_network.pressure[c], m.fluid_network.cavity_volume[c], double(v)});
+        vented = vented || v;
+      }
+    });
+  }
+  columns.add(geomech::InterfaceRecord::column_names(s.interfaces.size()),
+              [&m, &row, &interfaces](std::vector<double>& r) { interfaces.row<D>(m, m.time, row.vented, r); });
+  {
+    std::vector<std::string> names;
+    for (const auto& r : p.loads.boundaries.reaction_names())
+      for (int k = 0; k < D; ++k) names.push_back("reaction_" + r + "_" + "xyz"[k]);
+    columns.add(names, [&comm, &m, &p](std::vector<double>& r) {
+      for (const auto& f : p.loads.boundaries.reactions(m, comm)) r.insert(r.end(), f.begin(), f.end());
+    });
+  }
+  if (s.solver.kind == scene::SolverKind::dynamic_relaxation) {
+    std::vector<std::string> names{"iterations", "residual"};
+    if (s.solver.breaking == scene::Solver::Breaking::at_equilibrium) names.push_back("breaking_passes");
+    columns.add(names, [&row](std::vector<double>& r) { r.insert(r.end(), row.solver.begin(), row.solver.end()); });
+  }
+  return columns;
+}
+
+/// The in-situ stage ([in_situ_stress]; Simulation::equilibrate_in_situ) and its note; false where a
+/// stop cut it short (its checkpoint, written here, starts the run again from the beginning).
+template <int D>
+bool in_situ_stage(Simulation<D>& p, const scene::Scene& s, const Options& o, Result& res) {
+  const auto in_situ_start = std::chrono::steady_clock::now();
+  const auto r = p.equilibrate_in_situ(s.in_situ);
+  res.in_situ_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - in_situ_start).count();
+  if (r.stopped) {  // its solves do not resume: the checkpoint starts the run again
+    Checkpointing(s, o, res.output_dir).after_stop_before_start(res, [](io::CheckpointWriter& w) {
+      std::uint8_t from_start = 1;
+      w("run.from_start", from_start);
+    });
+    res.stopped_in = "in the in-situ stage (its checkpoint starts the run again from the beginning)";
+    return false;
+  }
+  const bool cg = p.uses_conjugate_gradients(s.in_situ);
+  const std::string how = !(r.density_factor > 0.0) ? std::string("force evaluations of preconditioned conjugate gradients")
+                          : fmt::format("{} (fictitious density {:.3g} times the row-sum bound, measured)",
+                                        cg ? "force evaluations, conjugate gradients then dynamic relaxation" : "iterations of dynamic relaxation",
+                                        r.density_factor);
+  res.notes.push_back(fmt::format("in-situ stage: {} in {} {} (residual {:.3g}, tolerance {:g})", r.converged ? "equilibrium" : "NOT converged",
+                                  r.iterations, how, r.residual, s.in_situ.tolerance));
+  if (!r.converged && !o.quiet)
+    std::fprintf(stderr, "rift: warning: the in-situ stage did not converge in %d iterations (residual %.3g > %.3g)\n", r.iterations,
+                 r.residual, s.in_situ.tolerance);
+  return true;
+}
+
+/// The final outcome at each interface, in the result and its notes.
+template <int D>
+void report_interfaces(const pd::Model<D>& m, geomech::InterfaceRecord& interfaces, Result& res) {
+  const auto& outcomes = interfaces.final_outcomes<D>(m);
+  for (std::size_t k = 0; k < outcomes.size(); ++k) {
+    const auto& o = outcomes[k];
+    res.interface_outcomes.push_back(o.name());
+    const std::string when = interfaces.vent_time < 0.0
+                                 ? ""
+                                 : fmt::format(", as at t = {:g} s, when the fluid broke through to the outer surface", interfaces.vent_time);
+    res.notes.push_back(fmt::format("interface {}: {} (broken rock up to {:.3g} mm past it, open and wet along {:.3g} mm of it{})", k, o.name(),
+                                    1e3 * o.crossing_distance, 1e3 * o.opened_length, when));
+  }
+}
+
+/// The final damage's histogram and (2D) image, drawn on rank 0 from every particle's damage and
+/// position.
+template <int D>
+void draw_final_damage(const scene::Scene& s, const pd::Model<D>& m, const parallel::Communicator& comm, std::size_t particles, Result& res) {
+  const auto damage = gather_owned<D>(comm, m, m.damage, 1);
+  const auto positions = gather_owned<D>(comm, m, vector_field<D>(m, m.position, false), 3);
+  if (!comm.root()) return;
+  if (s.output.damage_histogram) {
+    std::string png = res.output_dir + "/damage_histogram.png", reason;
+    const bool drawn = io::write_damage_histogram(res.output_dir, png, io::damage_histogram(damage),
+                                                  s.name + ": damage at t = " + std::to_string(m.time) + " s", reason);
+    res.files.push_back({"histogram", res.output_dir + "/damage_histogram.csv"});
+    if (drawn) res.files.push_back({"chart", png});
+    else res.notes.push_back("damage histogram chart not written: " + reason);
+  }
+  if (D == 2 && s.output.damage_image) {
+    std::vector<double> x(particles), y(particles);
+    for (std::size_t i = 0; i < particles; ++i) x[i] = positions[3 * i], y[i] = positions[3 * i + 1];
+    std::string png = res.output_dir + "/damage.png", reason;
+    if (io::write_damage_image(res.output_dir, png, x, y, damage, s.name + ": damage at t = " + std::to_string(m.time) + " s", reason))
+      res.files.push_back({"damage", png});
+    else
+      res.notes.push_back("damage image not written: " + reason);
+  }
+}
+
 template <int D>
 Result run_dim(const scene::Scene& s, const Options& o) {
   const auto run_start = std::chrono::steady_clock::now();
@@ -249,11 +392,6 @@ Result run_dim(const scene::Scene& s, const Options& o) {
   if (const auto w = snapshots_past_steps(s, p.steps); !w.empty() && comm.root()) std::fprintf(stderr, "%s\n", w.c_str());
   const std::size_t particles = p.model.size();
   auto& m = p.model;
-  // the damage of probe k: its owner's (the others add nothing)
-  auto probe_damage = [&](std::size_t g) {
-    const std::size_t i = m.numbering.here(g);
-    return comm.sum(i != pd::Numbering::none && m.owns(i) ? m.damage[i] : 0.0);
-  };
   Result res;
   res.output_dir = o.output_dir.empty() ? "results/" + s.name : o.output_dir;
   io::FieldWriter fields(res.output_dir, "fields", particles, comm.distributed());
@@ -262,18 +400,16 @@ Result run_dim(const scene::Scene& s, const Options& o) {
   const bool relaxation = s.solver.kind == scene::SolverKind::dynamic_relaxation;
   std::optional<pd::DynamicRelaxation<D>> dr;
 
-  // The loop's own state, which a checkpoint holds with the model's (pd/checkpoint_state.hpp).
-  // The outcome at the interfaces, as recorded up to the history row where the fluid first broke
-  // through to the outer surface (a laboratory test ends there, its pressure lost; the load step's
-  // bonds stop breaking then, pd/dynamic_relaxation.hpp), and when it broke through.
-  std::vector<geomech::InterfaceOutcome> outcomes, outcomes_at_breakthrough;
-  double vent_time = -1.0;
+  // The loop's own state, which a checkpoint holds with the model's (pd/checkpoint_state.hpp): the
+  // outputs' cadences, the outcome at the interfaces, the notes, the history's length.
+  geomech::InterfaceRecord interfaces;
   Cadence snapshots{s.output.count, p.steps}, history_rows{s.output.history_count, p.steps};
   std::int64_t history_bytes = 0;
   // a distributed run's checkpoint holds the whole run's model, gathered on rank 0 (`whole`)
   auto visit_run = [&](auto& a, Simulation<D>& state) {
-    a("run.next_snapshot", snapshots.next), a("run.next_history", history_rows.next), a("run.outcomes", outcomes);
-    a("run.outcomes_at_breakthrough", outcomes_at_breakthrough), a("run.vent_time", vent_time), a("run.notes", res.notes);
+    a("run.next_snapshot", snapshots.next), a("run.next_history", history_rows.next);
+    interfaces.visit(a);
+    a("run.notes", res.notes);
     a("run.history_bytes", history_bytes);
     fields.visit_state(a);
     pd::visit(a, state.model);
@@ -321,68 +457,8 @@ Result run_dim(const scene::Scene& s, const Options& o) {
   // the history's columns, each group from its provider; a row's energies and the solver's own
   // columns are the row's (history_row)
   const bool at_equilibrium = s.solver.breaking == scene::Solver::Breaking::at_equilibrium;
-  pd::EnergySummary row_energy;
-  double row_max_damage = 0.0;
-  std::vector<double> row_solver;
-  HistoryColumns columns;
-  columns.add(s.output.history, [&](std::vector<double>& row) {
-    for (const auto& q : s.output.history) {
-      if (q == "kinetic_energy") row.push_back(row_energy.kinetic);
-      else if (q == "strain_energy") row.push_back(row_energy.strain);
-      else if (q == "total_energy") row.push_back(row_energy.kinetic + row_energy.strain);
-      else if (q == "broken_bonds") row.push_back(double(row_energy.broken_bonds));
-      else if (q == "max_damage") row.push_back(row_max_damage);
-    }
-  });
-  {
-    std::vector<std::string> names;
-    for (std::size_t k = 0; k < probes.size(); ++k) names.push_back("damage_probe_" + std::to_string(k));
-    columns.add(names, [&](std::vector<double>& row) {
-      for (auto g : probes) row.push_back(probe_damage(g));
-    });
-  }
-  std::vector<std::size_t> injected;  // pressure sources fed by an injection rate: their pressure and cavity volume
-  bool row_vented = false;
-  {
-    std::vector<std::string> names;
-    for (std::size_t k = 0; k < s.boreholes.size(); ++k)
-      if (s.boreholes[k].injection_rate) {
-        injected.push_back(s.cracks.size() + k);
-        for (const char* q : {"pressure_borehole_", "cavity_volume_borehole_", "vented_borehole_"}) names.push_back(q + std::to_string(k));
-      }
-    columns.add(names, [&](std::vector<double>& row) {
-      row_vented = false;
-      for (auto c : injected) {
-        const bool v = c < m.fluid_network.broke_through.size() && m.fluid_network.broke_through[c] != 0;
-        row.insert(row.end(), {m.fluid_network.pressure[c], m.fluid_network.cavity_volume[c], double(v)});
-        row_vented = row_vented || v;
-      }
-    });
-  }
-  {
-    std::vector<std::string> names;
-    for (std::size_t k = 0; k < s.interfaces.size(); ++k)
-      for (const char* q : {"crossed", "dilated", "crossing_distance", "opened_length"}) names.push_back(std::string(q) + "_interface_" + std::to_string(k));
-    columns.add(names, [&](std::vector<double>& row) {
-      geomech::record_outcomes(outcomes, geomech::classify_interfaces<D>(m));
-      for (const auto& o : outcomes) row.insert(row.end(), {double(o.crossed), double(o.dilated), o.crossing_distance, o.opened_length});
-      if (vent_time < 0.0) outcomes_at_breakthrough = outcomes;
-      if (row_vented && vent_time < 0.0) vent_time = m.time;
-    });
-  }
-  {
-    std::vector<std::string> names;
-    for (const auto& r : p.loads.boundaries.reaction_names())
-      for (int k = 0; k < D; ++k) names.push_back("reaction_" + r + "_" + "xyz"[k]);
-    columns.add(names, [&](std::vector<double>& row) {
-      for (const auto& r : p.loads.boundaries.reactions(m, comm)) row.insert(row.end(), r.begin(), r.end());
-    });
-  }
-  if (relaxation) {
-    std::vector<std::string> names{"iterations", "residual"};
-    if (at_equilibrium) names.push_back("breaking_passes");
-    columns.add(names, [&](std::vector<double>& row) { row.insert(row.end(), row_solver.begin(), row_solver.end()); });
-  }
+  RowState row_state;
+  const HistoryColumns columns = pd_history_columns<D>(s, p, probes, row_state, interfaces);
   std::optional<io::History> history;  // rank 0's
   if (comm.root() && restarted) history.emplace(res.output_dir + "/history.csv", history_bytes);
   if (comm.root() && !restarted) history.emplace(res.output_dir + "/history.csv", columns.names());
@@ -391,42 +467,17 @@ Result run_dim(const scene::Scene& s, const Options& o) {
   const bool strain_column = std::any_of(s.output.history.begin(), s.output.history.end(),
                                          [](const std::string& q) { return q == "strain_energy" || q == "total_energy"; });
   auto history_row = [&](long step, std::vector<double> solver) {
-    row_energy = pd::summarize_and_update_damage<D>(m, strain_column);
-    check_finite<D>(m, step, row_energy);
-    row_max_damage = max_damage<D>(comm, m);
-    row_solver = std::move(solver);
+    row_state.energy = pd::summarize_and_update_damage<D>(m, strain_column);
+    check_finite<D>(m, step, row_state.energy);
+    row_state.max_damage = max_damage<D>(comm, m);
+    row_state.solver = std::move(solver);
     const std::vector<double> row = columns.row(m.time, step);
     if (history) history->row(row);
-    return row_energy;
+    return row_state.energy;
   };
 
-  if (s.in_situ.enabled && !restarted) {
-    const auto in_situ_start = std::chrono::steady_clock::now();
-    const auto r = p.equilibrate_in_situ(s.in_situ);
-    res.in_situ_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - in_situ_start).count();
-    if (r.stopped) {  // its solves do not resume: the checkpoint starts the run again
-      Checkpointing(s, o, res.output_dir).after_stop_before_start(res, [](io::CheckpointWriter& w) {
-        std::uint8_t from_start = 1;
-        w("run.from_start", from_start);
-      });
-      res.stopped_in = "in the in-situ stage (its checkpoint starts the run again from the beginning)";
-      return res;
-    }
-    const bool cg = p.uses_conjugate_gradients(s.in_situ);
-    const std::string how = !(r.density_factor > 0.0) ? std::string("force evaluations of preconditioned conjugate gradients")
-                            : fmt::format("{} (fictitious density {:.3g} times the row-sum bound, measured)",
-                                          cg ? "force evaluations, conjugate gradients then dynamic relaxation" : "iterations of dynamic relaxation",
-                                          r.density_factor);
-    res.notes.push_back(fmt::format("in-situ stage: {} in {} {} (residual {:.3g}, tolerance {:g})", r.converged ? "equilibrium" : "NOT converged",
-                                    r.iterations, how, r.residual, s.in_situ.tolerance));
-    if (!r.converged && !o.quiet)
-      std::fprintf(stderr, "rift: warning: the in-situ stage did not converge in %d iterations (residual %.3g > %.3g)\n", r.iterations,
-                   r.residual, s.in_situ.tolerance);
-  }
-  if (!restarted) {
-    geomech::record_outcomes(outcomes, geomech::classify_interfaces<D>(m));
-    outcomes_at_breakthrough = outcomes;
-  }
+  if (s.in_situ.enabled && !restarted && !in_situ_stage<D>(p, s, o, res)) return res;
+  if (!restarted) interfaces.start<D>(m);
   // the whole run's directed bonds (a distributed run's ranks each count their owned rows): the
   // in-situ stage's share broken and the bonds per second printed at the end
   const double bonds = comm.sum(double(m.owned_bonds()));
@@ -552,38 +603,9 @@ Result run_dim(const scene::Scene& s, const Options& o) {
   res.time = m.time;
   if (res.stopped) return res;  // the final state's reports belong to the run that ends
   res.steps = p.steps;
-  if (vent_time < 0.0) geomech::record_outcomes(outcomes, geomech::classify_interfaces<D>(m));
-  const auto& read_outcomes = vent_time < 0.0 ? outcomes : outcomes_at_breakthrough;
-  for (std::size_t k = 0; k < read_outcomes.size(); ++k) {
-    const auto& o = read_outcomes[k];
-    res.interface_outcomes.push_back(o.name());
-    const std::string when =
-        vent_time < 0.0 ? "" : fmt::format(", as at t = {:g} s, when the fluid broke through to the outer surface", vent_time);
-    res.notes.push_back(fmt::format("interface {}: {} (broken rock up to {:.3g} mm past it, open and wet along {:.3g} mm of it{})", k, o.name(),
-                                    1e3 * o.crossing_distance, 1e3 * o.opened_length, when));
-  }
+  report_interfaces<D>(m, interfaces, res);
   progress.finish(p.steps, m.time, res.final_energy.broken_fraction);
-  // the final damage and positions of every particle, on rank 0, which draws them
-  const auto damage = gather_owned<D>(comm, m, m.damage, 1);
-  const auto positions = gather_owned<D>(comm, m, vector_field<D>(m, m.position, false), 3);
-  if (!comm.root()) return res;
-  if (s.output.damage_histogram) {
-    std::string png = res.output_dir + "/damage_histogram.png", reason;
-    const bool drawn = io::write_damage_histogram(res.output_dir, png, io::damage_histogram(damage),
-                                                  s.name + ": damage at t = " + std::to_string(m.time) + " s", reason);
-    res.files.push_back({"histogram", res.output_dir + "/damage_histogram.csv"});
-    if (drawn) res.files.push_back({"chart", png});
-    else res.notes.push_back("damage histogram chart not written: " + reason);
-  }
-  if (D == 2 && s.output.damage_image) {
-    std::vector<double> x(particles), y(particles);
-    for (std::size_t i = 0; i < particles; ++i) x[i] = positions[3 * i], y[i] = positions[3 * i + 1];
-    std::string png = res.output_dir + "/damage.png", reason;
-    if (io::write_damage_image(res.output_dir, png, x, y, damage, s.name + ": damage at t = " + std::to_string(m.time) + " s", reason))
-      res.files.push_back({"damage", png});
-    else
-      res.notes.push_back("damage image not written: " + reason);
-  }
+  draw_final_damage<D>(s, m, comm, particles, res);
   return res;
 }
 
