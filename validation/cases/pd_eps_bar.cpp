@@ -136,7 +136,7 @@ max_iterations = 100000
     for (auto i : right) reaction -= m.force[i][0] * m.volume[i];
     strain.push_back((mean_u(slice_b) - mean_u(slice_a)) / (xb - xa));
     stress.push_back(mean[0]);
-    lateral.push_back(0.5 * (mean[1] + mean[2]));
+    lateral.push_back(D == 3 ? 0.5 * (mean[1] + mean[2]) : mean[1]);  // across the bar: yy (and zz in 3D)
     mises.push_back(von_mises(mean));
     nominal.push_back(reaction / section);
   }
