@@ -8,8 +8,8 @@ set(layers
   "scene"
   "geometry material fracture"
   "pd mpm"
-  "load"
-  "hf geomech"
+  "load geomech"
+  "hf"
   "io"
   "run")
 set(rank 0)

@@ -1,4 +1,4 @@
-// Pre-existing fractures ([[interfaces]], pd/interface_law.hpp): the bonds across one fail in shear
+// Pre-existing fractures ([[interfaces]], geomech/interface_law.hpp): the bonds across one fail in shear
 // by Mohr-Coulomb on the interface traction and in tension past the interface's tensile strength;
 // failed, each is a frictional contact. The outcome reader (geomech/interface_outcome.hpp) tells crossed,
 // dilated and arrested apart.
@@ -7,13 +7,15 @@
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
+#include <stdexcept>
 #include <string>
 
 #include "rift/hf/crack_junction.hpp"
 #include "rift/hf/fluid_network.hpp"
 #include "rift/pd/discretize.hpp"
 #include "rift/pd/forces.hpp"
-#include "rift/pd/interface_law.hpp"
+#include "rift/pd/stress.hpp"
+#include "rift/geomech/interface_stages.hpp"
 #include "rift/geomech/interface_outcome.hpp"
 #include "rift/scene/parse.hpp"
 #include "rock_scene.hpp"
@@ -26,6 +28,13 @@ constexpr double E = 10e9, nu = 0.25, spacing = 0.001, horizon = 3.015 * spacing
 
 // A 40 x 40 mm plane strain LPS block (rock that does not break), with an interface through its
 // middle from `a` to `b` and whatever `extra` adds.
+/// The model of a scene with its interfaces' force stages, as the run's set-up gives them.
+rift::pd::Model<2> discretize_with_interfaces(const rift::scene::Scene& s) {
+  auto m = rift::pd::discretize<2>(s);
+  rift::geomech::install_interface_stages<2>(m);
+  return m;
+}
+
 rift::scene::Scene block_with_interface(const std::string& a, const std::string& b, const std::string& law, const std::string& extra = "",
                                         const std::string& rock_critical_stretch = "1.0") {
   const std::string text = rift::test::plane_strain_rock("critical_stretch = " + rock_critical_stretch + "\n") + R"([regions.block]
@@ -54,7 +63,7 @@ void deform_and_apply_law(rift::pd::Model<2>& m, double exx, double eyy) {
   m.bodies[0].constants.breakable = false;
   rift::pd::compute_forces<2>(m, nullptr, 0.0);
   m.bodies[0].constants.breakable = true;
-  rift::pd::apply_interface_law<2>(m);
+  rift::geomech::apply_interface_law<2>(m);
 }
 
 // Interface bonds with both ends two horizons and a spacing inside the block (whole families for
@@ -94,13 +103,25 @@ TEST(InterfaceLaw, SlipsWhereTheShearTractionReachesCohesionPlusFriction) {
   std::snprintf(b, sizeof b, "[%.17g, %.17g]", 0.03 * std::cos(alpha), 0.03 * std::sin(alpha));
   for (double factor : {0.97, 1.03}) {
     auto s = block_with_interface(a, b, "tensile_strength = 1e9\ncohesion = 1e6\nfriction_coefficient = 0.3");
-    auto m = rift::pd::discretize<2>(s);
+    auto m = discretize_with_interfaces(s);
     const double S = factor * critical;
     deform_and_apply_law(m, S * nu * (1 + nu) / E, -S * (1 - nu * nu) / E);
     const auto [all, failed] = bulk_interface_bonds(m, [](const rift::Vec<2>&) { return true; });
     ASSERT_GT(all, 100);
     EXPECT_EQ(failed, factor < 1.0 ? 0 : all) << "at " << factor << " of the slip load";
   }
+}
+
+// The interfaces enter a force evaluation through the model's force stages (pd/force_stages.hpp),
+// which the run's set-up installs: a model with interfaces and none is a programming error, not a run
+// whose interfaces hold whatever the load (the force evaluation and the bond-pair stress throw).
+TEST(InterfaceLaw, AModelWithInterfacesAndNoForceStagesIsRefused) {
+  auto m = rift::pd::discretize<2>(block_with_interface("[-0.03, 0.0]", "[0.03, 0.0]", "tensile_strength = 1e6\nfriction_coefficient = 0.89"));
+  ASSERT_FALSE(m.interface_bonds.laws.empty());
+  EXPECT_THROW(rift::pd::compute_forces<2>(m, nullptr, 0.0), std::logic_error);
+  EXPECT_THROW(rift::pd::particle_stress<2>(m), std::logic_error);
+  rift::geomech::install_interface_stages<2>(m);
+  EXPECT_NO_THROW(rift::pd::compute_forces<2>(m, nullptr, 0.0));
 }
 
 // Tension: a horizontal interface under uniaxial tension S across it (plane strain: eps_yy =
@@ -111,7 +132,7 @@ TEST(InterfaceLaw, PartsWhereTheNormalTensionReachesItsStrength) {
   const double T = 1e6;
   for (double factor : {0.97, 1.03, -1.03}) {
     auto s = block_with_interface("[-0.03, 0.0]", "[0.03, 0.0]", "tensile_strength = 1e6\ncohesion = 1e6\nfriction_coefficient = 0.89");
-    auto m = rift::pd::discretize<2>(s);
+    auto m = discretize_with_interfaces(s);
     const double S = factor * T;
     deform_and_apply_law(m, -S * nu * (1 + nu) / E, S * (1 - nu * nu) / E);
     const auto [all, failed] = bulk_interface_bonds(m, [](const rift::Vec<2>&) { return true; });
@@ -120,7 +141,7 @@ TEST(InterfaceLaw, PartsWhereTheNormalTensionReachesItsStrength) {
   }
 }
 
-// A failed interface is a frictional contact (pd/interface_contact.hpp). With the upper half of the
+// A failed interface is a frictional contact (geomech/interface_contact.hpp). With the upper half of the
 // block moved rigidly by (dx, dy) every bond across has the same jump, so: pulled 1 um apart it
 // feels no force; pressed 1 um in, a normal force within 15% of the intact interface's (each bond
 // keeps its stiffness along n; the intact LPS adds its Poisson coupling); pressed 1 um and slid
@@ -134,7 +155,7 @@ TEST(InterfaceLaw, FailedInterfaceIsAFrictionalContact) {
   };
   auto net_force_on_upper_half = [&](bool failed, double dx, double dy) {
     auto s = block_with_interface("[-0.03, 0.0]", "[0.03, 0.0]", "tensile_strength = 1e9\ncohesion = 1e9\nfriction_coefficient = 0.5");
-    auto m = rift::pd::discretize<2>(s);
+    auto m = discretize_with_interfaces(s);
     if (failed)
       for (auto k : m.interface_bonds.slot) m.bonds.intact.set(static_cast<std::size_t>(k), rift::pd::bond_interface_failed);
     for (std::size_t i = 0; i < m.size(); ++i)
@@ -155,7 +176,7 @@ TEST(InterfaceLaw, FailedInterfaceIsAFrictionalContact) {
   // a step of explicit dynamics keeps the slip (2.5 um once slid 3 um against the cap mu g = 0.5 um):
   // moved back to 2.5 um the faces carry no shear; dynamic relaxation (history_dt = 0) holds the slip
   auto s = block_with_interface("[-0.03, 0.0]", "[0.03, 0.0]", "tensile_strength = 1e9\ncohesion = 1e9\nfriction_coefficient = 0.5");
-  auto m = rift::pd::discretize<2>(s);
+  auto m = discretize_with_interfaces(s);
   for (auto k : m.interface_bonds.slot) m.bonds.intact.set(static_cast<std::size_t>(k), rift::pd::bond_interface_failed);
   auto place_upper_half = [&](double dx) {
     for (std::size_t i = 0; i < m.size(); ++i)
@@ -185,7 +206,7 @@ TEST(InterfaceLaw, FaceOpeningLeavesOutTheStrainOfTheRock) {
   std::snprintf(a, sizeof a, "[%.17g, %.17g]", -0.03 * std::cos(alpha), -0.03 * std::sin(alpha));
   std::snprintf(b, sizeof b, "[%.17g, %.17g]", 0.03 * std::cos(alpha), 0.03 * std::sin(alpha));
   auto s = block_with_interface(a, b, "tensile_strength = 1e9\ncohesion = 1e9\nfriction_coefficient = 0.89");
-  auto m = rift::pd::discretize<2>(s);
+  auto m = discretize_with_interfaces(s);
   auto& ib = m.interface_bonds;
   for (auto k : ib.slot) m.bonds.intact.set(static_cast<std::size_t>(k), rift::pd::bond_interface_failed);
   auto place = [&](double lift) {
@@ -195,7 +216,7 @@ TEST(InterfaceLaw, FaceOpeningLeavesOutTheStrainOfTheRock) {
       m.position[i][0] = X[0] + exx * X[0] + exy * X[1];
       m.position[i][1] = X[1] + exy * X[0] + eyy * X[1] + (upper ? lift : 0.0);
     }
-    rift::pd::apply_interface_law<2>(m);
+    rift::geomech::apply_interface_law<2>(m);
   };
   place(0.0);
   ASSERT_EQ(ib.strain.size(), ib.particles.size());
@@ -214,9 +235,9 @@ TEST(InterfaceLaw, FaceOpeningLeavesOutTheStrainOfTheRock) {
         const auto k = static_cast<std::size_t>(ib.slot[static_cast<std::size_t>(q)]);
         const auto j = static_cast<std::size_t>(m.bonds.neighbor[k]);
         const auto& law = ib.laws[0];
-        const auto jump = rift::pd::interface_jump<2>(m, i, j, law);
+        const auto jump = rift::geomech::interface_jump<2>(m, i, j, law);
         largest_stretch = std::max(largest_stretch, jump.normal_stretch / m.bonds.length(k));
-        worst = std::max(worst, std::abs(rift::pd::interface_opening<2>(m, i, j, law) - lift * n_y) / m.bonds.length(k));
+        worst = std::max(worst, std::abs(rift::geomech::interface_opening<2>(m, i, j, law) - lift * n_y) / m.bonds.length(k));
         ++bonds;
       }
     }
@@ -244,19 +265,19 @@ TEST(InterfaceLaw, FluidWeakensTheInterfaceOnlyInsideIt) {
   };
   {
     auto s = block_with_interface("[-0.03, 0.0]", "[0.03, 0.0]", "tensile_strength = 1e6\ncohesion = 1e6\nfriction_coefficient = 0.89");
-    auto m = rift::pd::discretize<2>(s);
+    auto m = discretize_with_interfaces(s);
     for (std::size_t i = 0; i < m.size(); ++i) {
       m.position[i][0] = m.reference_position[i][0] * (1.0 + S * nu * (1 + nu) / E);
       m.position[i][1] = m.reference_position[i][1] * (1.0 - S * (1 - nu * nu) / E);
     }
     wet(m);
-    rift::pd::apply_interface_law<2>(m);
+    rift::geomech::apply_interface_law<2>(m);
     const auto [all, failed] = bulk_interface_bonds(m, [](const rift::Vec<2>&) { return true; });
     ASSERT_GT(all, 100);
     EXPECT_EQ(failed, 0) << "fluid beside an intact interface";
   }
   auto s = block_with_interface("[-0.03, 0.0]", "[0.03, 0.0]", "tensile_strength = 1e9\ncohesion = 1e9\nfriction_coefficient = 0.89", "", "1e-3");
-  auto m = rift::pd::discretize<2>(s);
+  auto m = discretize_with_interfaces(s);
   const auto& ib = m.interface_bonds;
   for (std::size_t i = 0; i < m.size(); ++i)
     if (m.reference_position[i][1] > 0.0) m.position[i][1] += 1e-5;
@@ -269,11 +290,11 @@ TEST(InterfaceLaw, FluidWeakensTheInterfaceOnlyInsideIt) {
         m.bonds.intact.set(k, rift::pd::bond_interface_failed), has_failed[i] = 1;
     }
   wet(m);
-  rift::pd::apply_interface_law<2>(m);  // refreshes the strain the openings are measured against
+  rift::geomech::apply_interface_law<2>(m);  // refreshes the strain the openings are measured against
   int holding = 0, dry = 0;
   for (auto r : ib.particles) {
     const auto i = static_cast<std::size_t>(r);
-    const double in = rift::pd::pressure_in_interface<2>(m, i);
+    const double in = rift::geomech::pressure_in_interface<2>(m, i);
     if (has_failed[i]) {
       EXPECT_EQ(in, p);
       ++holding;
@@ -309,7 +330,7 @@ pressure = 1e6
   auto outcome = [&](double crack_top, double failed_half_length, double lift, bool* wet = nullptr, const std::string& in_situ = "",
                      std::uint8_t failed_as = rift::pd::bond_interface_failed) {
     auto s = block_with_interface("[-0.03, 0.0]", "[0.03, 0.0]", "tensile_strength = 1e6\nfriction_coefficient = 0.89", hole + in_situ, "1e-3");
-    auto m = rift::pd::discretize<2>(s);
+    auto m = discretize_with_interfaces(s);
     auto& b = m.bonds;
     for (std::size_t i = 0; i < m.size(); ++i)
       for (auto k = b.offset[i]; k < b.offset[i + 1]; ++k) {
@@ -369,7 +390,7 @@ TEST(InterfaceOutcome, BreakthroughThroughAnInterfaceIsKeptWhenItShuts) {
   const std::string hole = "[regions.hole]\nshape = \"cylinder\"\ncenter = [0.0, -0.012]\nradius = 0.0015\n"
                            "[[boreholes]]\nregion = \"hole\"\npressure = 1e6\n";
   auto s = block_with_interface("[-0.03, 0.0]", "[0.03, 0.0]", "tensile_strength = 1e6\nfriction_coefficient = 0.89", hole, "1e-3");
-  auto m = rift::pd::discretize<2>(s);
+  auto m = discretize_with_interfaces(s);
   auto& b = m.bonds;
   for (std::size_t i = 0; i < m.size(); ++i)  // the crack from the borehole up to the interface
     for (auto k = b.offset[i]; k < b.offset[i + 1]; ++k) {
@@ -434,8 +455,8 @@ namespace {
 // rock and bridged the interface: Zhou's 90-degree interfaces at 3 mm spacing, hf_zhou_crossing.)
 TEST(InterfaceLaw, AnInterfaceThroughARowOfSitesCutsTheRowFromOneSide) {
   // sites at (i + 1/2, j + 1/2) mm: the row y = 0.5 mm lies on the first line
-  auto on_row = rift::pd::discretize<2>(block_with_interface("[-0.02, 0.0005]", "[0.02, 0.0005]", "tensile_strength = 1e6\nfriction_coefficient = 0.89"));
-  auto below = rift::pd::discretize<2>(block_with_interface("[-0.02, 0.0004999]", "[0.02, 0.0004999]", "tensile_strength = 1e6\nfriction_coefficient = 0.89"));
+  auto on_row = discretize_with_interfaces(block_with_interface("[-0.02, 0.0005]", "[0.02, 0.0005]", "tensile_strength = 1e6\nfriction_coefficient = 0.89"));
+  auto below = discretize_with_interfaces(block_with_interface("[-0.02, 0.0004999]", "[0.02, 0.0004999]", "tensile_strength = 1e6\nfriction_coefficient = 0.89"));
   ASSERT_FALSE(on_row.interface_bonds.empty());
   EXPECT_EQ(on_row.interface_bonds.slot, below.interface_bonds.slot);
   // every bond from the row (y = 0.5 mm) down across the line, and none from it up
@@ -462,7 +483,7 @@ TEST(InterfaceLaw, FailedInterfaceBondsAcrossTheFluidsCrackCarryNoContact) {
   const std::string hole = "[regions.hole]\nshape = \"cylinder\"\ncenter = [-0.012, 0.0]\nradius = 0.0015\n"
                            "[[boreholes]]\nregion = \"hole\"\npressure = 1e6\n";
   auto s = block_with_interface("[0.0, -0.02]", "[0.0, 0.02]", "tensile_strength = 1e6\nfriction_coefficient = 0.89", hole);
-  auto m = rift::pd::discretize<2>(s);
+  auto m = discretize_with_interfaces(s);
   auto& b = m.bonds;
   const auto& ib = m.interface_bonds;
   ASSERT_FALSE(ib.empty());
@@ -490,8 +511,8 @@ TEST(InterfaceLaw, FailedInterfaceBondsAcrossTheFluidsCrackCarryNoContact) {
       const bool crosses_line = p[1] * r[1] < 0.0;
       const double x_at_line = crosses_line ? p[0] + (r[0] - p[0]) * p[1] / (p[1] - r[1]) : 1.0;
       const bool expected = crosses_line && x_at_line <= 1e-9 && x_at_line > -0.0115;
-      EXPECT_EQ(rift::pd::across_crack(ib, q), expected) << p[0] << "," << p[1] << " - " << r[0] << "," << r[1];
-      const auto f = rift::pd::interface_contact_force<2>(m, i, j, k, static_cast<std::size_t>(q), nullptr);
+      EXPECT_EQ(rift::geomech::across_crack(ib, q), expected) << p[0] << "," << p[1] << " - " << r[0] << "," << r[1];
+      const auto f = rift::geomech::interface_contact_force<2>(m, i, j, k, static_cast<std::size_t>(q), nullptr);
       const double force = std::hypot(f[0], f[1]);
       if (expected) {
         ++across;

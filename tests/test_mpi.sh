@@ -524,7 +524,7 @@ one_rank run "$tmp/flowing.toml" -o "$tmp/flowing-serial" -q > /dev/null
 awk -F, 'NR == 1 { for (c = 1; c <= NF; ++c) if ($c == "pressure_borehole_0") column = c } NR > 1 { p = $column } END { exit !(column && p > 1e5) }' \
   "$tmp/flowing-serial/history.csv" || fail "flowing: the viscous fluid's pressure at the end is not above 0.1 MPa"
 # interface: the growing scene with a pre-existing fracture parallel to the pressurized crack, 10 mm
-# from it, across every cut (interface_law.hpp): the law of a bond with an owned end reads its
+# from it, across every cut (geomech/interface_law.hpp): the law of a bond with an owned end reads its
 # ghost end's strain and fluid from their owners; the outcome is reduced over the ranks
 awk '/^\[solver\]/ { print "[[interfaces]]\npoints = [[0.01, -0.045], [0.01, 0.045]]\ntensile_strength = 0.2e6\nfriction_coefficient = 0.6" } { print }' \
   "$tmp/growing.toml" | sed -e 's/name = "growing"/name = "interface"/' > "$tmp/interface.toml"

@@ -142,7 +142,7 @@
 // the far field, sigma_xx up 4.2 (0.59 of it, where the linear-elastic field has them equal), and
 // the normal compression across the interface at the junction 3.2-3.9 MPa by that stress. The
 // interface law reads its stress from the correspondence strain of intact bonds (rock_stress in
-// pd/interface_law.hpp, chosen because the bond-pair stress lost a third of the compression beside a
+// geomech/interface_law.hpp, chosen because the bond-pair stress lost a third of the compression beside a
 // fracture at a 90-degree interface), which stays at 7.1-8.0 MPa there (above): this model's
 // interface does not see the tip's rise in sigma_xx that the far side's rock sees in sigma_yy, and no
 // pair of strengths reaches it. A measure of the interface's stress that reads the tip's field as

@@ -19,13 +19,13 @@
 
 #include "rift/geometry/precrack.hpp"
 #include "rift/pd/ghost_fields.hpp"
-#include "rift/pd/interface_law.hpp"
+#include "rift/geomech/interface_law.hpp"
 #include "rift/pd/model.hpp"
 
 namespace rift::geomech {
 
 using pd::Bonds, pd::FluidNetwork, pd::InterfaceBonds, pd::Model;
-using pd::bond_broken, pd::bond_intact, pd::bond_interface_failed, pd::interface_faces_apart, pd::ranks_of;
+using pd::bond_broken, pd::bond_intact, pd::bond_interface_failed, pd::ranks_of;
 
 struct InterfaceOutcome {
   bool reached = false, crossed = false, dilated = false;

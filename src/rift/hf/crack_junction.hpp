@@ -1,5 +1,5 @@
 // Where a fluid-filled crack meets a pre-existing fracture (an interface): the junction. A failed interface
-// bond is a frictional contact between its ends (pd/interface_contact.hpp), the interface's faces pressing
+// bond is a frictional contact between its ends (geomech/interface_contact.hpp), the interface's faces pressing
 // and sliding on each other. But a failed bond whose ends lie on the two faces of a crack the fluid fills,
 // one that runs into the interface or through it, joins rock the fluid holds apart: its ends do not touch,
 // and it carries no contact force, as a broken bond carries none. Such a bond crosses the crack's surface

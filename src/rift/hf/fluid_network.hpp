@@ -22,6 +22,7 @@
 #include <vector>
 
 #include "rift/core/phase_times.hpp"
+#include "rift/geomech/interface_law.hpp"
 #include "rift/hf/crack_junction.hpp"
 #include "rift/hf/pd_names.hpp"
 #include "rift/hf/pore_stretch.hpp"
@@ -33,7 +34,6 @@
 #include "rift/pd/bond_runs.hpp"
 #include "rift/pd/ghost_fields.hpp"
 #include "rift/pd/influence.hpp"
-#include "rift/pd/interface_law.hpp"
 #include "rift/pd/model.hpp"
 
 namespace rift::hf {
@@ -58,8 +58,8 @@ bool carries_fluid(const Model<D>& m, std::int64_t k, std::size_t i, std::size_t
   const auto state = m.bonds.intact[static_cast<std::size_t>(k)];
   if (state == bond_broken) return true;
   if (state != bond_interface_failed) return false;
-  const InterfaceLaw* law = interface_of_bond<D>(m, i, k);
-  return law && interface_faces_apart<D>(m, k, i, j, *law);
+  const InterfaceLaw* law = geomech::interface_of_bond<D>(m, i, k);
+  return law && geomech::interface_faces_apart<D>(m, k, i, j, *law);
 }
 
 /// The edges along which a fluid at particle i may go on, in the order one rank's search takes
@@ -641,7 +641,7 @@ void update_fluid_network(Model<D>& m) {
       }
     std::fill(f.has_network.begin(), f.has_network.end(), 0);
     // over every row of the window: a ghost row's bonds lie in the window, their states, labels and
-    // (pd/interface_law.hpp) ends' strains its owner's, and its failed interface bonds that the fluid
+    // (geomech/interface_law.hpp) ends' strains its owner's, and its failed interface bonds that the fluid
     // fills belong in open_interface_bonds (the crack surface and the network load read them)
     std::vector<std::vector<std::int64_t>> open(f.dry.size());
     for (std::size_t i = 0; i < n; ++i) {

@@ -7,7 +7,7 @@
 // any direction carries the cubic law's flux and holds w per unit area (tests/test_network_flow.cpp).
 // w = |y - (I + eps) xi|, the displacement jump, eps the mean of its ends' bulk strains (pd/bulk_strain.hpp),
 // n its direction (mode I); across a failed interface bond n is the interface's normal and w its faces'
-// normal opening (pd/interface_contact.hpp); a bond across an interface that broke as rock is a crack's
+// normal opening (geomech/interface_contact.hpp); a bond across an interface that broke as rock is a crack's
 // bond. Pressure solve: backward Euler of each node's mass balance, SPD (Eigen's sparse LDLT).
 // Why, and what was measured: docs/decisions/hydraulic-fracture-notes.md.
 #pragma once
@@ -20,9 +20,9 @@
 #include <unordered_map>
 #include <vector>
 
+#include "rift/geomech/interface_contact.hpp"
 #include "rift/hf/pd_names.hpp"
 #include "rift/pd/bulk_strain.hpp"
-#include "rift/pd/interface_contact.hpp"
 #include "rift/pd/model.hpp"
 
 namespace rift::hf {
@@ -115,11 +115,11 @@ std::vector<FlowBond> flow_bonds(const Model<D>& m, double viscosity, const std:
       if (j <= i || b.intact[static_cast<std::size_t>(k)] == bond_intact || !carries(i, k, j)) continue;
       Vec<D> n{};
       double w = 0.0;
-      const auto q = b.intact[static_cast<std::size_t>(k)] == bond_interface_failed ? interface_entry<D>(m, i, k) : -1;
+      const auto q = b.intact[static_cast<std::size_t>(k)] == bond_interface_failed ? geomech::interface_entry<D>(m, i, k) : -1;
       if (q >= 0) {  // a failed interface bond: its faces' normal opening
         const auto& law = m.interface_bonds.laws[m.interface_bonds.interface[static_cast<std::size_t>(q)]];
         for (int p = 0; p < D; ++p) n[p] = law.normal[p];
-        w = std::max(0.0, interface_opening<D>(m, i, j, law));
+        w = std::max(0.0, geomech::interface_opening<D>(m, i, j, law));
       } else {
         w = opening(i, j, b.family_of(k).xi, n);
       }

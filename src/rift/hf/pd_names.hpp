@@ -1,5 +1,5 @@
 // The names of the peridynamic core (pd/) that hydraulic fracture uses: hf/ works on a pd::Model,
-// its bonds and runs, and the fluid state it holds (pd/bonds.hpp FluidNetwork, CrackBonds).
+// its bonds and runs, and the fluid state it holds (pd/fluid_state.hpp FluidNetwork, CrackBonds).
 #pragma once
 #include "rift/pd/bond_runs.hpp"
 #include "rift/pd/bond_slabs.hpp"

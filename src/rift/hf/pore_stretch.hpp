@@ -10,6 +10,15 @@
 
 namespace rift::hf {
 
+/// The pressure of the fluid at particle i, its source's (0 where none reaches): the output field
+/// fluid_pressure.
+template <int D>
+double fluid_pressure_at(const Model<D>& m, std::size_t i) {
+  const FluidNetwork& f = m.fluid_network;
+  if (f.source.empty() || f.source[i] < 0) return 0.0;
+  return f.pressure[static_cast<std::size_t>(f.source[i])];
+}
+
 /// The pore stretch s_p = p / (d kappa) of every particle the fluid reaches across a crack, p the
 /// pore pressure of its source; none (empty) where no wet particle has pressure. Call when the fluid
 /// network's labels or the pore pressures change.

@@ -26,7 +26,7 @@ inline constexpr std::size_t fluid_ghost_reaches = 3;
 /// Whether the scene's fluid fills cracks that can grow (pressure bonds in rock whose bonds break),
 /// or flows along them (viscous_fluid.hpp: a flow bond's conductance reads the bulk strain and the
 /// family moments of its ends, an owned particle's neighbour among them, each over its whole row),
-/// or the scene has interfaces (pd/interface_law.hpp: the law of a bond with an owned end reads the
+/// or the scene has interfaces (geomech/interface_law.hpp: the law of a bond with an owned end reads the
 /// fluid in the interface at its other end, over that end's whole row).
 template <int D>
 bool fluid_reads_far(const Model<D>& m) {

@@ -5,7 +5,7 @@
 // left out), and eps = (F + F^T) / 2 - I. Beside a pre-existing fracture this is the strain of the
 // rock on the particle's own side: a bond across the fracture stretches by eps xi with the rock
 // around it, and only what it stretches beyond that is the jump across the fracture's faces
-// (interface_contact.hpp interface_opening).
+// (geomech/interface_contact.hpp interface_opening).
 #pragma once
 #include <Eigen/Dense>
 #include <array>

@@ -301,7 +301,7 @@ void Contact<D>::add_forces(Model<D>& m) {
     };
     // the broken bonds of i's family that may touch and the listed pairs, merged in the order of j
     // (rows of both are sorted by neighbour, the listed ones by the whole run's numbers); a failed
-    // interface bond has its own contact (interface_contact.hpp)
+    // interface bond has its own contact (geomech/interface_contact.hpp)
     auto p = offset_[i];
     const auto listed_end = offset_[i + 1];
     auto listed_before = [&](std::int32_t q, std::int32_t j) {

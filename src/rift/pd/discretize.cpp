@@ -10,7 +10,7 @@
 #include "rift/pd/bond_runs.hpp"
 #include "rift/pd/bond_slabs.hpp"
 #include "rift/pd/influence.hpp"
-#include "rift/pd/interface_law.hpp"
+#include "rift/pd/interface_bonds.hpp"
 #include "rift/pd/laws/registry.hpp"
 #include "rift/pd/normal_stress_failure.hpp"
 #include "rift/pd/pressure_bonds.hpp"
@@ -140,7 +140,7 @@ void build_bonds(const scene::Scene& s, Model<D>& m, const std::vector<std::arra
   for (const auto& f : s.interfaces) interfaces.emplace_back(D, f.points);
   Bonds& b = m.bonds;
   b.offset.assign(n + 1, 0);
-  // bonds across pre-existing fractures (interface_law.hpp): their place in row i and the interface
+  // bonds across pre-existing fractures (interface_bonds.hpp): their place in row i and the interface
   std::vector<std::vector<std::pair<std::uint32_t, std::uint16_t>>> across(n);
   // pressure bonds (hf/crack_pressure.hpp): bonds the cracks cut (when the scene has a fluid) and bonds
   // to the fluid sites of boreholes

@@ -12,8 +12,7 @@
 #include "rift/parallel/ordered_sum.hpp"
 #include "rift/pd/energy_runs.hpp"
 #include "rift/pd/ghost_fields.hpp"
-#include "rift/pd/interface_contact.hpp"
-#include "rift/pd/interface_law.hpp"
+#include "rift/pd/force_stages.hpp"
 #include "rift/pd/laws/registry.hpp"
 #include "rift/pd/normal_stress_failure.hpp"
 #include "rift/parallel/team.hpp"
@@ -23,7 +22,8 @@ namespace rift::pd {
 template <int D>
 void compute_forces(Model<D>& m, Contact<D>* contact, double history_dt) {
   PhaseClock clock(Phase::bond_passes);
-  apply_interface_law<D>(m);  // bonds across pre-existing fractures, with the last stresses
+  const ForceStages<D>* stages = force_stages_of(m);
+  if (stages) stages->before_bond_passes(m);  // bonds across pre-existing fractures, with the last stresses
   if (!m.failure_strain.empty()) {
     update_failure_strain<D>(m);  // what the first pass breaks on
     // a bond between two ranks reads both ends' strains: the ghosts' from their owners, whose
@@ -51,7 +51,7 @@ void compute_forces(Model<D>& m, Contact<D>* contact, double history_dt) {
     with_law(body.constants.model, [&]<class Law>() { Law::template second_pass<D>(m, body, history_dt, &rows[a]); });
   }
   if (history_dt > 0.0) m.bonds.back_extension_at_rest = false;  // the VES pass advanced the history
-  add_interface_contact<D>(m, history_dt > 0.0);  // failed bonds across pre-existing fractures
+  if (stages) stages->after_bond_passes(m, history_dt > 0.0);  // failed bonds across pre-existing fractures
   if (contact) {
     PhaseClock contact_clock(Phase::contact);
     contact->add_forces(m);

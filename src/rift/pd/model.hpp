@@ -10,6 +10,8 @@
 
 #include "rift/core/vec.hpp"
 #include "rift/pd/bonds.hpp"
+#include "rift/pd/fluid_state.hpp"
+#include "rift/pd/interface_bonds.hpp"
 #include "rift/pd/material_constants.hpp"
 #include "rift/core/index_range.hpp"
 #include "rift/pd/numbering.hpp"
@@ -50,6 +52,8 @@ class Ghosts {
 
 template <int D>
 class BondCoupling;  // bond_coupling.hpp
+template <int D>
+class ForceStages;  // force_stages.hpp
 
 template <int D>
 struct Model {
@@ -92,6 +96,8 @@ struct Model {
   const Ghosts* ghosts = nullptr;
   // what hydraulic fracture couples into the bond passes (bond_coupling.hpp; none: they break dry)
   const BondCoupling<D>* coupling = nullptr;
+  // what geomechanics adds to each force evaluation (force_stages.hpp; none: a model without interfaces)
+  const ForceStages<D>* stages = nullptr;
 
   std::size_t size() const { return position.size(); }
   /// The owned particles: ranges of the window, ascending (one rank: [0, size())).

@@ -5,13 +5,13 @@
 // density). For a homogeneous deformation in the bulk t_i<j> = t_j<i> and this is the first
 // Piola-Kirchhoff stress, sum_j T_i<j> (x) xi_ij V_j, of the material the model stands for; near
 // free surfaces and cracks, where the family is cut, it is an estimate. Uses the dilatations of the
-// last force evaluation. A failed interface bond adds 1/2 f (x) xi with f its contact force
-// (interface_contact.hpp).
+// last force evaluation. A bond a force stage holds (force_stages.hpp: a failed interface bond's
+// frictional contact) adds 1/2 f (x) xi with f its force.
 #pragma once
 #include <vector>
 
 #include "rift/pd/influence.hpp"
-#include "rift/pd/interface_contact.hpp"
+#include "rift/pd/force_stages.hpp"
 #include "rift/pd/laws/registry.hpp"
 #include "rift/pd/model.hpp"
 #include "rift/parallel/team.hpp"
@@ -19,9 +19,9 @@
 namespace rift::pd {
 
 /// The bond-pair stress of particle i of `body`, whose law is Law (3 x 3, zero out of plane in 2D;
-/// not symmetrized).
+/// not symmetrized); `stages` the model's (force_stages_of).
 template <int D, class Law>
-void bond_pair_stress(const Model<D>& m, const BodyInfo& body, std::size_t i, double s[3][3]) {
+void bond_pair_stress(const Model<D>& m, const ForceStages<D>* stages, const BodyInfo& body, std::size_t i, double s[3][3]) {
   const auto& c = body.constants;
   const Bonds& b = m.bonds;
   for (int p = 0; p < 3; ++p)
@@ -31,10 +31,9 @@ void bond_pair_stress(const Model<D>& m, const BodyInfo& body, std::size_t i, do
     const auto j = static_cast<std::size_t>(b.neighbor[k]);
     const Vec<D> eta = m.position[j] - m.position[i];
     const Vec<D> xi_vec = m.reference_position[j] - m.reference_position[i];
-    if (b.intact[k] == bond_interface_failed) {  // a frictional contact (interface_contact.hpp)
-      const auto q = interface_entry<D>(m, i, k);
-      if (q < 0) continue;
-      const Vec<D> f = interface_contact_force<D>(m, i, j, k, static_cast<std::size_t>(q), nullptr);
+    if (b.intact[k] == bond_interface_failed) {  // held by a force stage
+      Vec<D> f{};
+      if (!stages || !stages->held_bond_force(m, i, j, k, f)) continue;
       for (int p = 0; p < D; ++p)
         for (int r = 0; r < D; ++r) s[p][r] += 0.5 * f[p] * xi_vec[r];
       continue;
@@ -54,12 +53,13 @@ void bond_pair_stress(const Model<D>& m, const BodyInfo& body, std::size_t i, do
 template <int D>
 std::vector<double> particle_stress(const Model<D>& m) {
   std::vector<double> out(6 * m.size(), 0.0);
+  const ForceStages<D>* stages = force_stages_of(m);
   for (const BodyInfo& body : m.bodies)
     with_law(body.constants.model, [&]<class Law>() {
 #pragma omp parallel for if(rift::parallel::worth_a_team(body.last - body.first)) schedule(static)
       for (std::size_t i = body.first; i < body.last; ++i) {
         double s[3][3];
-        bond_pair_stress<D, Law>(m, body, i, s);
+        bond_pair_stress<D, Law>(m, stages, body, i, s);
         double* o = &out[6 * i];
         o[0] = s[0][0], o[1] = s[1][1], o[3] = 0.5 * (s[0][1] + s[1][0]);
         if constexpr (D == 3) o[2] = s[2][2], o[4] = 0.5 * (s[1][2] + s[2][1]), o[5] = 0.5 * (s[0][2] + s[2][0]);

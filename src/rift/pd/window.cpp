@@ -169,7 +169,7 @@ void window_pressure_bonds(const Model<D>& m, const Numbering& window, Model<D>&
   });
 }
 
-/// The window's bonds across pre-existing fractures (interface_law.hpp): each row's entries whose
+/// The window's bonds across pre-existing fractures (interface_bonds.hpp): each row's entries whose
 /// bond is in the window (only ghosts' rows lose entries), at their bonds' places in the window's
 /// rows, with each entry's slip and mark and each particle's strain as the whole model has them.
 template <int D>
@@ -340,6 +340,7 @@ Model<D> window_of(const Model<D>& m, const Partition& p, int rank) {
   w.body = slice(m.body, window);
   w.constrained = slice(m.constrained, window);
   w.coupling = m.coupling;
+  w.stages = m.stages;
   w.dimension = m.dimension;
   w.thickness = m.thickness;
   w.time = m.time;

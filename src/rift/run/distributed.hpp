@@ -149,7 +149,7 @@ void gather_fluid(const parallel::Communicator& comm, const pd::Model<D>& m, pd:
   if (g->crack_surface.made) hf::remake_crack_surface<D>(*whole);
 }
 
-/// The state of the bonds across interfaces (pd/interface_law.hpp) gathered into the whole run's
+/// The state of the bonds across interfaces (pd/interface_bonds.hpp) gathered into the whole run's
 /// model on rank 0: each owned row's entries' slip and marks, and each owned interface particle's
 /// strain (the owned rows, in order, are the whole run's rows one after the other).
 template <int D>

@@ -22,6 +22,7 @@
 #include "rift/pd/dynamic_relaxation.hpp"
 #include "rift/pd/checkpoint_state.hpp"
 #include "rift/geomech/interface_record.hpp"
+#include "rift/hf/pore_stretch.hpp"
 #include "rift/pd/laws/registry.hpp"
 #include "rift/pd/stress.hpp"
 #include "rift/run/cadence.hpp"
@@ -190,7 +191,7 @@ void write_snapshot(io::FieldWriter& fields, pd::Model<D>& m, const scene::Scene
     else if (f == "weighted_volume") w.write(f, m.weighted_volume, 1);
     else if (f == "fluid_pressure") {  // of the injected or pressurized fluid that reaches the particle
       std::vector<double> p(m.size());
-      for (std::size_t i = 0; i < m.size(); ++i) p[i] = pd::pore_pressure<D>(m, i);
+      for (std::size_t i = 0; i < m.size(); ++i) p[i] = hf::fluid_pressure_at<D>(m, i);
       w.write(f, p, 1);
     }
     else if (f == "volume") w.write(f, m.volume, 1);

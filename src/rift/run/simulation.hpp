@@ -18,6 +18,7 @@
 #include "rift/pd/discretize.hpp"
 #include "rift/pd/dynamic_relaxation.hpp"
 #include "rift/geomech/in_situ_strain.hpp"
+#include "rift/geomech/interface_stages.hpp"
 #include "rift/pd/static_equilibrium.hpp"
 #include "rift/pd/forces.hpp"
 #include "rift/pd/velocity_verlet.hpp"
@@ -39,6 +40,7 @@ struct Simulation {
   /// Every scene error is raised here, before anything is written.
   explicit Simulation(const scene::Scene& s)
       : model(pd::discretize<D>(s)), loads(s, model), contact(s.contact, model), cracks_(s.cracks.size()), interfaces_(s.interfaces.size()) {
+    geomech::install_interface_stages<D>(model);
     stable_dt = pd::stable_time_step<D>(model);
     if (s.solver.kind == scene::SolverKind::explicit_dynamics) {
       const auto plan = explicit_steps(s.solver, stable_dt, "Silling and Askari 2005, eq. 29");

@@ -113,7 +113,7 @@ struct Crack {
 
 /// Peridynamics: a pre-existing fracture (a joint, a bedding plane, the paper sheet of Zhou et al.
 /// 2008), a straight segment in 2D or a planar polygon in 3D. The bonds that cross it stay bonds
-/// but follow an interface law (pd/interface_law.hpp): they fail when the effective normal traction
+/// but follow an interface law (geomech/interface_law.hpp): they fail when the effective normal traction
 /// on the interface is a tension above `tensile_strength`, or when the shear traction exceeds
 /// cohesion + friction_coefficient * (sigma_n - p); a failed interface bond bears compression only
 /// (the faces may open and close), and fluid enters it where it is open.

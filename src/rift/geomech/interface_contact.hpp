@@ -1,11 +1,11 @@
-// A failed interface bond (bonds.hpp, bond_interface_failed) is a frictional contact between its two
+// A failed interface bond (pd/bonds.hpp, bond_interface_failed) is a frictional contact between its two
 // particles, in the frame of the interface: with n its normal oriented from i to j and
 // delta = (x_j - x_i) - (X_j - X_i) the jump of their displacements, delta_n = delta . n stretches
 // the bond (> 0: no force) or presses its ends together (< 0), and the tangential jump less the slip
 // s so far is the elastic part, capped by Coulomb friction:
 //   g_n = -delta_n,  g_t = delta - delta_n n - s,  |g_t| <= mu g_n (past it the excess becomes slip),
 //   f_i = k (delta_n n + g_t),  k = c omega(|xi|) V_j cos^2 / |xi|,
-// c the PMB micromodulus equivalent to the rock's moduli (material_constants.hpp) and cos = xi . n /
+// c the PMB micromodulus equivalent to the rock's moduli (pd/material_constants.hpp) and cos = xi . n /
 // |xi|: the stiffness along n of the bond. A block sliding on a failed interface thus carries mu
 // times its normal force. While the faces are apart the slip follows the tangential jump.
 #pragma once
@@ -14,11 +14,13 @@
 #include <cmath>
 #include <cstdint>
 
+#include "rift/parallel/team.hpp"
 #include "rift/pd/influence.hpp"
 #include "rift/pd/model.hpp"
-#include "rift/parallel/team.hpp"
 
-namespace rift::pd {
+namespace rift::geomech {
+
+using pd::Model, pd::InterfaceBonds, pd::InterfaceLaw, pd::bond_interface_failed, pd::influence;
 
 /// The entry of the interface bonds that is bond k of row i, or -1 (rows list their slots ascending).
 template <int D>
@@ -67,7 +69,7 @@ std::int64_t interface_row(const Model<D>& m, std::size_t i) {
 }
 
 /// The normal opening of the faces at the failed interface bond i-j, (delta - eps xi) . n with eps
-/// the mean strain of the rock around i and j (bulk_strain.hpp, as the interface law last refreshed
+/// the mean strain of the rock around i and j (pd/bulk_strain.hpp, as the interface law last refreshed
 /// it): the bond also stretches with the rock on either side, by eps_nn xi_n + eps_nt xi_t, which
 /// in a sheared block exceeds a breaking rock bond's stretch while the faces stay shut. Where the
 /// contact presses the bond's ends together (delta . n < 0) the faces touch: the opening is at most 0.
@@ -162,4 +164,4 @@ void add_interface_contact(Model<D>& m, bool slide) {
   }
 }
 
-}  // namespace rift::pd
+}  // namespace rift::geomech

@@ -1,10 +1,10 @@
 // Pre-existing fractures (scene::Interface: a joint, a bedding plane, the paper sheet cast into the blocks
 // of Zhou et al. 2008). The bonds that cross one keep the rock's stiffness until the interface law fails;
-// then each is a frictional contact (interface_contact.hpp, bonds.hpp bond_interface_failed): the faces
+// then each is a frictional contact (interface_contact.hpp, pd/bonds.hpp bond_interface_failed): the faces
 // press and slide with Coulomb friction, or open, and the fluid that reaches them enters where they are
 // apart (hf/fluid_network.hpp). The law of bond i-j, evaluated before each force evaluation with the last
 // one's positions, takes t = sigma n, sigma the mean of i's and j's rock stress from the strain of their
-// intact bonds (bulk_strain.hpp, rock_stress; that strain is also the reference of failed bonds' opening),
+// intact bonds (pd/bulk_strain.hpp, rock_stress; that strain is also the reference of failed bonds' opening),
 // sigma_n = -n . t, tau = t - (n . t) n, p the interface's fluid pressure at either end (pressure_in_interface):
 //   tension: p - sigma_n > T (a stress: in plane strain a bond stretches under compression, by Poisson);
 //   shear, Mohr-Coulomb (the thesis' EQ 4.1-4.2): |tau| > tau_0 + mu max(sigma_n - p, 0).
@@ -13,99 +13,24 @@
 #pragma once
 #include <algorithm>
 #include <array>
-#include <cmath>
+#include <cstdint>
 #include <vector>
 
-#include "rift/geometry/precrack.hpp"
+#include "rift/geomech/interface_contact.hpp"
+#include "rift/parallel/team.hpp"
 #include "rift/pd/bulk_strain.hpp"
 #include "rift/pd/ghost_fields.hpp"
-#include "rift/pd/interface_contact.hpp"
 #include "rift/pd/model.hpp"
-#include "rift/parallel/team.hpp"
-#include "rift/scene/scene.hpp"
 
-namespace rift::pd {
+namespace rift::geomech {
 
-namespace interface_detail {
-inline Point3 cross3(const Point3& a, const Point3& b) {
-  return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
-}
-inline Point3 unit(const Point3& a) { return (1.0 / norm<3>(a)) * a; }
-}  // namespace interface_detail
-
-/// The plane, axes and law of a scene interface. 2D: the normal is the segment's direction turned
-/// by +90 degrees; 3D: the polygon's normal by Newell's method, the tangent along its first edge.
-inline InterfaceLaw make_interface_law(const scene::Interface& f, int dimension) {
-  using namespace interface_detail;
-  InterfaceLaw law;
-  law.point = f.points[0];
-  law.polygon = f.points;
-  law.tensile_strength = f.tensile_strength;
-  law.cohesion = f.cohesion;
-  law.friction_coefficient = f.friction_coefficient;
-  const Point3 edge = f.points[1] - f.points[0];
-  law.tangent = unit(edge);
-  if (dimension == 2) {
-    law.normal = {-law.tangent[1], law.tangent[0], 0.0};
-    law.binormal = {0.0, 0.0, 1.0};
-    law.length = norm<3>(edge);
-  } else {
-    law.normal = unit(geometry::PreCrack(3, f.points).normal());
-    law.binormal = cross3(law.normal, law.tangent);
-  }
-  return law;
-}
-
-/// Laws of the scene's interfaces, the particles with bonds across one, the side of each
-/// interface the fluid sources are on (the mean position of the particles with pressure bonds) and
-/// the normal compression the in-situ stresses put across it (the thesis' EQ 4.4).
-template <int D>
-void prepare_interfaces(const scene::Scene& s, Model<D>& m) {
-  InterfaceBonds& ib = m.interface_bonds;
-  ib.laws.clear();
-  for (const auto& f : s.interfaces) {
-    auto law = make_interface_law(f, D);
-    if (s.in_situ.enabled)
-      for (int k = 0; k < D; ++k) law.in_situ_normal_compression -= s.in_situ.principal(k) * law.normal[k] * law.normal[k];
-    ib.laws.push_back(law);
-  }
-  ib.particles.clear();
-  ib.slip.assign(ib.slot.size(), {0.0, 0.0, 0.0});
-  ib.across_crack.assign(ib.slot.size(), 0);
-  if (ib.offset.empty()) return;
-  for (std::size_t i = 0; i < m.size(); ++i)
-    if (ib.offset[i + 1] > ib.offset[i]) ib.particles.push_back(static_cast<std::int32_t>(i));
-  std::array<double, 3> centre{0, 0, 0};
-  std::size_t count = 0;
-  const CrackBonds& w = m.crack_bonds;
-  for (std::size_t i = 0; i + 1 < w.offset.size(); ++i)
-    if (w.offset[i + 1] > w.offset[i]) {
-      for (int k = 0; k < D; ++k) centre[k] += m.reference_position[i][k];
-      ++count;
-    }
-  for (std::size_t f = 0; f < ib.laws.size(); ++f) {
-    auto& law = ib.laws[f];
-    if (count == 0) continue;
-    std::array<double, 3> c = centre;
-    for (auto& x : c) x /= double(count);
-    const double side = dot<3>(c - law.point, law.normal);
-    law.near_side = side > 0.0 ? 1 : side < 0.0 ? -1 : 0;
-  }
-}
+using pd::Bonds, pd::FluidNetwork, pd::MaterialConstants, pd::bond_intact, pd::bulk_strain, pd::refresh_ghost_bond_states;
 
 /// The law of the interface that bond k of row i crosses (nullptr for a bond across none).
 template <int D>
 const InterfaceLaw* interface_of_bond(const Model<D>& m, std::size_t i, std::int64_t k) {
   const auto q = interface_entry<D>(m, i, k);
   return q < 0 ? nullptr : &m.interface_bonds.laws[m.interface_bonds.interface[static_cast<std::size_t>(q)]];
-}
-
-/// The pressure of the fluid at particle i (0 where none reaches).
-template <int D>
-double pore_pressure(const Model<D>& m, std::size_t i) {
-  const FluidNetwork& f = m.fluid_network;
-  if (f.source.empty() || f.source[i] < 0) return 0.0;
-  return f.pressure[static_cast<std::size_t>(f.source[i])];
 }
 
 /// The pressure of the fluid inside the interface at particle i: its pore pressure where one of its
@@ -131,7 +56,7 @@ double pressure_in_interface(const Model<D>& m, std::size_t i) {
   return 0.0;
 }
 
-/// The stress of the rock around a particle from its strain (bulk_strain.hpp) by isotropic
+/// The stress of the rock around a particle from its strain (pd/bulk_strain.hpp) by isotropic
 /// elasticity with the body's moduli: sigma = (kappa - 2G/3) tr(eps) I + 2G eps (3D), in plane
 /// (kappa - G) tr(eps) I + 2G eps (2D, kappa the dimension's bulk modulus). Unlike the bond-pair
 /// stress, it stays right on a particle whose family a crack has cut (the shape tensor is taken over
@@ -227,4 +152,4 @@ void apply_interface_law(Model<D>& m) {
   if (failed) b.intact.changed();
 }
 
-}  // namespace rift::pd
+}  // namespace rift::geomech
