@@ -10,7 +10,9 @@
 // The common checks of every law (energy, patch test, momentum, G0) are in test_law_conformance.cpp.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <random>
 #include <string>
@@ -24,6 +26,7 @@
 #include "rift/pd/forces.hpp"
 #include "rift/pd/stress.hpp"
 #include "rift/pd/velocity_verlet.hpp"
+#include "rift/run/simulation.hpp"
 #include "rift/scene/parse.hpp"
 
 namespace {
@@ -236,6 +239,70 @@ TEST(Eps, UniaxialStrainYieldsAsJ2) {
   std::printf("uniaxial strain: worst |sxx - syy - closed form| %.2e of sigma_Y, mean stress %.2e of its largest\n", worst, worst_mean);
   EXPECT_LT(worst, 0.02);
   EXPECT_LT(worst_mean, 0.02);
+}
+
+// The in-situ stage is the run's first equilibrium, and it commits the plastic extensions it reached
+// (run/simulation.hpp equilibrate_in_situ, pd::commit_at_equilibrium), as a load step of dynamic
+// relaxation does. A 5 mm borehole in a 40 x 40 mm plane strain block under the hydrostatic far-field
+// stress p = 10 MPa: Kirsch's elastic wall stresses are sigma_theta = -2p, sigma_r = 0, so the wall
+// yields where (sigma_theta - sigma_r) / 2 = p passes the shear yield k = sigma_Y / sqrt(3) (J2 in
+// plane strain; Hill 1950, the thick-walled cylinder). sigma_Y = 12 MPa (k = 0.69 p): plastic
+// extensions after the stage, and a second commit at the same equilibrium changes none (to float
+// round-off); sigma_Y = 30 MPa (k = 1.73 p): none.
+TEST(Eps, TheInSituStageCommitsThePlasticExtensionsOfItsEquilibrium) {
+  for (const double yield : {12e6, 30e6}) {
+    const std::string text = R"([scene]
+dimension = 2
+plane = "strain"
+thickness = 0.001
+[materials.rock]
+model = "eps"
+density = 2500.0
+youngs_modulus = 10e9
+poisson_ratio = 0.25
+yield_stress = )" + std::to_string(yield) + R"(
+[regions.block]
+shape = "box"
+min = [-0.02, -0.02]
+max = [0.02, 0.02]
+[regions.hole]
+shape = "cylinder"
+center = [0.0, 0.0]
+radius = 0.005
+[regions.rock]
+shape = "difference"
+of = ["block", "hole"]
+[bodies.block]
+material = "rock"
+region = "rock"
+spacing = 0.001
+horizon = 3.015
+[in_situ_stress]
+sigma_H = -10e6
+sigma_h = -10e6
+tolerance = 1e-8
+[solver]
+type = "dynamic_relaxation"
+)";
+    auto s = rift::scene::parse_string(text, "eps_borehole.toml");
+    rift::run::Simulation<2> sim(s);
+    const auto r = sim.equilibrate_in_situ(s.in_situ);
+    ASSERT_TRUE(r.converged) << r.residual << " after " << r.iterations;
+    const auto& e_p = sim.model.bonds.back_extension;
+    float largest = 0.0f;
+    for (std::size_t h = 0; h < e_p.size(); ++h) largest = std::max(largest, std::abs(e_p[h]));
+    std::printf("sigma_Y %.0f MPa: in-situ stage %d iterations, largest plastic extension %.3e m\n", yield / 1e6, r.iterations, largest);
+    if (yield > 20e6) {
+      EXPECT_EQ(largest, 0.0f) << "k > p: the wall stays elastic";
+      continue;
+    }
+    ASSERT_GT(largest, 0.0f) << "k < p: the wall yields, and the stage commits it";
+    const std::vector<float> committed(e_p.data(), e_p.data() + e_p.size());
+    rift::pd::commit_at_equilibrium<2>(sim.model, sim.contact_ptr());
+    float change = 0.0f;
+    for (std::size_t h = 0; h < e_p.size(); ++h) change = std::max(change, std::abs(e_p[h] - committed[h]));
+    EXPECT_LE(change, 1e-5f * largest) << "the stage's equilibrium is committed";
+  }
 }
 
 }  // namespace

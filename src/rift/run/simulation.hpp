@@ -107,33 +107,13 @@ struct Simulation {
   const std::vector<int>& processor_grid() const { return processor_grid_; }
   std::unique_ptr<pd::Halo> halo;
   /// The in-situ stage ([in_situ_stress]): static equilibrium under the far-field stresses and
-  /// every other load at t = 0, with no bond allowed to break; the run starts from it at rest.
+  /// every other load at t = 0, with no bond allowed to break; the run starts from it at rest, its
+  /// histories committed (pd::commit_at_equilibrium: EPS's plastic extensions), as a load step's.
   /// A stop signal ends it early (stopped = true): the run then starts again from the beginning.
   pd::RelaxationResult equilibrate_in_situ(const scene::InSituStress& in_situ) {
     pd::HeldBreaking<D> held(model);
-    const auto initial_velocity = model.velocity;
-    pd::DynamicRelaxation<D> dr(model);
-    if (in_situ.start == scene::InSituStress::Start::uniform_strain) {
-      geomech::apply_in_situ_strain<D>(model, in_situ);
-      dr.measure_damping_from_start(true);
-    }
-    pd::RelaxationResult cg;
-    if (uses_conjugate_gradients(in_situ)) {
-      const auto start = model.position;
-      cg = pd::solve_static_equilibrium<D>(model, loads, contact_ptr(), 0.0, dr.fictitious_density(), in_situ.max_iterations,
-                                           in_situ.tolerance);
-      if (cg.converged || cg.stopped || cg.iterations >= in_situ.max_iterations) {
-        model.velocity = initial_velocity;
-        return cg;
-      }
-      model.position = start;  // stopped short: dynamic relaxation from the start
-    }
-    // its iterations go as the square root of the fictitious density: measured, not bounded
-    const double factor = dr.measure_fictitious_density(model, loads, contact_ptr(), 0.0);
-    auto r = dr.relax(model, loads, contact_ptr(), 0.0, in_situ.max_iterations - cg.iterations, in_situ.tolerance);
-    r.iterations += cg.iterations;
-    r.density_factor = factor;
-    model.velocity = initial_velocity;
+    const auto r = solve_in_situ(in_situ);
+    if (!r.stopped) pd::commit_at_equilibrium<D>(model, contact_ptr());
     return r;
   }
   /// [in_situ_stress] solver: automatic takes the conjugate gradients where the forces are smooth:
@@ -161,6 +141,33 @@ struct Simulation {
   }
 
  private:
+  /// The in-situ stage's equilibrium, by conjugate gradients or dynamic relaxation (bonds held by the caller).
+  pd::RelaxationResult solve_in_situ(const scene::InSituStress& in_situ) {
+    const auto initial_velocity = model.velocity;
+    pd::DynamicRelaxation<D> dr(model);
+    if (in_situ.start == scene::InSituStress::Start::uniform_strain) {
+      geomech::apply_in_situ_strain<D>(model, in_situ);
+      dr.measure_damping_from_start(true);
+    }
+    pd::RelaxationResult cg;
+    if (uses_conjugate_gradients(in_situ)) {
+      const auto start = model.position;
+      cg = pd::solve_static_equilibrium<D>(model, loads, contact_ptr(), 0.0, dr.fictitious_density(), in_situ.max_iterations,
+                                           in_situ.tolerance);
+      if (cg.converged || cg.stopped || cg.iterations >= in_situ.max_iterations) {
+        model.velocity = initial_velocity;
+        return cg;
+      }
+      model.position = start;  // stopped short: dynamic relaxation from the start
+    }
+    // its iterations go as the square root of the fictitious density: measured, not bounded
+    const double factor = dr.measure_fictitious_density(model, loads, contact_ptr(), 0.0);
+    auto r = dr.relax(model, loads, contact_ptr(), 0.0, in_situ.max_iterations - cg.iterations, in_situ.tolerance);
+    r.iterations += cg.iterations;
+    r.density_factor = factor;
+    model.velocity = initial_velocity;
+    return r;
+  }
   std::size_t cracks_ = 0, interfaces_ = 0;  // the scene's pre-cracks and interfaces
   std::vector<int> processor_grid_;
 };
