@@ -244,11 +244,11 @@ TEST(Eps, UniaxialStrainYieldsAsJ2) {
 // The in-situ stage is the run's first equilibrium, and it commits the plastic extensions it reached
 // (run/simulation.hpp equilibrate_in_situ, pd::commit_at_equilibrium), as a load step of dynamic
 // relaxation does. A 5 mm borehole in a 40 x 40 mm plane strain block under the hydrostatic far-field
-// stress p = 10 MPa: Kirsch's elastic wall stresses are sigma_theta = -2p, sigma_r = 0, so the wall
-// yields where (sigma_theta - sigma_r) / 2 = p passes the shear yield k = sigma_Y / sqrt(3) (J2 in
-// plane strain; Hill 1950, the thick-walled cylinder). sigma_Y = 12 MPa (k = 0.69 p): plastic
-// extensions after the stage, and a second commit at the same equilibrium changes none (to float
-// round-off); sigma_Y = 30 MPa (k = 1.73 p): none.
+// stress p = 10 MPa: Kirsch's elastic wall stresses are sigma_theta = -2p, sigma_r = 0 and, in plane
+// strain, sigma_z = nu (sigma_theta + sigma_r) = -p/2, so sqrt(J2) = 1.04 p at the wall, and the wall
+// yields where that passes the shear yield k = sigma_Y / sqrt(3) (J2). sigma_Y = 12 MPa (k = 0.69 p):
+// plastic extensions after the stage, and a second commit at the same equilibrium changes none (to
+// float round-off); sigma_Y = 30 MPa (k = 1.73 p): none.
 TEST(Eps, TheInSituStageCommitsThePlasticExtensionsOfItsEquilibrium) {
   for (const double yield : {12e6, 30e6}) {
     const std::string text = R"([scene]

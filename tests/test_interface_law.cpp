@@ -26,8 +26,6 @@ using rift::operator-;
 
 constexpr double E = 10e9, nu = 0.25, spacing = 0.001, horizon = 3.015 * spacing, half = 0.02;
 
-// A 40 x 40 mm plane strain LPS block (rock that does not break), with an interface through its
-// middle from `a` to `b` and whatever `extra` adds.
 /// The model of a scene with its interfaces' force stages, as the run's set-up gives them.
 rift::pd::Model<2> discretize_with_interfaces(const rift::scene::Scene& s) {
   auto m = rift::pd::discretize<2>(s);
@@ -35,6 +33,8 @@ rift::pd::Model<2> discretize_with_interfaces(const rift::scene::Scene& s) {
   return m;
 }
 
+// A 40 x 40 mm plane strain LPS block (rock that does not break), with an interface through its
+// middle from `a` to `b` and whatever `extra` adds.
 rift::scene::Scene block_with_interface(const std::string& a, const std::string& b, const std::string& law, const std::string& extra = "",
                                         const std::string& rock_critical_stretch = "1.0") {
   const std::string text = rift::test::plane_strain_rock("critical_stretch = " + rock_critical_stretch + "\n") + R"([regions.block]

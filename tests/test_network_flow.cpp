@@ -110,7 +110,7 @@ TEST(NetworkFlow, TheRocksStrainIsNoOpening) {
 }
 
 // Across a failed pre-existing fracture the opening is its faces' normal opening
-// (interface_contact.hpp): the upper half lifted by w and slid by 3 w along it opens it by w.
+// (geomech/interface_contact.hpp): the upper half lifted by w and slid by 3 w along it opens it by w.
 TEST(NetworkFlow, SlipAlongAFailedInterfaceOpensNothing) {
   auto m = block("[[interfaces]]\npoints = [[-0.03, 0.0], [0.03, 0.0]]\ntensile_strength = 1e6\nfriction_coefficient = 0.89\n");
   const double w = 20e-6;

@@ -165,7 +165,7 @@
 // (17.1 mm past at t = 3.5 s and growing) and 2-4 crossed further (29.4 mm at t = 3.7 s).
 // What the failed bonds at 2-8's junction do (same trace, bonds with an end within 6 mm of it, t =
 // 2.2-2.4 s): 175 have failed; 45-55 have their faces apart and 120-130 are pressed together, of
-// which about 60% are at the Coulomb cap (interface_contact.hpp) and the rest stick; together the
+// which about 60% are at the Coulomb cap (geomech/interface_contact.hpp) and the rest stick; together the
 // pressed ones carry 0.28-0.46 of their normal force in shear, against mu = 0.89. Under dynamic
 // relaxation their slip is held at zero (compute_forces' history_dt is 0), so a failed bond's
 // friction is its elastic tangential force capped at mu times its normal one. So the blunting the

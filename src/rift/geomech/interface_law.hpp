@@ -107,7 +107,7 @@ void update_interface_strain(Model<D>& m) {
 }
 
 /// Fails the intact bonds across interfaces whose law is exceeded (see the top of this file). On N
-/// ranks (window.hpp) a rank decides the bonds with an owned end, from the ghosts' bond states and
+/// ranks (pd/window.hpp) a rank decides the bonds with an owned end, from the ghosts' bond states and
 /// strains as their owners have them; the bonds between two ghosts are their owners'.
 template <int D>
 void apply_interface_law(Model<D>& m) {

@@ -5,11 +5,13 @@
 #pragma once
 #include <array>
 #include <cmath>
+#include <cstddef>
 #include <cstdint>
 #include <vector>
 
 #include "rift/core/vec.hpp"
 #include "rift/geometry/precrack.hpp"
+#include "rift/pd/fluid_state.hpp"
 #include "rift/scene/scene.hpp"
 
 namespace rift::pd {

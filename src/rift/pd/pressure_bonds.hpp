@@ -1,4 +1,4 @@
-// The pressure bonds of a model (bonds.hpp CrackBonds), made with the model: the bonds a pre-crack
+// The pressure bonds of a model (fluid_state.hpp CrackBonds), made with the model: the bonds a pre-crack
 // cuts and those from a borehole's wall to its fluid sites, which carry the fluid's pressure
 // (hf/crack_pressure.hpp). Their coefficients d omega V_j (1/m_i + 1/m_j) take the whole-family weighted
 // volumes m, without the surface correction; a particle whose whole family falls short of a full one
