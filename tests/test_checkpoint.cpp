@@ -387,6 +387,69 @@ TEST(Checkpoint, StopInTheInSituStageStartsTheRunAgain) {
   expect_same_outputs(whole, parts);
 }
 
+// The static solver ([solver] type = "static"): a borehole's wall pressure ramped in three load
+// steps in a 30 mm plane strain block. A stop in a load step's conjugate gradients checkpoints the
+// positions it held; the restart solves that load step again from them, so the run ends at the
+// uninterrupted run's equilibrium within the solve's tolerance (not bit for bit): the final strain
+// energy within 1e-6, and the same as dynamic relaxation's within 1e-6 (the energy's error goes as
+// the square of the residual, 1e-9 of the load here).
+TEST(Checkpoint, StaticSolverStoppedWithinALoadStepSolvesItAgain) {
+  auto text = [](const char* type) {
+    return rift::test::plane_strain_rock("critical_stretch = 0.01\n") + R"([regions.block]
+shape = "box"
+min = [-0.015, -0.015]
+max = [0.015, 0.015]
+[regions.hole]
+shape = "cylinder"
+center = [0.0, 0.0]
+radius = 0.003
+[bodies.rock]
+material = "rock"
+region = "block"
+spacing = 0.001
+horizon = 3.015
+lattice_origin = [-0.0005, -0.0005]
+[[boreholes]]
+region = "hole"
+pressure = 5e6
+time = { function = "ramp", start = 0.0, end = 1.0 }
+[solver]
+type = ")" + std::string(type) + R"("
+load_steps = 3
+tolerance = 1e-9
+[output]
+snapshots = 3
+history = ["strain_energy"]
+[checkpoint]
+every_steps = 1
+file = "ck_*.rift"
+)";
+  };
+  const auto scene = rift::scene::parse_string(text("static"), "static.toml");
+  const fs::path whole = fresh_directory("static_whole"), parts = fresh_directory("static_parts"), relaxed = fresh_directory("static_relaxed");
+  const auto r = rift::run::run(scene, quiet_in(whole));
+  ASSERT_FALSE(r.stopped);
+  const auto evaluations = history_column(whole / "history.csv", "iterations");
+  ASSERT_EQ(evaluations.size(), 3u);
+  auto first = quiet_in(parts);
+  first.stop_after_iterations = 10;  // iterations of the conjugate gradients, of the first load step's ~100 force evaluations
+  const auto stopped = rift::run::run(scene, first);
+  ASSERT_TRUE(stopped.stopped);
+  EXPECT_EQ(stopped.steps, 0);
+  EXPECT_NE(stopped.stopped_in.find("in load step 1 (its checkpoint solves it again"), std::string::npos) << stopped.stopped_in;
+  auto second = quiet_in(parts);
+  second.restart = stopped.checkpoint;
+  const auto continued = rift::run::run(scene, second);
+  EXPECT_FALSE(continued.stopped);
+  EXPECT_EQ(continued.first_step, 1);
+  const double energy = last_history_value(whole / "history.csv", "strain_energy");
+  ASSERT_GT(energy, 0.0);
+  EXPECT_NEAR(last_history_value(parts / "history.csv", "strain_energy") / energy, 1.0, 1e-6);
+  const auto by_relaxation = rift::run::run(rift::scene::parse_string(text("dynamic_relaxation"), "relaxed.toml"), quiet_in(relaxed));
+  ASSERT_FALSE(by_relaxation.stopped);
+  EXPECT_NEAR(last_history_value(relaxed / "history.csv", "strain_energy") / energy, 1.0, 1e-6);
+}
+
 // MPM with an explicit crack that grows (CRAMP, maximum hoop stress): the material points and
 // their stresses, the crack particles and surfaces, the tips that stopped, and the crack_tips.csv
 // rows continue over the stop. A coarse DCB (2 mm cells), its arms pulled apart at once, with a

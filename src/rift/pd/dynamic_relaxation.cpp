@@ -237,6 +237,12 @@ template <int D>
 RelaxationResult DynamicRelaxation<D>::relax_breaking_at_equilibrium(Model<D>& m, const Loads<D>& loads,
                                                                       Contact<D>* contact, double t, int max_iterations,
                                                                       double tolerance, int max_passes) {
+  return breaking_at_equilibrium(m, loads, contact, max_passes, [&] { return relax(m, loads, contact, t, max_iterations, tolerance); });
+}
+
+template <int D>
+RelaxationResult DynamicRelaxation<D>::breaking_at_equilibrium(Model<D>& m, const Loads<D>& loads, Contact<D>* contact,
+                                                               int max_passes, const std::function<RelaxationResult()>& equilibrium) {
   RelaxationResult total;
   total.breaking_passes = 0;
   std::size_t broken_through = loads.broken_through(m);
@@ -250,7 +256,7 @@ RelaxationResult DynamicRelaxation<D>::relax_breaking_at_equilibrium(Model<D>& m
     RelaxationResult r;
     {
       HeldBreaking<D> held(m);
-      r = relax(m, loads, contact, t, max_iterations, tolerance);
+      r = equilibrium();
     }
     if (r.stopped) {
       unfinished_.pass = pass, unfinished_.iterations = total.iterations, unfinished_.broken_through = broken_through;

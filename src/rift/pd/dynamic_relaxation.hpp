@@ -69,6 +69,7 @@ class DynamicRelaxation {
   Unfinished& unfinished() { return unfinished_; }
   /// Called after each iteration's residual (a run's progress lines): f(iteration, residual).
   void observe(std::function<void(int, double)> f) { observer_ = std::move(f); }
+  const std::function<void(int, double)>& observer() const { return observer_; }
   bool is_unfinished() const { return unfinished_.iteration > 0; }
   /// Quasi-static growth: relax with every bond held, break the bonds past their limits at that
   /// equilibrium, and relax again, until an equilibrium breaks nothing (or max_passes equilibria;
@@ -79,6 +80,10 @@ class DynamicRelaxation {
   /// lost, and the bonds keep the crack it had then (what a cut block shows).
   RelaxationResult relax_breaking_at_equilibrium(Model<D>& m, const Loads<D>& loads, Contact<D>* contact, double t,
                                                  int max_iterations, double tolerance, int max_passes);
+  /// The same passes with another equilibrium: `equilibrium()` brings the model, its bonds held, to
+  /// the load step's equilibrium (the static solver's, run/simulation.hpp).
+  RelaxationResult breaking_at_equilibrium(Model<D>& m, const Loads<D>& loads, Contact<D>* contact, int max_passes,
+                                           const std::function<RelaxationResult()>& equilibrium);
 
  private:
   std::vector<double> fictitious_density_;  // lambda_ii (eq. 10), time step 1

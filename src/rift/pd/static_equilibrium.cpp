@@ -19,7 +19,8 @@ namespace rift::pd {
 
 template <int D>
 RelaxationResult solve_static_equilibrium(Model<D>& m, const Loads<D>& loads, Contact<D>* contact, double t,
-                                          const std::vector<double>& diagonal, int max_iterations, double tolerance) {
+                                          const std::vector<double>& diagonal, int max_iterations, double tolerance,
+                                          const std::function<void(int, double)>& observe) {
   const std::size_t n = m.size();
   m.time = t;
   loads.prescribe_position(m, t);
@@ -218,6 +219,7 @@ RelaxationResult solve_static_equilibrium(Model<D>& m, const Loads<D>& loads, Co
       if (!(result.residual < 0.5 * at_last_base)) break;  // Newton's steps no longer converge
       at_last_base = result.residual, stage_start = result.iterations;
     }
+    if (observe) observe(result.iterations, result.residual);
   }
   result.converged = result.residual < tolerance;
   m.position = result.converged ? x : base;  // where stopped short: the last evaluated iterate
@@ -231,8 +233,8 @@ RelaxationResult solve_static_equilibrium(Model<D>& m, const Loads<D>& loads, Co
 }
 
 template RelaxationResult solve_static_equilibrium<2>(Model<2>&, const Loads<2>&, Contact<2>*, double, const std::vector<double>&,
-                                                       int, double);
+                                                       int, double, const std::function<void(int, double)>&);
 template RelaxationResult solve_static_equilibrium<3>(Model<3>&, const Loads<3>&, Contact<3>*, double, const std::vector<double>&,
-                                                       int, double);
+                                                       int, double, const std::function<void(int, double)>&);
 
 }  // namespace rift::pd

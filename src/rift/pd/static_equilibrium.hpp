@@ -11,6 +11,7 @@
 // aggregate's sites across with the coarse space.
 // Why, and what was measured: docs/decisions/method-notes.md.
 #pragma once
+#include <functional>
 #include <vector>
 
 #include "rift/pd/contact.hpp"
@@ -28,8 +29,10 @@ namespace rift::pd {
 /// K p is not positive along a direction (forces that switch: a contact, an interface's friction),
 /// with the particles at the last iterate whose forces were evaluated; stopped = true where a stop
 /// signal came (core/stop_signal.hpp: read at each iteration, the solve is not resumable).
+/// `observe(evaluations, residual)`, where given, after each iteration (a run's progress lines).
 template <int D>
 RelaxationResult solve_static_equilibrium(Model<D>& m, const Loads<D>& loads, Contact<D>* contact, double t,
-                                          const std::vector<double>& diagonal, int max_iterations, double tolerance);
+                                          const std::vector<double>& diagonal, int max_iterations, double tolerance,
+                                          const std::function<void(int, double)>& observe = {});
 
 }  // namespace rift::pd

@@ -108,9 +108,15 @@ Plan check_dim(const scene::Scene& s, std::ostream& out) {
                   s.solver.end_time);
   } else {
     const bool at_equilibrium = s.solver.breaking == scene::Solver::Breaking::at_equilibrium;
-    std::snprintf(line, sizeof line, "\nsteps        %d load steps of dynamic relaxation (at most %d iterations each, tolerance %g; bonds break %s)\n",
-                  s.solver.load_steps, s.solver.max_iterations, s.solver.tolerance,
-                  at_equilibrium ? "at each equilibrium" : "during the iterations");
+    if (s.solver.kind == scene::SolverKind::static_equilibrium)
+      std::snprintf(line, sizeof line,
+                    "\nsteps        %d load steps of the static solver (conjugate gradients, at most %d force evaluations each, tolerance %g; "
+                    "bonds break at each equilibrium)\n",
+                    s.solver.load_steps, s.solver.max_iterations, s.solver.tolerance);
+    else
+      std::snprintf(line, sizeof line, "\nsteps        %d load steps of dynamic relaxation (at most %d iterations each, tolerance %g; bonds break %s)\n",
+                    s.solver.load_steps, s.solver.max_iterations, s.solver.tolerance,
+                    at_equilibrium ? "at each equilibrium" : "during the iterations");
   }
   out << line;
   if (s.in_situ.enabled) {
@@ -306,7 +312,7 @@ HistoryColumns pd_history_columns(const scene::Scene& s, Simulation<D>& p, std::
       for (const auto& f : p.loads.boundaries.reactions(m, comm)) r.insert(r.end(), f.begin(), f.end());
     });
   }
-  if (s.solver.kind == scene::SolverKind::dynamic_relaxation) {
+  if (s.solver.load_stepped()) {
     std::vector<std::string> names{"iterations", "residual"};
     if (s.solver.breaking == scene::Solver::Breaking::at_equilibrium) names.push_back("breaking_passes");
     columns.add(names, [&row](std::vector<double>& r) { r.insert(r.end(), row.solver.begin(), row.solver.end()); });
@@ -398,7 +404,7 @@ Result run_dim(const scene::Scene& s, const Options& o) {
   io::FieldWriter fields(res.output_dir, "fields", particles, comm.distributed());
   res.fields_h5 = fields.h5_pattern();
   res.fields_xdmf = fields.xdmf_path();
-  const bool relaxation = s.solver.kind == scene::SolverKind::dynamic_relaxation;
+  const bool relaxation = s.solver.load_stepped();  // load steps: a DynamicRelaxation holds their unfinished state
   std::optional<pd::DynamicRelaxation<D>> dr;
 
   // The loop's own state, which a checkpoint holds with the model's (pd/checkpoint_state.hpp): the
@@ -567,7 +573,9 @@ Result run_dim(const scene::Scene& s, const Options& o) {
           relaxing = step;
           r = p.relax(*dr, s.solver, s.solver.end_time * double(step) / double(p.steps));
           if (r.stopped) {  // the checkpoint holds the load steps done and this one's iterations so far
-            res.stopped_in = fmt::format("in load step {} at iteration {} (its checkpoint goes on from there)", step, dr->unfinished().iteration);
+            res.stopped_in = dr->is_unfinished()
+                                 ? fmt::format("in load step {} at iteration {} (its checkpoint goes on from there)", step, dr->unfinished().iteration)
+                                 : fmt::format("in load step {} (its checkpoint solves it again from the positions it holds)", step);
             PhaseClock output_clock(Phase::output);
             checkpoints.stop_within(step, m.time, res, gather, write_state);
             return false;

@@ -129,14 +129,36 @@ struct Simulation {
     loads.apply_body_forces(model, model.time);
   }
   void step() { pd::velocity_verlet_step<D>(model, loads, contact_ptr(), dt); }
-  /// One load step of dynamic relaxation at time t, bonds breaking as [solver] breaking says.
-  /// The load step ends with its equilibrium's histories committed (pd::commit_at_equilibrium).
+  /// One load step at time t: by dynamic relaxation, bonds breaking as [solver] breaking says, or
+  /// by the static solver (solve_static), bonds breaking at each equilibrium. The load step ends
+  /// with its equilibrium's histories committed (pd::commit_at_equilibrium).
   pd::RelaxationResult relax(pd::DynamicRelaxation<D>& dr, const scene::Solver& solver, double t) {
-    const auto r = solver.breaking == scene::Solver::Breaking::at_equilibrium
-                       ? dr.relax_breaking_at_equilibrium(model, loads, contact_ptr(), t, solver.max_iterations, solver.tolerance,
-                                                          solver.max_breaking_passes)
-                       : dr.relax(model, loads, contact_ptr(), t, solver.max_iterations, solver.tolerance);
+    pd::RelaxationResult r;
+    if (solver.kind == scene::SolverKind::static_equilibrium)
+      r = dr.breaking_at_equilibrium(model, loads, contact_ptr(), solver.max_breaking_passes, [&] { return solve_static(dr, solver, t); });
+    else if (solver.breaking == scene::Solver::Breaking::at_equilibrium)
+      r = dr.relax_breaking_at_equilibrium(model, loads, contact_ptr(), t, solver.max_iterations, solver.tolerance, solver.max_breaking_passes);
+    else
+      r = dr.relax(model, loads, contact_ptr(), t, solver.max_iterations, solver.tolerance);
     if (!r.stopped) pd::commit_at_equilibrium<D>(model, contact_ptr());
+    return r;
+  }
+  /// One equilibrium of the static solver at time t, the bonds held by the caller: preconditioned
+  /// conjugate gradients with the coarse space (pd/static_equilibrium.hpp) from the positions as
+  /// they stand (the last load step's equilibrium); where they stop short of the tolerance with
+  /// force evaluations left (forces that switch: a contact, an interface's friction), dynamic
+  /// relaxation from the same start for the evaluations left, as the in-situ stage does. A stop in
+  /// that relaxation goes on from there after a restart (DynamicRelaxation::unfinished); one in the
+  /// conjugate gradients solves again from the positions the checkpoint holds.
+  pd::RelaxationResult solve_static(pd::DynamicRelaxation<D>& dr, const scene::Solver& solver, double t) {
+    if (dr.is_unfinished()) return dr.relax(model, loads, contact_ptr(), t, solver.max_iterations, solver.tolerance);
+    const auto start = model.position;
+    const auto cg = pd::solve_static_equilibrium<D>(model, loads, contact_ptr(), t, dr.fictitious_density(), solver.max_iterations,
+                                                    solver.tolerance, dr.observer());
+    if (cg.converged || cg.stopped || cg.iterations >= solver.max_iterations) return cg;
+    model.position = start;
+    auto r = dr.relax(model, loads, contact_ptr(), t, solver.max_iterations - cg.iterations, solver.tolerance);
+    r.iterations += cg.iterations;
     return r;
   }
 

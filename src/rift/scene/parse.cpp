@@ -560,8 +560,10 @@ void parse_solver(R& root, Scene& s) {
   if (!t) throw SceneError(root.where(), "solver", "missing required table [solver] (type and end_time)");
   R r(*t, "solver", s.file);
   Solver& v = s.solver;
-  auto type = r.choice("type", {"explicit", "dynamic_relaxation"});
-  v.kind = (type && *type == "dynamic_relaxation") ? SolverKind::dynamic_relaxation : SolverKind::explicit_dynamics;
+  auto type = r.choice("type", {"explicit", "dynamic_relaxation", "static"});
+  v.kind = !type || *type == "explicit"      ? SolverKind::explicit_dynamics
+           : *type == "dynamic_relaxation" ? SolverKind::dynamic_relaxation
+                                           : SolverKind::static_equilibrium;
   std::vector<std::string> allowed{"type", "end_time"};
   if (v.kind == SolverKind::explicit_dynamics) {
     v.end_time = r.positive("end_time", r.required_number("end_time", "simulated time, s"));
@@ -580,18 +582,25 @@ void parse_solver(R& root, Scene& s) {
     v.end_time = r.positive("end_time", r.number("end_time", 1.0));
     if (auto n = r.count("load_steps", 1, limits::load_steps, "load steps, each an equilibrium and a snapshot file"))
       v.load_steps = static_cast<int>(*n);
-    if (auto n = r.count("max_iterations", 1, limits::iterations, "iterations of each load step"))
+    const bool static_solver = v.kind == SolverKind::static_equilibrium;
+    if (auto n = r.count("max_iterations", 1, limits::iterations,
+                         static_solver ? "force evaluations of each equilibrium" : "iterations of each load step"))
       v.max_iterations = static_cast<int>(*n);
     if (auto tol = r.number("tolerance")) v.tolerance = r.positive("tolerance", *tol);
-    if (auto b = r.choice("breaking", {"during", "at_equilibrium"}))
+    if (static_solver) v.breaking = Solver::Breaking::at_equilibrium;
+    if (auto b = r.choice("breaking", {"during", "at_equilibrium"})) {
+      if (static_solver && *b == "during")
+        r.fail("breaking", "the static solver breaks bonds at equilibrium only (\"at_equilibrium\", its default); "
+                           "breaking during the iterations is dynamic relaxation's (type = \"dynamic_relaxation\")");
       v.breaking = *b == "at_equilibrium" ? Solver::Breaking::at_equilibrium : Solver::Breaking::during;
+    }
     if (auto n = r.count("max_breaking_passes", 1, limits::iterations, "equilibria of each load step")) {
       if (v.breaking != Solver::Breaking::at_equilibrium) r.fail("max_breaking_passes", "only with breaking = \"at_equilibrium\"");
       v.max_breaking_passes = static_cast<int>(*n);
     }
     allowed.insert(allowed.end(), {"load_steps", "max_iterations", "tolerance", "breaking", "max_breaking_passes"});
   }
-  if (s.method == Method::mpm && v.kind == SolverKind::dynamic_relaxation)
+  if (s.method == Method::mpm && v.load_stepped())
     r.fail("type", "the material point method runs explicit dynamics; use [mpm] damping to reach a static answer");
   r.finish(allowed);
 }

@@ -196,19 +196,24 @@ struct InitialVelocity {
   Point3 velocity{};
 };
 
-enum class SolverKind { explicit_dynamics, dynamic_relaxation };
+/// Explicit dynamics, or load steps each brought to equilibrium: by adaptive dynamic relaxation or
+/// by the static solver (preconditioned conjugate gradients, pd/static_equilibrium.hpp).
+enum class SolverKind { explicit_dynamics, dynamic_relaxation, static_equilibrium };
 struct Solver {
   SolverKind kind = SolverKind::explicit_dynamics;
+  /// Load steps to equilibrium (dynamic relaxation or static), not time steps.
+  bool load_stepped() const { return kind != SolverKind::explicit_dynamics; }
   std::optional<double> time_step;
   SourceLocation time_step_where, end_time_where;
   double safety_factor = 0.8;
   double end_time = 0.0;
-  // dynamic relaxation (Kilic and Madenci 2010)
+  // dynamic relaxation (Kilic and Madenci 2010) and the static solver
   int load_steps = 1;
   int max_iterations = 20000;
   double tolerance = 1e-6;
-  /// When bonds may break: in every iteration (`during`), or only at each equilibrium, relaxing
-  /// again until a pass breaks nothing (`at_equilibrium`: quasi-static growth, no transients).
+  /// When bonds may break: in every iteration (`during`, dynamic relaxation only), or only at each
+  /// equilibrium, solving again until a pass breaks nothing (`at_equilibrium`: quasi-static growth,
+  /// no transients; the static solver's only way).
   enum class Breaking { during, at_equilibrium } breaking = Breaking::during;
   int max_breaking_passes = 200;  // at_equilibrium: equilibria per load step
 };
