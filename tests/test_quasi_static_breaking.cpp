@@ -122,4 +122,39 @@ TEST(QuasiStaticBreaking, FirstBondBreaksAtTheLoadOfTheElasticSolutionByRelaxati
   EXPECT_LT(solved.evaluations_to_5, relaxed.evaluations_to_5);
 }
 
+// A stop in a later breaking pass of the static solver (a signal between its equilibria' iterations;
+// here the second equilibrium of load step 6 reports a stop before it starts) leaves the load step
+// unfinished in that pass (DynamicRelaxation::passes_unfinished, which its checkpoint holds): the next
+// call goes on with that pass and ends where the uninterrupted load step ends, the same equilibria
+// counted and the same bonds broken.
+TEST(QuasiStaticBreaking, TheStaticSolverStoppedInALaterPassGoesOnWithThatPass) {
+  const double p_c = first_break_pressure();
+  auto scene = rift::scene::parse_string(pressurized_borehole(p_c * 8.0 / 5.5, 8, "static"), "ramp.toml");
+  const double t = 6.0 / 8.0;  // the load step whose first equilibrium breaks bonds (above)
+  rift::run::Simulation<2> whole(scene);
+  rift::pd::DynamicRelaxation<2> whole_dr(whole.model);
+  const auto uninterrupted = whole.relax(whole_dr, scene.solver, t);
+  ASSERT_GT(uninterrupted.breaking_passes, 1);
+  rift::run::Simulation<2> sim(scene);
+  rift::pd::DynamicRelaxation<2> dr(sim.model);
+  int calls = 0;
+  auto equilibrium = [&] {
+    if (++calls == 2) {
+      rift::pd::RelaxationResult stopped;
+      stopped.stopped = true;
+      return stopped;
+    }
+    return sim.solve_static(dr, scene.solver, t);
+  };
+  const auto first = dr.breaking_at_equilibrium(sim.model, sim.loads, sim.contact_ptr(), scene.solver.max_breaking_passes, equilibrium);
+  ASSERT_TRUE(first.stopped);
+  EXPECT_TRUE(dr.passes_unfinished());
+  const auto second = dr.breaking_at_equilibrium(sim.model, sim.loads, sim.contact_ptr(), scene.solver.max_breaking_passes, equilibrium);
+  EXPECT_FALSE(second.stopped);
+  EXPECT_FALSE(dr.passes_unfinished());
+  EXPECT_EQ(second.breaking_passes, uninterrupted.breaking_passes);
+  EXPECT_EQ(broken_bonds(sim.model), broken_bonds(whole.model));
+  EXPECT_EQ(second.iterations, uninterrupted.iterations);
+}
+
 }  // namespace

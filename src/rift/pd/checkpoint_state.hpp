@@ -34,7 +34,7 @@ static_assert(sizeof(BodyInfo) == 32 + 10 * 8 + 2 * 24 + sizeof(MaterialConstant
 static_assert(sizeof(Contact<3>) == 8 + 2 * 8 + 5 * 24 + 8 + 2 * 24 + sizeof(BeyondWindow<3>),
               "a member was added to Contact: list it in its visit_state");
 // (its observer prints a run's progress: not state)
-static_assert(sizeof(DynamicRelaxation<3>) == 24 + 8 + 8 + 8 + 2 * 24 + 8 + 8 + sizeof(std::function<void(int, double)>), "a member was added to DynamicRelaxation: list it in its visit_state");
+static_assert(sizeof(DynamicRelaxation<3>) == 24 + 8 + 8 + 8 + 2 * 24 + 8 + 8 + 8 + sizeof(std::function<void(int, double)>), "a member was added to DynamicRelaxation: list it in its visit_state");
 static_assert(sizeof(Model<3>) == 19 * 24 + sizeof(Numbering) + sizeof(Bonds) + sizeof(CrackBonds) + sizeof(InterfaceBonds) + sizeof(FluidNetwork) + 4 * 8 + 2 * 8,
               "a member was added to Model: list it in pd/checkpoint_state.hpp");
 // (Model's owned_ranges, numbering, cut_rows and ghosts are not state: a distributed run makes them at its

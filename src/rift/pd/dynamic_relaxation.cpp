@@ -247,7 +247,7 @@ RelaxationResult DynamicRelaxation<D>::breaking_at_equilibrium(Model<D>& m, cons
   total.breaking_passes = 0;
   std::size_t broken_through = loads.broken_through(m);
   int first_pass = 0;
-  if (is_unfinished()) {  // a load step a stop cut short, in its pass `pass`
+  if (passes_unfinished()) {  // a load step a stop cut short, in its pass `pass`
     first_pass = unfinished_.pass, total.breaking_passes = unfinished_.pass, total.iterations = unfinished_.iterations;
     broken_through = static_cast<std::size_t>(unfinished_.broken_through);
     unfinished_.pass = 0, unfinished_.iterations = 0, unfinished_.broken_through = 0;

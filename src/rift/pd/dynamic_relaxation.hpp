@@ -54,7 +54,7 @@ class DynamicRelaxation {
     a("relaxation.unfinished.iteration", unfinished_.iteration), a("relaxation.unfinished.load_norm", unfinished_.load_norm);
     a("relaxation.unfinished.previous", unfinished_.previous), a("relaxation.unfinished.start", unfinished_.start);
     a("relaxation.unfinished.pass", unfinished_.pass), a("relaxation.unfinished.iterations", unfinished_.iterations);
-    a("relaxation.unfinished.broken_through", unfinished_.broken_through);
+    a("relaxation.unfinished.broken_through", unfinished_.broken_through), a("relaxation.unfinished.spent", unfinished_.spent);
   }
   /// A load step a stop signal cut short: where its iterations stood. The next relax call (the same
   /// load step, after a restart from the checkpoint that holds it) goes on from there, bit for bit.
@@ -65,12 +65,17 @@ class DynamicRelaxation {
     std::int32_t pass = 0;                 // relax_breaking_at_equilibrium: the pass it is in, the iterations
     std::int32_t iterations = 0;           // of the passes before it and the fluid sources broken
     std::uint64_t broken_through = 0;      // through to the outer surface when the load step began
+    std::int32_t spent = 0;                // the static solver: the force evaluations its conjugate
+                                           // gradients spent before this relaxation took over
   };
   Unfinished& unfinished() { return unfinished_; }
   /// Called after each iteration's residual (a run's progress lines): f(iteration, residual).
   void observe(std::function<void(int, double)> f) { observer_ = std::move(f); }
   const std::function<void(int, double)>& observer() const { return observer_; }
   bool is_unfinished() const { return unfinished_.iteration > 0; }
+  /// Whether a stop cut a load step's breaking passes short: in a relaxation, or in another
+  /// equilibrium (breaking_at_equilibrium) of a pass after the first.
+  bool passes_unfinished() const { return is_unfinished() || unfinished_.pass > 0; }
   /// Quasi-static growth: relax with every bond held, break the bonds past their limits at that
   /// equilibrium, and relax again, until an equilibrium breaks nothing (or max_passes equilibria;
   /// then converged is false).

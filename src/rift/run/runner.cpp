@@ -522,7 +522,9 @@ Result run_dim(const scene::Scene& s, const Options& o) {
     // an unfinished load step's iterations (the same on every rank but for its particles')
     auto& u = dr->unfinished();
     auto* w = comm.root() ? &whole_dr->unfinished() : nullptr;
-    if (w) w->iteration = u.iteration, w->load_norm = u.load_norm, w->pass = u.pass, w->iterations = u.iterations, w->broken_through = u.broken_through;
+    if (w)
+      w->iteration = u.iteration, w->load_norm = u.load_norm, w->pass = u.pass, w->iterations = u.iterations, w->broken_through = u.broken_through,
+      w->spent = u.spent;
     if (w) w->previous.clear(), w->start.clear();
     gather_into<D>(comm, m, u.previous, w ? &w->previous : nullptr);
     gather_into<D>(comm, m, u.start, w ? &w->start : nullptr);

@@ -148,18 +148,29 @@ struct Simulation {
   /// they stand (the last load step's equilibrium); where they stop short of the tolerance with
   /// force evaluations left (forces that switch: a contact, an interface's friction), dynamic
   /// relaxation from the same start for the evaluations left, as the in-situ stage does. A stop in
-  /// that relaxation goes on from there after a restart (DynamicRelaxation::unfinished); one in the
-  /// conjugate gradients solves again from the positions the checkpoint holds.
+  /// that relaxation goes on from there after a restart, bit for bit (DynamicRelaxation::unfinished,
+  /// with the evaluations spent); one in the conjugate gradients solves again from the positions the
+  /// checkpoint holds. Out of evaluations, the fluid still takes the pressures reached
+  /// (loads.at_equilibrium), as relaxation's end does.
   pd::RelaxationResult solve_static(pd::DynamicRelaxation<D>& dr, const scene::Solver& solver, double t) {
-    if (dr.is_unfinished()) return dr.relax(model, loads, contact_ptr(), t, solver.max_iterations, solver.tolerance);
+    auto relax_for_the_rest = [&](int spent) {
+      dr.unfinished().spent = spent;
+      auto r = dr.relax(model, loads, contact_ptr(), t, solver.max_iterations - spent, solver.tolerance);
+      if (!r.stopped) dr.unfinished().spent = 0;
+      r.iterations += spent;
+      return r;
+    };
+    if (dr.is_unfinished()) return relax_for_the_rest(dr.unfinished().spent);  // a stop came in it
     const auto start = model.position;
     const auto cg = pd::solve_static_equilibrium<D>(model, loads, contact_ptr(), t, dr.fictitious_density(), solver.max_iterations,
                                                     solver.tolerance, dr.observer());
-    if (cg.converged || cg.stopped || cg.iterations >= solver.max_iterations) return cg;
+    if (cg.converged || cg.stopped) return cg;
+    if (cg.iterations >= solver.max_iterations) {
+      loads.at_equilibrium(model);
+      return cg;
+    }
     model.position = start;
-    auto r = dr.relax(model, loads, contact_ptr(), t, solver.max_iterations - cg.iterations, solver.tolerance);
-    r.iterations += cg.iterations;
-    return r;
+    return relax_for_the_rest(cg.iterations);
   }
 
  private:
